@@ -1,0 +1,41 @@
+// Unicycle kinematics shared by the simulator and the robots' own move prediction, so that
+// what a robot predicts is exactly what the simulator executes.
+#ifndef SWARM_TRANSPORT_CORE_KINEMATICS_H_
+#define SWARM_TRANSPORT_CORE_KINEMATICS_H_
+
+#include "swarm_transport/core/geometry.h"
+
+namespace swarm_transport {
+namespace core {
+
+// A robot pose: position (m) and heading.
+struct Pose2 {
+  Vec2 position;
+  Angle heading;
+};
+
+// A velocity command held for a duration: linear (m/s), angular (rad/s).
+struct Velocity {
+  double linear = 0.0;
+  double angular = 0.0;
+};
+
+// Exact constant-velocity unicycle motion (a straight line or a circular arc) for `duration`
+// seconds. Composes exactly: Integrate(Integrate(p, v, a), v, b) == Integrate(p, v, a + b).
+Pose2 Integrate(const Pose2& pose, Velocity velocity, double duration_s);
+
+// The command that turns a robot from `pose` to `heading` while driving `distance` (m) in
+// `duration_s`: angular = signed turn / duration, linear = distance / duration. The move is a
+// constant-curvature arc that ends at `heading` (Decision: one Twist expresses one tick; the
+// thesis turned in place then drove).
+Velocity CommandFor(const Pose2& pose, Angle heading, double distance, double duration_s);
+
+// Points along the arc from `pose` under `velocity` for `duration_s`, `samples` >= 2 of them,
+// the first being the start and the last the destination.
+std::vector<Vec2> SampleArc(const Pose2& pose, Velocity velocity, double duration_s,
+                            int samples);
+
+}  // namespace core
+}  // namespace swarm_transport
+
+#endif  // SWARM_TRANSPORT_CORE_KINEMATICS_H_

@@ -1,0 +1,47 @@
+// An informed leader [SPEC 5, T5.3, T7.3]: heads for its goal without swerving.
+#ifndef SWARM_TRANSPORT_CORE_LEADER_H_
+#define SWARM_TRANSPORT_CORE_LEADER_H_
+
+#include <cstdint>
+#include <string>
+
+#include "swarm_transport/core/flocking.h"
+
+namespace swarm_transport {
+namespace core {
+
+// Leader parameters.
+struct LeaderParams {
+  double goal_tolerance_m = 0.05;  // within this of the goal the leader is done
+  double wait_fraction = 0.5;      // wait while the swarm centroid is farther than this * range
+  bool keep_flock = true;          // wait for / give up on the swarm (leader-only missions)
+  std::string Validate() const;
+};
+
+// What a leader remembers between ticks.
+struct LeaderMemory {
+  bool gave_up = false;          // the swarm left its range: it goes on alone
+  std::uint64_t blocked_waits = 0;  // ticks it stood because every speed collided
+  std::uint64_t swarm_waits = 0;    // ticks it stood waiting for its swarm
+};
+
+// Result of one leader tick.
+struct LeaderDecision {
+  MoveDecision move;
+  bool arrived = false;  // within goal_tolerance: the caller reverts to normal behaviour
+};
+
+// One leader tick towards `goal` along `steer` (for a leader-only mission the bearing self ->
+// goal; in transport the bearing object centre -> target). Never swerves: tries `steer` at
+// full speed, then at reduced speeds; stands otherwise (a blocked wait). With keep_flock, the
+// swarm is the physical neighbours in range (itself excluded): none left -> gave_up; centroid
+// farther than wait_fraction * range -> stand (a swarm wait). `rng` is advanced exactly as
+// FlockingStep advances it, so switching roles keeps the random sequence aligned.
+LeaderDecision LeaderStep(const Perception& in, const FlockingParams& p, const LeaderParams& lp,
+                          Vec2 goal, Angle steer, Rng& rng, double duration_s,
+                          LeaderMemory* memory);
+
+}  // namespace core
+}  // namespace swarm_transport
+
+#endif  // SWARM_TRANSPORT_CORE_LEADER_H_

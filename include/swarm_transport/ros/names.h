@@ -1,0 +1,52 @@
+// Default topic, service and frame names in one place. Per-robot names are relative: they are
+// resolved inside the robot's namespace (robot_<id>), like turtlesim's multisim.launch.
+#ifndef SWARM_TRANSPORT_ROS_NAMES_H_
+#define SWARM_TRANSPORT_ROS_NAMES_H_
+
+#include <cstdint>
+#include <string>
+
+namespace swarm_transport {
+namespace names {
+
+// Global topics (SPEC 3).
+constexpr char kPosition[] = "/flock/position";
+constexpr char kPositions[] = "/flock/positions";  // aggregated, from the simulator
+constexpr char kMissionNew[] = "/flock/mission/new";
+constexpr char kMissionStatus[] = "/flock/mission/status";
+constexpr char kMissionEvent[] = "/flock/mission/event";
+constexpr char kFreeze[] = "/flock/freeze";
+constexpr char kContinue[] = "/flock/continue";
+constexpr char kObjectUpdate[] = "/flock/object/update";
+constexpr char kObjectDelete[] = "/flock/object/delete";
+constexpr char kRobotNew[] = "/flock/robot/new";
+constexpr char kRobotDelete[] = "/flock/robot/delete";
+constexpr char kMarkers[] = "/flock/markers";
+
+// Per robot, relative to the robot's namespace.
+constexpr char kCmdVel[] = "cmd_vel";
+constexpr char kPose[] = "pose";
+constexpr char kNeighbors[] = "neighbors";
+constexpr char kTeleportAbsolute[] = "teleport_absolute";
+constexpr char kTeleportRelative[] = "teleport_relative";
+
+// Simulator services (global).
+constexpr char kSpawn[] = "/spawn";
+constexpr char kKill[] = "/kill";
+constexpr char kReset[] = "/reset";
+
+// Dispatcher services.
+constexpr char kSubmitMission[] = "/mission_dispatcher/submit";
+constexpr char kSignalMission[] = "/mission_dispatcher/signal";
+
+// tf frames.
+constexpr char kWorldFrame[] = "world";
+constexpr char kBaseLink[] = "base_link";
+
+// The namespace of robot `id`: "robot_<id>".
+inline std::string RobotNamespace(std::uint16_t id) { return "robot_" + std::to_string(id); }
+
+}  // namespace names
+}  // namespace swarm_transport
+
+#endif  // SWARM_TRANSPORT_ROS_NAMES_H_
