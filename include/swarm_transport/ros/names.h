@@ -12,6 +12,7 @@ namespace names {
 // Global topics (SPEC 3).
 constexpr char kPosition[] = "/flock/position";
 constexpr char kPositions[] = "/flock/positions";  // aggregated, from the simulator
+constexpr char kRobots[] = "/flock/robots";      // latched: the robots that exist
 constexpr char kMissionNew[] = "/flock/mission/new";
 constexpr char kMissionStatus[] = "/flock/mission/status";
 constexpr char kMissionEvent[] = "/flock/mission/event";

@@ -1,0 +1,80 @@
+// Missions [SPEC 6]: the order, its validation, and its phases.
+#ifndef SWARM_TRANSPORT_CORE_MISSION_H_
+#define SWARM_TRANSPORT_CORE_MISSION_H_
+
+#include <cstdint>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "swarm_transport/core/geometry.h"
+
+namespace swarm_transport {
+namespace core {
+
+// Phases, numbered as Mission_Status.state.
+enum class MissionPhase : std::uint8_t {
+  kQueued = 0,
+  kGathering = 1,
+  kLoading = 2,
+  kTransport = 3,
+  kUnloading = 4,
+  kDone = 5,
+  kAborted = 6,
+  kRejected = 7,
+};
+const char* PhaseName(MissionPhase phase);
+
+// Mission_Event.event values.
+enum class MissionEventKind : std::uint8_t { kLoaded = 1, kUnloaded = 2 };
+
+// A mission order as the robots and the dispatcher hold it (New_Mission, validated).
+struct MissionSpec {
+  std::uint16_t id = 0;
+  // Assigned robot ids as sent: robot_ids if non-empty, else [from, to).
+  std::uint16_t range_from = 0;
+  std::uint16_t range_to = 0;
+  std::vector<std::uint16_t> robot_ids;
+  int leader_number = 0;
+  Vec2 object_centre;
+  Vec2 object_size;
+  Vec2 target;
+  std::uint8_t transport_mode = 0;
+  // Finite-ness of every float of the original message (a NaN cannot live in a Vec2 check).
+  bool all_finite = true;
+
+  // Assigned ids, ascending, without duplicates.
+  std::vector<std::uint16_t> Assigned() const;
+  bool Assigns(std::uint16_t robot) const;
+  // The first leader_number assigned ids; the first leader is the lowest.
+  std::vector<std::uint16_t> Leaders() const;
+  bool IsLeader(std::uint16_t robot) const;
+  std::uint16_t FirstLeader() const;
+  // A leader-only mission [T5.3]: object size 0 x 0 (the target is the leader's goal).
+  bool LeaderOnly() const;
+  // The object as a shape at `centre` (a rectangle of object_size).
+  Shape ObjectAt(Vec2 centre) const;
+  // Maximal runs [from, to) covering Assigned(), for Robot_Freeze / Robot_Continue.
+  std::vector<std::pair<std::uint16_t, std::uint16_t>> AssignedRuns() const;
+};
+
+// What a validator knows besides the mission itself.
+struct MissionContext {
+  double world_size_m = 11.088889;
+  // Robots known to exist; empty = unknown (the check is skipped).
+  std::set<std::uint16_t> known_robots;
+  // Ids of live missions (neither DONE, ABORTED nor REJECTED).
+  std::set<std::uint16_t> live_missions;
+};
+
+// Empty when the mission is acceptable, else the reason (one sentence) [SPEC 10]: non-finite
+// fields; from >= to (when robot_ids is empty); leader_number 0 or larger than the group;
+// transport: object size <= 0 on an axis (only 0 x 0 means leader-only); leader-only with more
+// than leader_number robots; object centre or target outside the arena; duplicate live id;
+// unknown robot id; transport_mode not 0 or 1.
+std::string ValidateMission(const MissionSpec& mission, const MissionContext& context);
+
+}  // namespace core
+}  // namespace swarm_transport
+
+#endif  // SWARM_TRANSPORT_CORE_MISSION_H_

@@ -1,0 +1,123 @@
+// A robot's side of the missions [SPEC 5, 6]: which missions it knows, which zones they make
+// for it, its role this tick, and - as a mission's first leader - the phase machine.
+#ifndef SWARM_TRANSPORT_CORE_MISSION_AGENT_H_
+#define SWARM_TRANSPORT_CORE_MISSION_AGENT_H_
+
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "swarm_transport/core/flocking.h"
+#include "swarm_transport/core/leader.h"
+#include "swarm_transport/core/mission.h"
+
+namespace swarm_transport {
+namespace core {
+
+// Parameters of the robot-side mission logic.
+struct MissionAgentParams {
+  double goal_tolerance_m = 0.05;    // object centre (or leader) at the target within this
+  int object_update_ticks = 1;       // first leader publishes Update_Object every N ticks
+  int progress_every_ticks = 50;     // first leader repeats its status with progress every N
+  std::uint64_t phase_timeout_ticks = 20000;  // a phase that lasts longer aborts the mission
+};
+
+// A status report the first leader publishes.
+struct StatusReport {
+  std::uint16_t mission_id = 0;
+  MissionPhase phase = MissionPhase::kQueued;
+  std::string reason;
+  std::uint16_t assigned = 0;
+  std::uint16_t inside = 0;
+  Vec2 object;
+  double distance_to_target = 0.0;
+};
+
+// Messages the robot must publish after this tick (only a first leader fills them).
+struct MissionOutbox {
+  std::vector<std::pair<std::uint16_t, std::uint16_t>> freeze;     // [from, to) runs
+  std::vector<std::pair<std::uint16_t, std::uint16_t>> resume;     // Robot_Continue runs
+  std::optional<std::pair<std::uint16_t, Vec2>> update_object;     // mission id, centre
+  std::optional<std::uint16_t> delete_object;                      // mission id
+  std::vector<StatusReport> statuses;
+  bool empty() const {
+    return freeze.empty() && resume.empty() && !update_object && !delete_object &&
+           statuses.empty();
+  }
+};
+
+// How the robot behaves this tick.
+struct MissionPlan {
+  std::vector<Zone> zones;   // objects: safety for its active mission, danger for all others
+  bool lead = false;         // use LeaderStep instead of FlockingStep
+  bool keep_flock = false;   // leader-only missions wait for / give up on the swarm
+  Vec2 goal;                 // leader's goal
+  Angle steer;               // leader's heading
+  std::optional<std::uint16_t> active;  // the mission it works on, if any
+};
+
+// The mission side of one robot. Pure: messages in, a plan and an outbox out.
+class MissionAgent {
+ public:
+  MissionAgent(std::uint16_t self_id, const MissionAgentParams& params);
+
+  // Inbox. Each returns false with a reason when the message is rejected (state unchanged).
+  // `mission` must already have passed ValidateMission with LiveIds() in its context.
+  bool OnNewMission(const MissionSpec& mission, std::string* why);
+  bool OnObjectUpdate(std::uint16_t mission_id, Vec2 centre, std::string* why);
+  bool OnObjectDelete(std::uint16_t mission_id, std::string* why);
+  bool OnEvent(std::uint16_t mission_id, MissionEventKind event, std::string* why);
+  // A status published by a mission's first leader (how other members learn the phase).
+  void OnStatus(std::uint16_t mission_id, MissionPhase phase);
+
+  // Missions this robot holds (not yet deleted).
+  std::set<std::uint16_t> LiveIds() const;
+  // The phase this robot believes `mission_id` is in (kDone when unknown).
+  MissionPhase PhaseOf(std::uint16_t mission_id) const;
+  // True when this robot is the first leader of a live mission (it must be able to publish).
+  bool IsFirstLeaderOfAny() const;
+
+  // One tick: `self` is its pose, `heard` every robot it heard (in range and mission peers).
+  // Fills `outbox` (first leader only) and returns how to move. A null `outbox` means the robot
+  // cannot publish yet: a first leader's phase machine waits (its members gather anyway).
+  MissionPlan Tick(const Pose2& self, const std::vector<Neighbour>& heard, std::uint64_t tick,
+                   MissionOutbox* outbox);
+  // After the move: a leader that arrived at its leader-only goal ends its mission.
+  void LeaderArrived(std::uint16_t mission_id, MissionOutbox* outbox);
+
+ private:
+  // What every robot knows of a live mission.
+  struct Live {
+    MissionSpec spec;
+    Vec2 centre;
+    MissionPhase phase = MissionPhase::kQueued;  // as known by this robot
+    std::uint64_t phase_tick = 0;               // first-leader: tick the phase began
+    bool phase_started = false;
+    Vec2 offset;                                 // first-leader: centre - centroid at TRANSPORT
+    std::uint64_t transport_ticks = 0;
+    bool loaded = false;       // first-leader: LOADED arrived during LOADING
+    bool unloaded = false;     // first-leader: UNLOADED arrived during UNLOADING
+    bool self_arrived = false; // this leader reached its leader-only goal
+  };
+  void Drop(std::uint16_t mission_id);
+  void RunFirstLeader(Live* live, const Pose2& self, const std::vector<Neighbour>& heard,
+                      std::uint64_t tick, MissionOutbox* outbox);
+  StatusReport Report(const Live& live, std::uint16_t inside) const;
+  void EnterPhase(Live* live, MissionPhase phase, std::uint64_t tick, std::uint16_t inside,
+                  MissionOutbox* outbox);
+
+  std::uint16_t self_id_;
+  MissionAgentParams params_;
+  std::map<std::uint16_t, Live> live_;
+  std::deque<std::uint16_t> queue_;  // this robot's own missions, FIFO [T6.4]
+};
+
+}  // namespace core
+}  // namespace swarm_transport
+
+#endif  // SWARM_TRANSPORT_CORE_MISSION_AGENT_H_

@@ -1,0 +1,44 @@
+// Typed, validated swarm configuration and its one loader (from the /swarm parameter
+// namespace, or from a YAML file turned into the same XmlRpc dictionary).
+#ifndef SWARM_TRANSPORT_ROS_PARAMS_H_
+#define SWARM_TRANSPORT_ROS_PARAMS_H_
+
+#include <xmlrpcpp/XmlRpcValue.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "swarm_transport/core/flocking.h"
+#include "swarm_transport/core/leader.h"
+
+namespace swarm_transport {
+
+// Everything in the shared /swarm namespace (config/*.yaml): behaviour, clock, zones.
+struct SwarmConfig {
+  core::FlockingParams flocking;
+  core::LeaderParams leader;
+  double tick_period_s = 0.1;         // one tick (lock-step: simulated; real time: wall)
+  std::uint64_t seed = 1;             // base seed of every robot's generator
+  std::vector<core::Zone> danger_zones;  // static danger zones
+  double loaded_delay_s = 2.0;        // dispatcher: LOADED this long after LOADING (<0: wait)
+  double unloaded_delay_s = 2.0;      // dispatcher: UNLOADED this long after UNLOADING
+  int object_update_ticks = 5;        // first leader publishes Update_Object every N ticks
+
+  // Empty when valid, else one sentence naming the bad key.
+  std::string Validate() const;
+};
+
+// Fills `config` from a dictionary holding the /swarm keys. Missing keys keep their defaults;
+// a key of the wrong type or an invalid value is an error (`error` names it, config untouched).
+bool ConfigFromXmlRpc(XmlRpc::XmlRpcValue& dict, SwarmConfig* config, std::string* error);
+
+// Reads a whole YAML file into the XmlRpc dictionary ROS would make of it with rosparam load.
+bool XmlRpcFromYamlFile(const std::string& path, XmlRpc::XmlRpcValue* out, std::string* error);
+
+// Parses one zone dictionary {shape: rect|circle, x, y, size_x, size_y | radius}.
+bool ZoneFromXmlRpc(XmlRpc::XmlRpcValue& value, int id, core::Zone* zone, std::string* error);
+
+}  // namespace swarm_transport
+
+#endif  // SWARM_TRANSPORT_ROS_PARAMS_H_

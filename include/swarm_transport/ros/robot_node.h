@@ -1,0 +1,111 @@
+// The ROS adapter of one robot: perception in, one tick of behaviour, command out.
+#ifndef SWARM_TRANSPORT_ROS_ROBOT_NODE_H_
+#define SWARM_TRANSPORT_ROS_ROBOT_NODE_H_
+
+#include <ros/ros.h>
+#include <std_srvs/Trigger.h>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <set>
+
+#include "swarm_transport/Delete_Object.h"
+#include "swarm_transport/Mission_Event.h"
+#include "swarm_transport/Mission_Status.h"
+#include "swarm_transport/Neighbors.h"
+#include "swarm_transport/New_Mission.h"
+#include "swarm_transport/Robot_Continue.h"
+#include "swarm_transport/Robot_Freeze.h"
+#include "swarm_transport/Robot_Positions.h"
+#include "swarm_transport/Update_Object.h"
+#include "swarm_transport/core/leader.h"
+#include "swarm_transport/core/mission_agent.h"
+#include "swarm_transport/core/random.h"
+#include "swarm_transport/ros/params.h"
+
+namespace swarm_transport {
+
+// Private parameters of a robot node (the shared behaviour comes from /swarm).
+struct RobotNodeOptions {
+  int id = -1;                   // ~id, required, [0, 65535]
+  std::string clock = "realtime";  // ~clock: realtime (own wall timer) or lockstep (tick per
+                                   // Neighbors message from the simulator)
+  std::string Validate() const;
+};
+
+// One robot of the swarm [SPEC 4]. In lock-step every Neighbors message is one tick and is
+// answered with exactly one cmd_vel; in real time a wall timer ticks at tick_period_s on the
+// latest perception, like the thesis's ros::Rate loop.
+class RobotNode {
+ public:
+  RobotNode(ros::NodeHandle nh, ros::NodeHandle private_nh);
+  // Loads and validates parameters, connects topics. False (after one ROS_FATAL) on bad input.
+  bool Initialize();
+  // Sends a last zero velocity (a stopping robot always stands still).
+  void Shutdown();
+
+  std::uint64_t ticks() const { return ticks_; }
+
+ private:
+  void OnNeighbors(const Neighbors::ConstPtr& msg);
+  void OnTimer(const ros::WallTimerEvent& event);
+  void OnFreeze(const Robot_Freeze::ConstPtr& msg);
+  void OnContinue(const Robot_Continue::ConstPtr& msg);
+  void OnNewMission(const New_Mission::ConstPtr& msg);
+  void OnObjectUpdate(const Update_Object::ConstPtr& msg);
+  void OnObjectDelete(const Delete_Object::ConstPtr& msg);
+  void OnMissionEvent(const Mission_Event::ConstPtr& msg);
+  void OnMissionStatus(const Mission_Status::ConstPtr& msg);
+  void OnRobots(const Robot_Positions::ConstPtr& msg);
+  // ~describe: one line of state (role, frozen, missions, zones) for users and tests.
+  bool OnDescribe(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  // Computes and executes one tick on `perception_`.
+  void Tick();
+  // Publishes what the first leader of a mission decided this tick.
+  void Publish(const core::MissionOutbox& outbox);
+  // A first leader needs its own publishers; only those robots advertise them, so the swarm
+  // does not become all-to-all. True when every robot can hear them.
+  bool MissionOutletsReady();
+  bool InRange(std::uint16_t from, std::uint16_t to) const;
+
+  ros::NodeHandle nh_;
+  ros::NodeHandle private_nh_;
+  RobotNodeOptions options_;
+  SwarmConfig config_;
+  std::uint16_t id_ = 0;
+  std::unique_ptr<core::Rng> rng_;
+  ros::Publisher cmd_pub_;
+  ros::Publisher position_pub_;
+  ros::Subscriber neighbors_sub_;
+  ros::Subscriber freeze_sub_;
+  ros::Subscriber continue_sub_;
+  ros::Subscriber mission_sub_;
+  ros::Subscriber update_sub_;
+  ros::Subscriber delete_sub_;
+  ros::Subscriber event_sub_;
+  ros::Subscriber status_sub_;
+  ros::Subscriber robots_sub_;
+  // Lazily advertised when this robot becomes a first leader (see MissionOutletsReady).
+  ros::Publisher freeze_pub_;
+  ros::Publisher continue_pub_;
+  ros::Publisher update_pub_;
+  ros::Publisher delete_pub_;
+  ros::Publisher status_pub_;
+  ros::ServiceServer describe_srv_;
+  ros::WallTimer timer_;
+  core::MissionAgent agent_;
+  core::LeaderMemory leader_memory_;
+  std::optional<std::uint16_t> leader_memory_mission_;
+  std::set<std::uint16_t> known_robots_;
+  core::MissionPlan last_plan_;
+  Neighbors::ConstPtr perception_;
+  bool frozen_ = false;
+  std::uint64_t ticks_ = 0;
+};
+
+}  // namespace swarm_transport
+
+#endif  // SWARM_TRANSPORT_ROS_ROBOT_NODE_H_

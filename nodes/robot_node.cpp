@@ -1,0 +1,15 @@
+// One robot of the swarm: ~id, the shared /swarm configuration, a tick per perception.
+#include <ros/ros.h>
+
+#include "swarm_transport/ros/robot_node.h"
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "robot");
+  ros::NodeHandle nh;
+  ros::NodeHandle private_nh("~");
+  swarm_transport::RobotNode node(nh, private_nh);
+  if (!node.Initialize()) return 1;
+  ros::spin();
+  node.Shutdown();
+  return 0;
+}

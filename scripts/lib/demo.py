@@ -1,0 +1,170 @@
+"""scripts/demo: a swarm of N robots on a private ROS master, headless unless --rviz, for a
+bounded time; prints what happened."""
+
+import argparse
+import math
+import os
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import st_ros  # noqa: E402
+
+
+def swarm_count(points, local_range):
+    """Connected components of the graph linking robots within local_range (SPEC 8)."""
+    parent = list(range(len(points)))
+
+    def find(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    for i in range(len(points)):
+        for j in range(i + 1, len(points)):
+            if math.hypot(points[i][0] - points[j][0], points[i][1] - points[j][1]) <= local_range:
+                parent[find(i)] = find(j)
+    return len({find(i) for i in range(len(points))})
+
+
+def parse_args(argv):
+    p = argparse.ArgumentParser(prog='scripts/demo', description=__doc__)
+    p.add_argument('--robots', type=int, default=25, help='number of robots (default 25)')
+    p.add_argument('--seed', type=int, default=1, help='seed (default 1)')
+    p.add_argument('--realtime', action='store_true',
+                   help='wall-clock ticks instead of lock-step')
+    p.add_argument('--ticks', type=int, default=600,
+                   help='lock-step: ticks to run (default 600)')
+    p.add_argument('--seconds', type=float, default=30.0,
+                   help='real time: seconds to run (default 30); lock-step: wall time limit')
+    p.add_argument('--rviz', action='store_true', help='show the swarm in rviz')
+    p.add_argument('--screenshot', default='',
+                   help='with --rviz: save a PNG of the rviz window at the end')
+    p.add_argument('--config', default='', help='extra YAML merged over config/swarm.yaml')
+    a = p.parse_args(argv)
+    if a.robots < 1 or a.robots > 65535:
+        p.error('--robots must be in [1, 65535]')
+    if a.ticks < 1 or not (a.seconds > 0):
+        p.error('--ticks and --seconds must be positive')
+    return a
+
+
+def start_display(ros):
+    """A virtual display when none is given, so rviz can run headless (and be screenshot)."""
+    if os.environ.get('DISPLAY'):
+        return os.environ['DISPLAY']
+    display = ':%d' % (90 + ros.port % 100)
+    ros.start(['Xvfb', display, '-screen', '0', '1280x1024x24'], 'xvfb')
+    time.sleep(1.0)
+    ros.env['DISPLAY'] = display
+    ros.env['LIBGL_ALWAYS_SOFTWARE'] = '1'
+    os.environ['DISPLAY'] = display
+    return display
+
+
+def main(argv):
+    a = parse_args(argv)
+    with st_ros.PrivateRos() as ros:
+        st_ros.log('[demo] private ROS master on port %d, logs in %s' % (ros.port, ros.log_dir))
+        if a.rviz:
+            st_ros.log('[demo] rviz on display %s' % start_display(ros))
+        launch_args = {'robots': a.robots, 'seed': a.seed,
+                       'lockstep': 'false' if a.realtime else 'true',
+                       'rviz': 'true' if a.rviz else 'false'}
+        if a.config:
+            launch_args['extra_config'] = os.path.abspath(a.config)
+        if not a.realtime:
+            launch_args['max_ticks'] = a.ticks
+        started = time.time()
+        ros.launch('swarm.launch', launch_args)
+
+        import rospy
+        from swarm_transport.msg import Robot_Positions
+        rospy.init_node('demo', anonymous=True, disable_signals=True)
+        local_range = rospy.get_param('/swarm/local_range_m', 1.0) if _wait_param() else 1.0
+        state = {'last': None, 'first_tick_wall': None, 'first': None, 'counts': []}
+
+        def on_positions(msg):
+            if state['first'] is None:
+                state['first'] = msg
+                state['first_tick_wall'] = time.time()
+            state['last'] = msg
+            if msg.tick % 100 == 0:
+                pts = [(r.pos_x, r.pos_y) for r in msg.robots if r.type == 0]
+                state['counts'].append((msg.tick, msg.sim_time, swarm_count(pts, local_range)))
+
+        rospy.Subscriber('/flock/positions', Robot_Positions, on_positions, queue_size=50)
+        limit = a.seconds if a.realtime else max(a.seconds, 60.0 + a.ticks * a.robots * 0.002)
+        deadline = time.time() + limit + 60.0
+        ok = True
+        while time.time() < deadline:
+            if not ros.alive('roslaunch'):
+                st_ros.log('[demo] roslaunch ended early: see %s' % ros.log_dir)
+                ok = False
+                break
+            last = state['last']
+            if last is not None:
+                if not a.realtime and last.tick >= a.ticks:
+                    break
+                if a.realtime and time.time() - state['first_tick_wall'] >= a.seconds:
+                    break
+            time.sleep(0.2)
+        else:
+            st_ros.log('[demo] time limit reached')
+            ok = state['last'] is not None
+        if a.rviz and a.screenshot:
+            _screenshot(ros, a.screenshot)
+        rospy.signal_shutdown('demo done')
+        wall = time.time() - started
+        _report(a, state, local_range, wall)
+        if state['last'] is None:
+            st_ros.log('[demo] FAILED: no tick was ever simulated (see %s)' % ros.log_dir)
+            ok = False
+    return 0 if ok else 1
+
+
+def _wait_param():
+    import rospy
+    deadline = time.time() + 30
+    while time.time() < deadline:
+        if rospy.has_param('/swarm/local_range_m'):
+            return True
+        time.sleep(0.1)
+    return False
+
+
+def _screenshot(ros, path):
+    xwd = os.path.join(ros.log_dir, 'screen.xwd')
+    subprocess.call(['xwd', '-root', '-silent', '-out', xwd], env=ros.env)
+    subprocess.call(['convert', xwd, path], env=ros.env)
+    st_ros.log('[demo] screenshot: %s' % path)
+
+
+def _report(a, state, local_range, wall):
+    first, last = state['first'], state['last']
+    if last is None:
+        return
+    pts0 = [(r.pos_x, r.pos_y) for r in first.robots if r.type == 0]
+    pts = [(r.pos_x, r.pos_y) for r in last.robots if r.type == 0]
+    ticks = last.tick - first.tick
+    run_wall = max(time.time() - state['first_tick_wall'], 1e-6)
+    st_ros.log('')
+    st_ros.log('=== swarm_transport demo ===')
+    st_ros.log('robots %d, seed %d, clock %s' % (len(pts), a.seed,
+                                                  'realtime' if a.realtime else 'lockstep'))
+    st_ros.log('ticks simulated      %d (sim time %.1f s) in %.1f s wall -> %.1f ticks/s'
+               % (ticks, last.sim_time, run_wall, ticks / run_wall))
+    st_ros.log('swarm count          start %d -> end %d (components within %.2f m)'
+               % (swarm_count(pts0, local_range), swarm_count(pts, local_range), local_range))
+    if state['counts']:
+        st_ros.log('swarm count by tick  ' + ', '.join('%d:%d' % (t, c)
+                                                     for t, _, c in state['counts'][-8:]))
+    moved = sum(1 for p, q in zip(pts0, pts) if math.hypot(p[0] - q[0], p[1] - q[1]) > 1e-3)
+    st_ros.log('robots that moved    %d of %d' % (moved, len(pts)))
+    st_ros.log('total wall time      %.1f s' % wall)
+
+
+if __name__ == '__main__':
+    sys.exit(main(sys.argv[1:]))

@@ -1,0 +1,120 @@
+#include "swarm_transport/core/mission.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace swarm_transport {
+namespace core {
+
+const char* PhaseName(MissionPhase phase) {
+  switch (phase) {
+    case MissionPhase::kQueued: return "QUEUED";
+    case MissionPhase::kGathering: return "GATHERING";
+    case MissionPhase::kLoading: return "LOADING";
+    case MissionPhase::kTransport: return "TRANSPORT";
+    case MissionPhase::kUnloading: return "UNLOADING";
+    case MissionPhase::kDone: return "DONE";
+    case MissionPhase::kAborted: return "ABORTED";
+    case MissionPhase::kRejected: return "REJECTED";
+  }
+  return "UNKNOWN";
+}
+
+std::vector<std::uint16_t> MissionSpec::Assigned() const {
+  std::vector<std::uint16_t> ids;
+  if (!robot_ids.empty()) {
+    ids = robot_ids;
+  } else {
+    for (std::uint32_t i = range_from; i < range_to; ++i) ids.push_back(static_cast<std::uint16_t>(i));
+  }
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  return ids;
+}
+
+bool MissionSpec::Assigns(std::uint16_t robot) const {
+  if (!robot_ids.empty()) {
+    return std::find(robot_ids.begin(), robot_ids.end(), robot) != robot_ids.end();
+  }
+  return range_from <= robot && robot < range_to;
+}
+
+std::vector<std::uint16_t> MissionSpec::Leaders() const {
+  std::vector<std::uint16_t> ids = Assigned();
+  if (leader_number >= 0 && static_cast<std::size_t>(leader_number) < ids.size()) {
+    ids.resize(static_cast<std::size_t>(leader_number));
+  }
+  return ids;
+}
+
+bool MissionSpec::IsLeader(std::uint16_t robot) const {
+  const std::vector<std::uint16_t> leaders = Leaders();
+  return std::find(leaders.begin(), leaders.end(), robot) != leaders.end();
+}
+
+std::uint16_t MissionSpec::FirstLeader() const {
+  const std::vector<std::uint16_t> ids = Assigned();
+  return ids.empty() ? 0 : ids.front();
+}
+
+bool MissionSpec::LeaderOnly() const { return object_size.x == 0.0 && object_size.y == 0.0; }
+
+Shape MissionSpec::ObjectAt(Vec2 centre) const { return Shape::FromRect(centre, object_size); }
+
+std::vector<std::pair<std::uint16_t, std::uint16_t>> MissionSpec::AssignedRuns() const {
+  std::vector<std::pair<std::uint16_t, std::uint16_t>> runs;
+  for (std::uint16_t id : Assigned()) {
+    if (!runs.empty() && runs.back().second == id) {
+      ++runs.back().second;
+    } else {
+      runs.emplace_back(id, static_cast<std::uint16_t>(id + 1));
+    }
+  }
+  return runs;
+}
+
+std::string ValidateMission(const MissionSpec& m, const MissionContext& ctx) {
+  std::ostringstream os;
+  const auto inside = [&ctx](Vec2 p) {
+    return p.x >= 0.0 && p.y >= 0.0 && p.x <= ctx.world_size_m && p.y <= ctx.world_size_m;
+  };
+  const std::vector<std::uint16_t> assigned = m.Assigned();
+  if (!m.all_finite) {
+    os << "a field is not a finite number (NaN or inf)";
+  } else if (m.robot_ids.empty() && m.range_from >= m.range_to) {
+    os << "robot range [" << m.range_from << ", " << m.range_to
+       << ") is empty or inverted (from must be < to)";
+  } else if (m.leader_number < 1) {
+    os << "leader_number must be >= 1";
+  } else if (static_cast<std::size_t>(m.leader_number) > assigned.size()) {
+    os << "leader_number " << m.leader_number << " is larger than the group of "
+       << assigned.size() << " robots";
+  } else if (m.transport_mode > 1) {
+    os << "transport_mode must be 0 (swarm) or 1 (formation) but is "
+       << static_cast<int>(m.transport_mode);
+  } else if (!m.LeaderOnly() && (!(m.object_size.x > 0.0) || !(m.object_size.y > 0.0))) {
+    os << "object size must be > 0 on both axes (0 x 0 means a leader-only mission)";
+  } else if (m.LeaderOnly() && assigned.size() != static_cast<std::size_t>(m.leader_number)) {
+    os << "a leader-only mission (object size 0 x 0) must assign exactly its leaders";
+  } else if (!m.LeaderOnly() && !inside(m.object_centre)) {
+    os << "object centre (" << m.object_centre.x << ", " << m.object_centre.y
+       << ") is outside the arena";
+  } else if (!inside(m.target)) {
+    os << "target (" << m.target.x << ", " << m.target.y << ") is outside the arena [0, "
+       << ctx.world_size_m << "]";
+  } else if (ctx.live_missions.count(m.id) > 0) {
+    os << "mission_id " << m.id << " is already live";
+  } else if (!ctx.known_robots.empty()) {
+    for (std::uint16_t id : assigned) {
+      if (ctx.known_robots.count(id) == 0) {
+        os << "robot " << id << " is unknown";
+        break;
+      }
+    }
+  }
+  return os.str();
+}
+
+}  // namespace core
+}  // namespace swarm_transport

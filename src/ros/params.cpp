@@ -1,0 +1,211 @@
+#include "swarm_transport/ros/params.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace swarm_transport {
+namespace {
+
+// XmlRpc gives ints and doubles as different types; a user writing `cohesion: 0` means 0.0.
+bool AsDouble(XmlRpc::XmlRpcValue& v, double* out) {
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) {
+    *out = static_cast<double>(v);
+    return true;
+  }
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) {
+    *out = static_cast<int>(v);
+    return true;
+  }
+  return false;
+}
+
+bool ReadDouble(XmlRpc::XmlRpcValue& dict, const char* key, double* out, std::string* error) {
+  if (!dict.hasMember(key)) return true;
+  if (!AsDouble(dict[key], out)) {
+    *error = std::string("parameter '") + key + "' must be a number";
+    return false;
+  }
+  if (!std::isfinite(*out)) {
+    *error = std::string("parameter '") + key + "' must be finite";
+    return false;
+  }
+  return true;
+}
+
+bool ReadInt(XmlRpc::XmlRpcValue& dict, const char* key, int* out, std::string* error) {
+  if (!dict.hasMember(key)) return true;
+  if (dict[key].getType() != XmlRpc::XmlRpcValue::TypeInt) {
+    *error = std::string("parameter '") + key + "' must be an integer";
+    return false;
+  }
+  *out = static_cast<int>(dict[key]);
+  return true;
+}
+
+bool ReadBool(XmlRpc::XmlRpcValue& dict, const char* key, bool* out, std::string* error) {
+  if (!dict.hasMember(key)) return true;
+  if (dict[key].getType() != XmlRpc::XmlRpcValue::TypeBoolean) {
+    *error = std::string("parameter '") + key + "' must be true or false";
+    return false;
+  }
+  *out = static_cast<bool>(dict[key]);
+  return true;
+}
+
+XmlRpc::XmlRpcValue FromYaml(const YAML::Node& node) {
+  XmlRpc::XmlRpcValue v;
+  if (node.IsMap()) {
+    v.begin();  // makes v a struct even when the map is empty
+    for (const auto& kv : node) v[kv.first.as<std::string>()] = FromYaml(kv.second);
+    if (node.size() == 0) v = XmlRpc::XmlRpcValue();
+  } else if (node.IsSequence()) {
+    v.setSize(static_cast<int>(node.size()));
+    for (std::size_t i = 0; i < node.size(); ++i) v[static_cast<int>(i)] = FromYaml(node[i]);
+  } else if (node.IsScalar()) {
+    const std::string s = node.Scalar();
+    int i = 0;
+    double d = 0.0;
+    bool b = false;
+    if (node.Tag() != "!" && YAML::convert<int>::decode(node, i) &&
+        s.find_first_of(".eE") == std::string::npos) {
+      v = i;
+    } else if (node.Tag() != "!" && YAML::convert<double>::decode(node, d)) {
+      v = d;
+    } else if (node.Tag() != "!" && YAML::convert<bool>::decode(node, b)) {
+      v = b;
+    } else {
+      v = s;
+    }
+  }
+  return v;
+}
+
+}  // namespace
+
+std::string SwarmConfig::Validate() const {
+  std::string e = flocking.Validate();
+  if (!e.empty()) return e;
+  e = leader.Validate();
+  if (!e.empty()) return e;
+  std::ostringstream os;
+  if (!(tick_period_s > 0.0) || !std::isfinite(tick_period_s)) {
+    os << "tick_period_s must be > 0 but is " << tick_period_s;
+  } else if (!std::isfinite(loaded_delay_s) || !std::isfinite(unloaded_delay_s)) {
+    os << "loaded_delay_s and unloaded_delay_s must be finite";
+  } else if (object_update_ticks < 1) {
+    os << "object_update_ticks must be >= 1 but is " << object_update_ticks;
+  }
+  return os.str();
+}
+
+bool ZoneFromXmlRpc(XmlRpc::XmlRpcValue& value, int id, core::Zone* zone, std::string* error) {
+  if (value.getType() != XmlRpc::XmlRpcValue::TypeStruct || !value.hasMember("shape") ||
+      value["shape"].getType() != XmlRpc::XmlRpcValue::TypeString) {
+    *error = "a zone must be a dictionary with a 'shape' of rect or circle";
+    return false;
+  }
+  const std::string shape = static_cast<std::string>(value["shape"]);
+  double x = NAN, y = NAN;
+  if (!value.hasMember("x") || !value.hasMember("y") || !AsDouble(value["x"], &x) ||
+      !AsDouble(value["y"], &y) || !std::isfinite(x) || !std::isfinite(y)) {
+    *error = "a zone needs finite numbers x and y (its centre, m)";
+    return false;
+  }
+  core::Zone z;
+  z.id = id;
+  if (shape == "rect") {
+    double sx = NAN, sy = NAN;
+    if (!value.hasMember("size_x") || !value.hasMember("size_y") ||
+        !AsDouble(value["size_x"], &sx) || !AsDouble(value["size_y"], &sy) || !(sx > 0.0) ||
+        !(sy > 0.0) || !std::isfinite(sx) || !std::isfinite(sy)) {
+      *error = "a rect zone needs size_x > 0 and size_y > 0 (m)";
+      return false;
+    }
+    z.shape = core::Shape::FromRect({x, y}, {sx, sy});
+  } else if (shape == "circle") {
+    double r = NAN;
+    if (!value.hasMember("radius") || !AsDouble(value["radius"], &r) || !(r > 0.0) ||
+        !std::isfinite(r)) {
+      *error = "a circle zone needs radius > 0 (m)";
+      return false;
+    }
+    z.shape = core::Shape::FromCircle({x, y}, r);
+  } else {
+    *error = "zone shape must be rect or circle but is '" + shape + "'";
+    return false;
+  }
+  *zone = z;
+  return true;
+}
+
+bool ConfigFromXmlRpc(XmlRpc::XmlRpcValue& dict, SwarmConfig* config, std::string* error) {
+  if (dict.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
+    *error = "the swarm configuration must be a dictionary";
+    return false;
+  }
+  SwarmConfig c = *config;
+  core::FlockingParams& f = c.flocking;
+  int seed = static_cast<int>(c.seed);
+  bool ok = ReadDouble(dict, "local_range_m", &f.local_range_m, error) &&
+            ReadDouble(dict, "speed_m_per_tick", &f.speed_m_per_tick, error) &&
+            ReadDouble(dict, "free_will_deg", &f.free_will_deg, error) &&
+            ReadDouble(dict, "cohesion", &f.cohesion, error) &&
+            ReadDouble(dict, "robot_radius_m", &f.robot_radius_m, error) &&
+            ReadDouble(dict, "collision_margin", &f.collision_margin, error) &&
+            ReadDouble(dict, "world_size_m", &f.world_size_m, error) &&
+            ReadDouble(dict, "speed_reduction", &f.speed_reduction, error) &&
+            ReadInt(dict, "speed_retries", &f.speed_retries, error) &&
+            ReadBool(dict, "check_path", &f.check_path, error) &&
+            ReadDouble(dict, "zone_margin_m", &f.zone_margin_m, error) &&
+            ReadDouble(dict, "goal_tolerance_m", &c.leader.goal_tolerance_m, error) &&
+            ReadDouble(dict, "leader_wait_fraction", &c.leader.wait_fraction, error) &&
+            ReadBool(dict, "leader_keep_flock", &c.leader.keep_flock, error) &&
+            ReadDouble(dict, "tick_period_s", &c.tick_period_s, error) &&
+            ReadInt(dict, "seed", &seed, error) &&
+            ReadDouble(dict, "loaded_delay_s", &c.loaded_delay_s, error) &&
+            ReadDouble(dict, "unloaded_delay_s", &c.unloaded_delay_s, error) &&
+            ReadInt(dict, "object_update_ticks", &c.object_update_ticks, error);
+  if (!ok) return false;
+  if (seed < 0) {
+    *error = "parameter 'seed' must be >= 0";
+    return false;
+  }
+  c.seed = static_cast<std::uint64_t>(seed);
+  if (dict.hasMember("danger_zones")) {
+    XmlRpc::XmlRpcValue& zones = dict["danger_zones"];
+    c.danger_zones.clear();
+    if (zones.getType() != XmlRpc::XmlRpcValue::TypeArray) {
+      *error = "parameter 'danger_zones' must be a list";
+      return false;
+    }
+    for (int i = 0; i < zones.size(); ++i) {
+      core::Zone z;
+      if (!ZoneFromXmlRpc(zones[i], -(i + 1), &z, error)) {
+        *error = "danger_zones[" + std::to_string(i) + "]: " + *error;
+        return false;
+      }
+      c.danger_zones.push_back(z);
+    }
+  }
+  const std::string invalid = c.Validate();
+  if (!invalid.empty()) {
+    *error = invalid;
+    return false;
+  }
+  *config = c;
+  return true;
+}
+
+bool XmlRpcFromYamlFile(const std::string& path, XmlRpc::XmlRpcValue* out, std::string* error) {
+  try {
+    *out = FromYaml(YAML::LoadFile(path));
+  } catch (const YAML::Exception& e) {
+    *error = path + ": " + e.what();
+    return false;
+  }
+  return true;
+}
+
+}  // namespace swarm_transport

@@ -1,0 +1,307 @@
+#include "swarm_transport/ros/robot_node.h"
+
+#include <geometry_msgs/Twist.h>
+
+#include <sstream>
+
+#include "swarm_transport/Robot_Position.h"
+#include "swarm_transport/core/flocking.h"
+#include "swarm_transport/core/kinematics.h"
+#include "swarm_transport/ros/conversions.h"
+#include "swarm_transport/ros/names.h"
+
+namespace swarm_transport {
+
+std::string RobotNodeOptions::Validate() const {
+  std::ostringstream os;
+  if (id < 0 || id > 65535) {
+    os << "~id must be set to an integer in [0, 65535] but is " << id;
+  } else if (clock != "realtime" && clock != "lockstep") {
+    os << "~clock must be 'realtime' or 'lockstep' but is '" << clock << "'";
+  }
+  return os.str();
+}
+
+RobotNode::RobotNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
+    : nh_(nh), private_nh_(private_nh), agent_(0, core::MissionAgentParams()) {}
+
+bool RobotNode::Initialize() {
+  private_nh_.param("id", options_.id, -1);
+  private_nh_.param<std::string>("clock", options_.clock, "realtime");
+  std::string error = options_.Validate();
+  XmlRpc::XmlRpcValue swarm;
+  if (error.empty() && nh_.getParam("/swarm", swarm)) {
+    ConfigFromXmlRpc(swarm, &config_, &error);
+  }
+  if (error.empty()) error = config_.Validate();
+  if (!error.empty()) {
+    ROS_FATAL("robot: invalid parameters: %s", error.c_str());
+    return false;
+  }
+  id_ = static_cast<std::uint16_t>(options_.id);
+  rng_ = std::make_unique<core::Rng>(config_.seed, id_);
+  core::MissionAgentParams mission_params;
+  mission_params.goal_tolerance_m = config_.leader.goal_tolerance_m;
+  mission_params.object_update_ticks = config_.object_update_ticks;
+  agent_ = core::MissionAgent(id_, mission_params);
+
+  cmd_pub_ = nh_.advertise<geometry_msgs::Twist>(names::kCmdVel, 2);
+  position_pub_ = nh_.advertise<Robot_Position>(names::kPosition, 10);
+  // tcpNoDelay: a tick's perception is one small message; Nagle would add ~40 ms per tick.
+  neighbors_sub_ = nh_.subscribe(names::kNeighbors, 2, &RobotNode::OnNeighbors, this,
+                                 ros::TransportHints().tcpNoDelay());
+  freeze_sub_ = nh_.subscribe(names::kFreeze, 20, &RobotNode::OnFreeze, this);
+  continue_sub_ = nh_.subscribe(names::kContinue, 20, &RobotNode::OnContinue, this);
+  mission_sub_ = nh_.subscribe(names::kMissionNew, 20, &RobotNode::OnNewMission, this);
+  update_sub_ = nh_.subscribe(names::kObjectUpdate, 20, &RobotNode::OnObjectUpdate, this);
+  delete_sub_ = nh_.subscribe(names::kObjectDelete, 20, &RobotNode::OnObjectDelete, this);
+  event_sub_ = nh_.subscribe(names::kMissionEvent, 20, &RobotNode::OnMissionEvent, this);
+  status_sub_ = nh_.subscribe(names::kMissionStatus, 50, &RobotNode::OnMissionStatus, this);
+  robots_sub_ = nh_.subscribe(names::kRobots, 2, &RobotNode::OnRobots, this);
+  describe_srv_ = private_nh_.advertiseService("describe", &RobotNode::OnDescribe, this);
+  if (options_.clock == "realtime") {
+    timer_ = nh_.createWallTimer(ros::WallDuration(config_.tick_period_s), &RobotNode::OnTimer,
+                                 this);
+  }
+  ROS_INFO("robot %u: up (%s clock, tick %.3f s, range %.3f m, speed %.3f m/tick)", id_,
+           options_.clock.c_str(), config_.tick_period_s, config_.flocking.local_range_m,
+           config_.flocking.speed_m_per_tick);
+  return true;
+}
+
+void RobotNode::Shutdown() {
+  timer_.stop();
+  if (cmd_pub_) cmd_pub_.publish(geometry_msgs::Twist());
+}
+
+void RobotNode::OnNeighbors(const Neighbors::ConstPtr& msg) {
+  if (!std::isfinite(msg->pose.x) || !std::isfinite(msg->pose.y) ||
+      !std::isfinite(msg->pose.theta)) {
+    ROS_WARN_THROTTLE(5.0, "robot %u: rejected a perception with a non-finite own pose", id_);
+    return;
+  }
+  perception_ = msg;
+  if (options_.clock == "lockstep") Tick();
+}
+
+void RobotNode::OnTimer(const ros::WallTimerEvent& /*event*/) {
+  if (perception_) Tick();
+}
+
+bool RobotNode::InRange(std::uint16_t from, std::uint16_t to) const {
+  return from <= id_ && id_ < to;
+}
+
+void RobotNode::OnFreeze(const Robot_Freeze::ConstPtr& msg) {
+  if (msg->robot_index_from >= msg->robot_index_to) {
+    ROS_WARN("robot %u: rejected Robot_Freeze [%u, %u): the range is empty or inverted", id_,
+             msg->robot_index_from, msg->robot_index_to);
+    return;
+  }
+  if (InRange(msg->robot_index_from, msg->robot_index_to)) frozen_ = true;
+}
+
+void RobotNode::OnContinue(const Robot_Continue::ConstPtr& msg) {
+  if (msg->robot_index_from >= msg->robot_index_to) {
+    ROS_WARN("robot %u: rejected Robot_Continue [%u, %u): the range is empty or inverted", id_,
+             msg->robot_index_from, msg->robot_index_to);
+    return;
+  }
+  if (InRange(msg->robot_index_from, msg->robot_index_to)) frozen_ = false;
+}
+
+bool RobotNode::OnDescribe(std_srvs::Trigger::Request& /*req*/,
+                           std_srvs::Trigger::Response& res) {
+  std::ostringstream os;
+  os << "id=" << id_ << " ticks=" << ticks_ << " frozen=" << (frozen_ ? 1 : 0)
+     << " role=" << (last_plan_.lead ? "leader" : "passive") << " active=";
+  if (last_plan_.active) {
+    os << *last_plan_.active;
+  } else {
+    os << "none";
+  }
+  os << " missions=[";
+  for (std::uint16_t m : agent_.LiveIds()) os << m << ":" << core::PhaseName(agent_.PhaseOf(m)) << " ";
+  os << "] zones=[";
+  for (const core::Zone& z : last_plan_.zones) os << z.id << (z.inverted ? ":safety " : ":danger ");
+  os << "]";
+  res.success = true;
+  res.message = os.str();
+  return true;
+}
+
+void RobotNode::OnRobots(const Robot_Positions::ConstPtr& msg) {
+  known_robots_.clear();
+  for (const Robot_Position& r : msg->robots) {
+    if (r.type == Robot_Position::TYPE_PHYSICAL) known_robots_.insert(r.robot_id);
+  }
+}
+
+void RobotNode::OnNewMission(const New_Mission::ConstPtr& msg) {
+  const core::MissionSpec spec = ToMissionSpec(*msg);
+  core::MissionContext context;
+  context.world_size_m = config_.flocking.world_size_m;
+  context.known_robots = known_robots_;
+  context.live_missions = agent_.LiveIds();
+  std::string why = core::ValidateMission(spec, context);
+  if (why.empty() && agent_.OnNewMission(spec, &why)) {
+    if (spec.FirstLeader() == id_ && !status_pub_) {
+      freeze_pub_ = nh_.advertise<Robot_Freeze>(names::kFreeze, 20);
+      continue_pub_ = nh_.advertise<Robot_Continue>(names::kContinue, 20);
+      update_pub_ = nh_.advertise<Update_Object>(names::kObjectUpdate, 20);
+      delete_pub_ = nh_.advertise<Delete_Object>(names::kObjectDelete, 20);
+      status_pub_ = nh_.advertise<Mission_Status>(names::kMissionStatus, 50);
+    }
+    return;
+  }
+  // Only the robots concerned say so, so that one bad message does not log N lines.
+  if (spec.Assigns(id_) || id_ == 0) {
+    ROS_WARN("robot %u: rejected New_Mission %u: %s", id_, msg->mission_id, why.c_str());
+  }
+}
+
+void RobotNode::OnObjectUpdate(const Update_Object::ConstPtr& msg) {
+  if (!std::isfinite(msg->object_position_x) || !std::isfinite(msg->object_position_y)) {
+    ROS_WARN("robot %u: rejected Update_Object %u: non-finite position", id_, msg->mission_id);
+    return;
+  }
+  std::string why;
+  if (!agent_.OnObjectUpdate(msg->mission_id,
+                             {msg->object_position_x, msg->object_position_y}, &why)) {
+    ROS_DEBUG("robot %u: ignored: %s", id_, why.c_str());
+  }
+}
+
+void RobotNode::OnObjectDelete(const Delete_Object::ConstPtr& msg) {
+  std::string why;
+  if (!agent_.OnObjectDelete(msg->mission_id, &why)) ROS_DEBUG("robot %u: %s", id_, why.c_str());
+}
+
+void RobotNode::OnMissionEvent(const Mission_Event::ConstPtr& msg) {
+  if (msg->event != Mission_Event::LOADED && msg->event != Mission_Event::UNLOADED) {
+    ROS_WARN("robot %u: rejected Mission_Event %u: event must be 1 (LOADED) or 2 (UNLOADED)",
+             id_, msg->mission_id);
+    return;
+  }
+  std::string why;
+  if (!agent_.OnEvent(msg->mission_id, static_cast<core::MissionEventKind>(msg->event), &why)) {
+    ROS_WARN("robot %u: rejected %s", id_, why.c_str());
+  }
+}
+
+void RobotNode::OnMissionStatus(const Mission_Status::ConstPtr& msg) {
+  if (msg->state <= Mission_Status::REJECTED) {
+    agent_.OnStatus(msg->mission_id, static_cast<core::MissionPhase>(msg->state));
+  }
+}
+
+bool RobotNode::MissionOutletsReady() {
+  if (!status_pub_) return true;
+  const std::size_t others = known_robots_.empty() ? 1 : known_robots_.size() - 1;
+  return freeze_pub_.getNumSubscribers() >= others && continue_pub_.getNumSubscribers() >= others &&
+         update_pub_.getNumSubscribers() >= others && delete_pub_.getNumSubscribers() >= others &&
+         status_pub_.getNumSubscribers() >= 1;
+}
+
+void RobotNode::Publish(const core::MissionOutbox& outbox) {
+  if (outbox.empty()) return;
+  if (!status_pub_) {
+    ROS_ERROR("robot %u: has mission messages to send but is no first leader", id_);
+    return;
+  }
+  if (outbox.update_object) {
+    Update_Object u;
+    u.mission_id = outbox.update_object->first;
+    u.object_position_x = static_cast<float>(outbox.update_object->second.x);
+    u.object_position_y = static_cast<float>(outbox.update_object->second.y);
+    update_pub_.publish(u);
+  }
+  for (const auto& run : outbox.freeze) {
+    Robot_Freeze f;
+    f.robot_index_from = run.first;
+    f.robot_index_to = run.second;
+    freeze_pub_.publish(f);
+  }
+  for (const auto& run : outbox.resume) {
+    Robot_Continue c;
+    c.robot_index_from = run.first;
+    c.robot_index_to = run.second;
+    continue_pub_.publish(c);
+  }
+  if (outbox.delete_object) {
+    Delete_Object d;
+    d.mission_id = *outbox.delete_object;
+    delete_pub_.publish(d);
+  }
+  for (const core::StatusReport& r : outbox.statuses) {
+    Mission_Status m;
+    m.mission_id = r.mission_id;
+    m.state = static_cast<std::uint8_t>(r.phase);
+    m.reason = r.reason;
+    m.stamp = ros::Time::now();
+    m.tick = perception_->tick;
+    m.robots_assigned = r.assigned;
+    m.robots_inside = r.inside;
+    m.object_position_x = static_cast<float>(r.object.x);
+    m.object_position_y = static_cast<float>(r.object.y);
+    m.distance_to_target = static_cast<float>(r.distance_to_target);
+    status_pub_.publish(m);
+    ROS_INFO("robot %u: mission %u %s", id_, r.mission_id, core::PhaseName(r.phase));
+  }
+}
+
+void RobotNode::Tick() {
+  core::Perception in;
+  in.self_id = id_;
+  in.self = ToPose2(perception_->pose);
+  in.others.reserve(perception_->robots.size());
+  for (const Robot_Position& r : perception_->robots) {
+    if (!IsFinite(r)) continue;  // the radio relays what robots sent; never trust it blindly
+    in.others.push_back(ToNeighbour(r));
+  }
+  // Mission peers are heard over the mission's channel, not seen: they count for the mission
+  // (who is inside the object) but not for flocking, which stays local.
+  std::vector<core::Neighbour> heard = in.others;
+  for (const Robot_Position& r : perception_->mission_peers) {
+    if (IsFinite(r)) heard.push_back(ToNeighbour(r));
+  }
+
+  core::MissionOutbox outbox;
+  const core::MissionPlan plan = MissionOutletsReady()
+                                     ? agent_.Tick(in.self, heard, perception_->tick, &outbox)
+                                     : agent_.Tick(in.self, heard, perception_->tick, nullptr);
+  in.zones = config_.danger_zones;
+  in.zones.insert(in.zones.end(), plan.zones.begin(), plan.zones.end());
+  last_plan_ = plan;
+
+  core::MoveDecision move;
+  if (plan.lead) {
+    if (leader_memory_mission_ != plan.active) {
+      leader_memory_ = core::LeaderMemory();
+      leader_memory_mission_ = plan.active;
+    }
+    core::LeaderParams leader = config_.leader;
+    leader.keep_flock = leader.keep_flock && plan.keep_flock;
+    const core::LeaderDecision d =
+        core::LeaderStep(in, config_.flocking, leader, plan.goal, plan.steer, *rng_,
+                         config_.tick_period_s, &leader_memory_);
+    move = d.move;
+    if (d.arrived) agent_.LeaderArrived(*plan.active, &outbox);
+  } else {
+    move = core::FlockingStep(in, config_.flocking, *rng_, config_.tick_period_s);
+  }
+  core::Velocity command;
+  if (!frozen_ && move.distance_m > 0.0) {
+    command = core::CommandFor(in.self, move.heading, move.distance_m, config_.tick_period_s);
+  }
+  // Mission messages go out before the command: in lock-step the simulator steps only after
+  // every command arrived, so the swarm hears them before its next tick.
+  Publish(outbox);
+  // A frozen robot keeps computing (its random sequence stays aligned) but sends zero.
+  cmd_pub_.publish(ToTwist(command));
+  const core::Pose2 after = core::Integrate(in.self, command, config_.tick_period_s);
+  position_pub_.publish(ToRobotPosition(id_, after));
+  ++ticks_;
+}
+
+}  // namespace swarm_transport

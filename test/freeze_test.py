@@ -1,0 +1,93 @@
+#!/usr/bin/env python3
+"""Freeze / continue in lock-step: robots frozen by Robot_Freeze stand still while the others
+move, move again after Robot_Continue; an inverted range is rejected and changes nothing; a
+NaN Robot_Position is rejected and every node goes on ticking."""
+
+import sys
+import unittest
+
+import rospy
+import rostest
+from swarm_transport.msg import Robot_Continue, Robot_Freeze, Robot_Position
+
+import swarm_testing as st
+
+
+class FreezeContinue(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        cls.robots = rospy.get_param('~robots')
+        cls.timeout = rospy.get_param('~timeout_s')
+        cls.log = st.PositionLog()
+        cls.freeze = rospy.Publisher('/flock/freeze', Robot_Freeze, queue_size=10)
+        cls.cont = rospy.Publisher('/flock/continue', Robot_Continue, queue_size=10)
+        cls.position = rospy.Publisher('/flock/position', Robot_Position, queue_size=10)
+        cls.swarm = st.launch_swarm(robots=cls.robots, seed=rospy.get_param('~seed'),
+                                    lockstep=True, max_ticks=0)
+        assert cls.log.wait_tick(5, cls.timeout), 'the swarm never ticked'
+        # Every robot must be connected before a command means anything.
+        assert st.wait_for(lambda: cls.freeze.get_num_connections() >= cls.robots and
+                           cls.cont.get_num_connections() >= cls.robots, cls.timeout)
+        assert st.wait_for(lambda: cls.position.get_num_connections() >= 1, cls.timeout)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.swarm.shutdown()
+        cls.log.close()
+
+    def window(self, ticks):
+        """Positions at the start and the end of the next `ticks` ticks."""
+        t0 = self.log.latest_tick()
+        self.assertTrue(self.log.wait_tick(t0 + ticks, self.timeout))
+        return self.log.at(t0), self.log.at(t0 + ticks)
+
+    def test_1_freeze_then_continue(self):
+        frm, to = rospy.get_param('~freeze_from'), rospy.get_param('~freeze_to')
+        still_tol = rospy.get_param('~still_tolerance_m')
+        min_move = rospy.get_param('~min_move_m')
+        settle = rospy.get_param('~settle_ticks')
+        span = rospy.get_param('~window_ticks')
+        self.freeze.publish(Robot_Freeze(frm, to))
+        self.window(settle)  # the message reaches every robot within a few ticks
+        a, b = self.window(span)
+        for rid in range(self.robots):
+            d = st.moved(a[rid], b[rid])
+            if frm <= rid < to:
+                self.assertLessEqual(d, still_tol, 'frozen robot %d moved %.4f m' % (rid, d))
+        others = [rid for rid in range(self.robots) if not frm <= rid < to]
+        self.assertTrue(any(st.moved(a[r], b[r]) > min_move for r in others),
+                        'no unfrozen robot moved')
+        self.cont.publish(Robot_Continue(frm, to))
+        self.window(settle)
+        a, b = self.window(span)
+        for rid in range(frm, to):
+            self.assertGreater(st.moved(a[rid], b[rid]), min_move,
+                               'robot %d did not move again after Robot_Continue' % rid)
+
+    def test_2_inverted_freeze_is_rejected(self):
+        min_move = rospy.get_param('~min_move_m')
+        span = rospy.get_param('~window_ticks')
+        self.freeze.publish(Robot_Freeze(8, 3))  # from > to: rejected, nobody freezes
+        self.window(rospy.get_param('~settle_ticks'))
+        a, b = self.window(span)
+        for rid in range(self.robots):
+            self.assertGreater(st.moved(a[rid], b[rid]), min_move,
+                               'robot %d stopped after an inverted Robot_Freeze' % rid)
+
+    def test_3_nan_position_is_rejected(self):
+        msg = Robot_Position(robot_id=3, sub_id=0, type=2, pos_x=float('nan'), pos_y=1.0,
+                             angle=0.0)
+        self.position.publish(msg)
+        self.position.publish(Robot_Position(robot_id=3, sub_id=0, type=0, pos_x=1.0,
+                                             pos_y=float('nan'), angle=0.0))
+        a, b = self.window(rospy.get_param('~window_ticks'))
+        self.assertEqual(len(b), self.robots, 'a robot disappeared after a NaN position')
+        for rid in range(self.robots):
+            self.assertTrue(all(v == v for v in b[rid]), 'NaN reached robot %d' % rid)
+        self.assertTrue(any(st.moved(a[r], b[r]) > 0 for r in range(self.robots)))
+
+
+if __name__ == '__main__':
+    rospy.init_node('freeze_test')
+    rostest.rosrun('swarm_transport', 'freeze_continue', FreezeContinue, sys.argv)

@@ -1,0 +1,149 @@
+#!/usr/bin/env python3
+"""The thesis's transport mission end to end in lock-step: gathering, freeze for loading,
+transport, unloading, done - asserted on what the swarm actually did."""
+
+import sys
+import threading
+import unittest
+
+import rospy
+import rostest
+from std_srvs.srv import Trigger
+from swarm_transport.msg import Mission_Status, New_Mission
+
+import swarm_testing as st
+
+NAMES = {0: 'QUEUED', 1: 'GATHERING', 2: 'LOADING', 3: 'TRANSPORT', 4: 'UNLOADING', 5: 'DONE',
+         6: 'ABORTED', 7: 'REJECTED'}
+
+
+class StatusLog(object):
+    def __init__(self):
+        self.lock = threading.Lock()
+        self.items = []
+        self.sub = rospy.Subscriber('/flock/mission/status', Mission_Status, self._cb,
+                                    queue_size=1000)
+
+    def _cb(self, msg):
+        with self.lock:
+            self.items.append(msg)
+
+    def of(self, mission_id):
+        with self.lock:
+            return [m for m in self.items if m.mission_id == mission_id]
+
+    def states(self, mission_id):
+        """The phases in order, repeats (progress reports) collapsed."""
+        seq = []
+        for m in self.of(mission_id):
+            if not seq or seq[-1] != NAMES[m.state]:
+                seq.append(NAMES[m.state])
+        return seq
+
+    def first(self, mission_id, state):
+        for m in self.of(mission_id):
+            if m.state == state:
+                return m
+        return None
+
+    def final(self, mission_id):
+        return any(m.state in (5, 6, 7) for m in self.of(mission_id))
+
+
+def mission(mid, frm, to, leaders, obj, target):
+    m = New_Mission()
+    m.robot_index_from, m.robot_index_to = frm, to
+    m.leader_number = leaders
+    m.mission_id = mid
+    m.object_position_x, m.object_position_y, m.object_size_x, m.object_size_y = obj
+    m.target_x, m.target_y = target
+    return m
+
+
+def inside(p, obj, tol):
+    return abs(p[0] - obj[0]) <= obj[2] / 2 + tol and abs(p[1] - obj[1]) <= obj[3] / 2 + tol
+
+
+def depth_inside(p, centre, size):
+    """How deep p is inside the rectangle (<= 0 when outside)."""
+    return min(size[0] / 2 - abs(p[0] - centre[0]), size[1] / 2 - abs(p[1] - centre[1]))
+
+
+class Transport(unittest.TestCase):
+
+    def test_thesis_mission(self):
+        g = lambda k: rospy.get_param('~' + k)  # noqa: E731
+        robots, timeout = g('robots'), g('timeout_s')
+        frm, to, leaders = g('from'), g('to'), g('leaders')
+        obj = (g('object_x'), g('object_y'), g('object_size_x'), g('object_size_y'))
+        target = (g('target_x'), g('target_y'))
+        log, status = st.PositionLog(), StatusLog()
+        pub = rospy.Publisher('/flock/mission/new', New_Mission, queue_size=10, latch=True)
+        swarm = st.launch_swarm(robots=robots, seed=g('seed'), lockstep=True, max_ticks=0)
+        try:
+            self.assertTrue(log.wait_tick(3, timeout), 'the swarm never ticked')
+            # Sent as a raw message, exactly as `rostopic pub` would.
+            self.assertTrue(st.wait_for(lambda: pub.get_num_connections() >= robots + 1, timeout))
+            pub.publish(mission(7, frm, to, leaders, obj, target))
+            self.assertTrue(st.wait_for(lambda: status.final(7), timeout),
+                            'mission 7 did not finish; states so far %s' % status.states(7))
+            done_tick = log.latest_tick()
+            self.assertTrue(log.wait_tick(done_tick + 5, timeout))
+            describe = {}
+            for rid in range(robots):
+                srv = rospy.ServiceProxy('/robot_%d/robot/describe' % rid, Trigger)
+                srv.wait_for_service(timeout)
+                describe[rid] = srv().message
+        finally:
+            swarm.shutdown()
+            log.close()
+
+        states = [s for s in status.states(7) if s != 'QUEUED']
+        self.assertEqual(states, ['GATHERING', 'LOADING', 'TRANSPORT', 'UNLOADING', 'DONE'])
+        assigned = list(range(frm, to))
+        gathering = status.first(7, 1).tick
+        loading = status.first(7, 2)
+        transport = status.first(7, 3)
+        unloading = status.first(7, 4)
+        done = status.first(7, 5)
+
+        # Every assigned robot was inside the object when the first leader froze them.
+        at_freeze = log.at(loading.tick)
+        for rid in assigned:
+            self.assertTrue(inside(at_freeze[rid], obj, g('inside_tolerance_m')),
+                            'robot %d not inside the object at the freeze: %s'
+                            % (rid, at_freeze[rid]))
+        # Frozen robots do not move during loading.
+        a = log.at(loading.tick + g('settle_ticks'))
+        b = log.at(transport.tick)
+        self.assertGreater(transport.tick, loading.tick + g('settle_ticks'))
+        for rid in assigned:
+            self.assertLessEqual(st.moved(a[rid], b[rid]), g('still_tolerance_m'),
+                                 'robot %d moved while frozen for loading' % rid)
+        # Unassigned robots keep out of the object while it is a danger zone for them: the
+        # object is static until TRANSPORT (after a grace to leave it), then moves onto them.
+        worst = 0.0
+        for t in range(gathering + g('grace_ticks'), transport.tick):
+            pos = log.at(t)
+            for rid, p in pos.items():
+                if rid not in assigned:
+                    worst = max(worst, depth_inside(p, obj[:2], obj[2:]))
+        self.assertLessEqual(worst, g('danger_tolerance_m'),
+                             'an unassigned robot was %.3f m inside the object' % worst)
+        # The object centre ends within the tolerance of the target.
+        final = (done.object_position_x, done.object_position_y)
+        self.assertLessEqual(st.moved(final, target), g('goal_tolerance_m') + 1e-6,
+                             'object ended at %s' % (final,))
+        self.assertLessEqual(unloading.distance_to_target, g('goal_tolerance_m') + 1e-6)
+        # After Delete_Object no robot keeps the zone or the mission.
+        for rid, text in describe.items():
+            self.assertIn('missions=[]', text, 'robot %d still holds a mission: %s' % (rid, text))
+            self.assertIn('zones=[]', text, 'robot %d still keeps a zone: %s' % (rid, text))
+            self.assertIn('frozen=0', text, 'robot %d is still frozen: %s' % (rid, text))
+        rospy.loginfo('transport: gathering %d, loading %d, transport %d, unloading %d, done %d',
+                      gathering, loading.tick, transport.tick, unloading.tick, done.tick)
+
+
+if __name__ == '__main__':
+    rospy.init_node('transport_test')
+    rostest.rosrun('swarm_transport', 'transport_thesis', Transport, sys.argv)
