@@ -8,7 +8,7 @@ import time
 import rospkg
 import rospy
 import roslaunch
-from swarm_transport.msg import Robot_Positions
+from swarm_transport.msg import Mission_Status, New_Mission, Robot_Positions
 
 
 def launch_swarm(**args):
@@ -73,3 +73,59 @@ def wait_for(predicate, timeout, period=0.02):
 
 def moved(a, b):
     return math.hypot(a[0] - b[0], a[1] - b[1])
+
+
+NAMES = {0: 'QUEUED', 1: 'GATHERING', 2: 'LOADING', 3: 'TRANSPORT', 4: 'UNLOADING', 5: 'DONE',
+         6: 'ABORTED', 7: 'REJECTED'}
+
+
+class StatusLog(object):
+    def __init__(self):
+        self.lock = threading.Lock()
+        self.items = []
+        self.sub = rospy.Subscriber('/flock/mission/status', Mission_Status, self._cb,
+                                    queue_size=1000)
+
+    def _cb(self, msg):
+        with self.lock:
+            self.items.append(msg)
+
+    def of(self, mission_id):
+        with self.lock:
+            return [m for m in self.items if m.mission_id == mission_id]
+
+    def states(self, mission_id):
+        """The phases in order, repeats (progress reports) collapsed."""
+        seq = []
+        for m in self.of(mission_id):
+            if not seq or seq[-1] != NAMES[m.state]:
+                seq.append(NAMES[m.state])
+        return seq
+
+    def first(self, mission_id, state):
+        for m in self.of(mission_id):
+            if m.state == state:
+                return m
+        return None
+
+    def final(self, mission_id):
+        return any(m.state in (5, 6, 7) for m in self.of(mission_id))
+
+
+def mission(mid, frm, to, leaders, obj, target):
+    m = New_Mission()
+    m.robot_index_from, m.robot_index_to = frm, to
+    m.leader_number = leaders
+    m.mission_id = mid
+    m.object_position_x, m.object_position_y, m.object_size_x, m.object_size_y = obj
+    m.target_x, m.target_y = target
+    return m
+
+
+def inside(p, obj, tol):
+    return abs(p[0] - obj[0]) <= obj[2] / 2 + tol and abs(p[1] - obj[1]) <= obj[3] / 2 + tol
+
+
+def depth_inside(p, centre, size):
+    """How deep p is inside the rectangle (<= 0 when outside)."""
+    return min(size[0] / 2 - abs(p[0] - centre[0]), size[1] / 2 - abs(p[1] - centre[1]))

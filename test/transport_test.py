@@ -3,71 +3,14 @@
 transport, unloading, done - asserted on what the swarm actually did."""
 
 import sys
-import threading
 import unittest
 
 import rospy
 import rostest
 from std_srvs.srv import Trigger
-from swarm_transport.msg import Mission_Status, New_Mission
+from swarm_transport.msg import New_Mission
 
 import swarm_testing as st
-
-NAMES = {0: 'QUEUED', 1: 'GATHERING', 2: 'LOADING', 3: 'TRANSPORT', 4: 'UNLOADING', 5: 'DONE',
-         6: 'ABORTED', 7: 'REJECTED'}
-
-
-class StatusLog(object):
-    def __init__(self):
-        self.lock = threading.Lock()
-        self.items = []
-        self.sub = rospy.Subscriber('/flock/mission/status', Mission_Status, self._cb,
-                                    queue_size=1000)
-
-    def _cb(self, msg):
-        with self.lock:
-            self.items.append(msg)
-
-    def of(self, mission_id):
-        with self.lock:
-            return [m for m in self.items if m.mission_id == mission_id]
-
-    def states(self, mission_id):
-        """The phases in order, repeats (progress reports) collapsed."""
-        seq = []
-        for m in self.of(mission_id):
-            if not seq or seq[-1] != NAMES[m.state]:
-                seq.append(NAMES[m.state])
-        return seq
-
-    def first(self, mission_id, state):
-        for m in self.of(mission_id):
-            if m.state == state:
-                return m
-        return None
-
-    def final(self, mission_id):
-        return any(m.state in (5, 6, 7) for m in self.of(mission_id))
-
-
-def mission(mid, frm, to, leaders, obj, target):
-    m = New_Mission()
-    m.robot_index_from, m.robot_index_to = frm, to
-    m.leader_number = leaders
-    m.mission_id = mid
-    m.object_position_x, m.object_position_y, m.object_size_x, m.object_size_y = obj
-    m.target_x, m.target_y = target
-    return m
-
-
-def inside(p, obj, tol):
-    return abs(p[0] - obj[0]) <= obj[2] / 2 + tol and abs(p[1] - obj[1]) <= obj[3] / 2 + tol
-
-
-def depth_inside(p, centre, size):
-    """How deep p is inside the rectangle (<= 0 when outside)."""
-    return min(size[0] / 2 - abs(p[0] - centre[0]), size[1] / 2 - abs(p[1] - centre[1]))
-
 
 class Transport(unittest.TestCase):
 
@@ -77,14 +20,14 @@ class Transport(unittest.TestCase):
         frm, to, leaders = g('from'), g('to'), g('leaders')
         obj = (g('object_x'), g('object_y'), g('object_size_x'), g('object_size_y'))
         target = (g('target_x'), g('target_y'))
-        log, status = st.PositionLog(), StatusLog()
-        pub = rospy.Publisher('/flock/mission/new', New_Mission, queue_size=10, latch=True)
+        log, status = st.PositionLog(), st.StatusLog()
+        pub = rospy.Publisher('/flock/mission/new', New_Mission, queue_size=10)
         swarm = st.launch_swarm(robots=robots, seed=g('seed'), lockstep=True, max_ticks=0)
         try:
             self.assertTrue(log.wait_tick(3, timeout), 'the swarm never ticked')
             # Sent as a raw message, exactly as `rostopic pub` would.
             self.assertTrue(st.wait_for(lambda: pub.get_num_connections() >= robots + 1, timeout))
-            pub.publish(mission(7, frm, to, leaders, obj, target))
+            pub.publish(st.mission(7, frm, to, leaders, obj, target))
             self.assertTrue(st.wait_for(lambda: status.final(7), timeout),
                             'mission 7 did not finish; states so far %s' % status.states(7))
             done_tick = log.latest_tick()
@@ -110,7 +53,7 @@ class Transport(unittest.TestCase):
         # Every assigned robot was inside the object when the first leader froze them.
         at_freeze = log.at(loading.tick)
         for rid in assigned:
-            self.assertTrue(inside(at_freeze[rid], obj, g('inside_tolerance_m')),
+            self.assertTrue(st.inside(at_freeze[rid], obj, g('inside_tolerance_m')),
                             'robot %d not inside the object at the freeze: %s'
                             % (rid, at_freeze[rid]))
         # Frozen robots do not move during loading.
@@ -127,7 +70,7 @@ class Transport(unittest.TestCase):
             pos = log.at(t)
             for rid, p in pos.items():
                 if rid not in assigned:
-                    worst = max(worst, depth_inside(p, obj[:2], obj[2:]))
+                    worst = max(worst, st.depth_inside(p, obj[:2], obj[2:]))
         self.assertLessEqual(worst, g('danger_tolerance_m'),
                              'an unassigned robot was %.3f m inside the object' % worst)
         # The object centre ends within the tolerance of the target.

@@ -29,6 +29,7 @@ def workspace_env(port):
     env['ROS_MASTER_URI'] = 'http://127.0.0.1:%d' % port
     env['ROS_IP'] = '127.0.0.1'
     env['ROS_HOSTNAME'] = '127.0.0.1'
+    env['PYTHONUNBUFFERED'] = '1'
     env.setdefault('ROS_HOME', os.path.join(WS, 'ros_home'))
     return env
 
@@ -54,6 +55,10 @@ class PrivateRos(object):
                   'ROS_DISTRO', 'ROS_ETC_DIR', 'ROSLISP_PACKAGE_DIRECTORIES'):
             if k in self.env:
                 os.environ[k] = self.env[k]
+        # The workspace's generated messages must be importable in this very process too.
+        for path in reversed(self.env.get('PYTHONPATH', '').split(':')):
+            if path and path not in sys.path:
+                sys.path.insert(0, path)
         return self
 
     def __exit__(self, *exc):

@@ -69,6 +69,9 @@ bool MissionAgent::OnEvent(std::uint16_t mission_id, MissionEventKind event, std
 void MissionAgent::OnStatus(std::uint16_t mission_id, MissionPhase phase) {
   auto it = live_.find(mission_id);
   if (it == live_.end() || it->second.spec.FirstLeader() == self_id_) return;
+  // QUEUED and REJECTED come from the dispatcher (a REJECTED may name a live mission's id when
+  // a duplicate was refused): only the first leader's phases move a mission on.
+  if (phase == MissionPhase::kQueued || phase == MissionPhase::kRejected) return;
   // Phases only move forward; a late or repeated report must not turn the clock back.
   if (static_cast<int>(phase) > static_cast<int>(it->second.phase)) it->second.phase = phase;
 }

@@ -4,6 +4,8 @@
 
 #include <dirent.h>
 
+#include <cmath>
+
 #include <string>
 #include <vector>
 

@@ -1,0 +1,41 @@
+// The one place that knows both worlds: message <-> core conversions (cartographer_ros style).
+#ifndef SWARM_TRANSPORT_ROS_CONVERSIONS_H_
+#define SWARM_TRANSPORT_ROS_CONVERSIONS_H_
+
+#include <geometry_msgs/Twist.h>
+
+#include "swarm_transport/New_Mission.h"
+#include "swarm_transport/Pose.h"
+#include "swarm_transport/Robot_Position.h"
+#include "swarm_transport/core/flocking.h"
+#include "swarm_transport/core/kinematics.h"
+#include "swarm_transport/core/mission.h"
+
+namespace swarm_transport {
+
+// Robot_Position (angle in degrees) -> core neighbour.
+core::Neighbour ToNeighbour(const Robot_Position& msg);
+// Core pose of robot `id` -> Robot_Position (angle in degrees [0, 360)).
+Robot_Position ToRobotPosition(std::uint16_t id, const core::Pose2& pose,
+                               std::uint8_t sub_id = 0,
+                               std::uint8_t type = Robot_Position::TYPE_PHYSICAL);
+// turtlesim-like Pose (theta in radians, (-pi, pi]) <-> core pose.
+core::Pose2 ToPose2(const Pose& msg);
+Pose ToPoseMsg(const core::Pose2& pose, const core::Velocity& velocity);
+// Twist (linear.x m/s, angular.z rad/s) <-> core velocity.
+core::Velocity ToVelocity(const geometry_msgs::Twist& msg);
+geometry_msgs::Twist ToTwist(const core::Velocity& velocity);
+
+// True when every float of the message is finite (the first check of every subscriber).
+bool IsFinite(const Robot_Position& msg);
+bool IsFinite(const geometry_msgs::Twist& msg);
+
+// New_Mission -> core mission; all_finite records whether every float of the message is finite
+// (ValidateMission rejects the mission otherwise).
+core::MissionSpec ToMissionSpec(const New_Mission& msg);
+// Core mission -> New_Mission (robot_ids sent only when the spec has them).
+New_Mission ToNewMission(const core::MissionSpec& spec);
+
+}  // namespace swarm_transport
+
+#endif  // SWARM_TRANSPORT_ROS_CONVERSIONS_H_

@@ -1,0 +1,104 @@
+#include "swarm_transport/ros/conversions.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace swarm_transport {
+
+core::Neighbour ToNeighbour(const Robot_Position& msg) {
+  core::Neighbour n;
+  n.id = msg.robot_id;
+  n.sub_id = msg.sub_id;
+  n.type = msg.type;
+  n.position = {msg.pos_x, msg.pos_y};
+  n.heading = core::Angle(msg.angle);
+  return n;
+}
+
+Robot_Position ToRobotPosition(std::uint16_t id, const core::Pose2& pose, std::uint8_t sub_id,
+                               std::uint8_t type) {
+  Robot_Position msg;
+  msg.robot_id = id;
+  msg.sub_id = sub_id;
+  msg.type = type;
+  msg.pos_x = static_cast<float>(pose.position.x);
+  msg.pos_y = static_cast<float>(pose.position.y);
+  msg.angle = static_cast<float>(pose.heading.degrees());
+  // float rounding may turn 359.9999999 into 360.0f: keep the [0, 360) promise.
+  if (msg.angle >= 360.0f) msg.angle = 0.0f;
+  return msg;
+}
+
+core::Pose2 ToPose2(const Pose& msg) {
+  return core::Pose2{{msg.x, msg.y}, core::Angle::FromRadians(msg.theta)};
+}
+
+Pose ToPoseMsg(const core::Pose2& pose, const core::Velocity& velocity) {
+  Pose msg;
+  msg.x = static_cast<float>(pose.position.x);
+  msg.y = static_cast<float>(pose.position.y);
+  double theta = pose.heading.radians();
+  if (theta > M_PI) theta -= 2.0 * M_PI;
+  msg.theta = static_cast<float>(theta);
+  msg.linear_velocity = static_cast<float>(velocity.linear);
+  msg.angular_velocity = static_cast<float>(velocity.angular);
+  return msg;
+}
+
+core::Velocity ToVelocity(const geometry_msgs::Twist& msg) {
+  return core::Velocity{msg.linear.x, msg.angular.z};
+}
+
+geometry_msgs::Twist ToTwist(const core::Velocity& velocity) {
+  geometry_msgs::Twist msg;
+  msg.linear.x = velocity.linear;
+  msg.angular.z = velocity.angular;
+  return msg;
+}
+
+bool IsFinite(const Robot_Position& msg) {
+  return std::isfinite(msg.pos_x) && std::isfinite(msg.pos_y) && std::isfinite(msg.angle);
+}
+
+bool IsFinite(const geometry_msgs::Twist& msg) {
+  return std::isfinite(msg.linear.x) && std::isfinite(msg.linear.y) &&
+         std::isfinite(msg.linear.z) && std::isfinite(msg.angular.x) &&
+         std::isfinite(msg.angular.y) && std::isfinite(msg.angular.z);
+}
+
+core::MissionSpec ToMissionSpec(const New_Mission& msg) {
+  core::MissionSpec spec;
+  spec.id = msg.mission_id;
+  spec.range_from = msg.robot_index_from;
+  spec.range_to = msg.robot_index_to;
+  spec.robot_ids = msg.robot_ids;
+  spec.leader_number = msg.leader_number;
+  spec.object_centre = {msg.object_position_x, msg.object_position_y};
+  spec.object_size = {msg.object_size_x, msg.object_size_y};
+  spec.target = {msg.target_x, msg.target_y};
+  spec.transport_mode = msg.transport_mode;
+  spec.all_finite = std::isfinite(msg.object_position_x) && std::isfinite(msg.object_position_y) &&
+                    std::isfinite(msg.object_size_x) && std::isfinite(msg.object_size_y) &&
+                    std::isfinite(msg.target_x) && std::isfinite(msg.target_y);
+  return spec;
+}
+
+New_Mission ToNewMission(const core::MissionSpec& spec) {
+  New_Mission msg;
+  msg.mission_id = spec.id;
+  msg.robot_index_from = spec.range_from;
+  msg.robot_index_to = spec.range_to;
+  msg.robot_ids = spec.robot_ids;
+  // leader_number is uint8 on the wire; specs read from messages or mission files fit it.
+  msg.leader_number = static_cast<std::uint8_t>(std::min(std::max(spec.leader_number, 0), 255));
+  msg.object_position_x = static_cast<float>(spec.object_centre.x);
+  msg.object_position_y = static_cast<float>(spec.object_centre.y);
+  msg.object_size_x = static_cast<float>(spec.object_size.x);
+  msg.object_size_y = static_cast<float>(spec.object_size.y);
+  msg.target_x = static_cast<float>(spec.target.x);
+  msg.target_y = static_cast<float>(spec.target.y);
+  msg.transport_mode = spec.transport_mode;
+  return msg;
+}
+
+}  // namespace swarm_transport

@@ -1,0 +1,670 @@
+#include "swarm_transport/ros/mission_dispatcher.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iomanip>
+#include <sstream>
+
+#include "swarm_transport/Mission_Event.h"
+#include "swarm_transport/Robot_Position.h"
+#include "swarm_transport/ros/conversions.h"
+#include "swarm_transport/ros/names.h"
+
+namespace swarm_transport {
+namespace {
+
+using core::MissionPhase;
+using XmlRpc::XmlRpcValue;
+
+constexpr char kNode[] = "mission_dispatcher";
+constexpr std::size_t kPhaseCount = 8;
+
+// XmlRpc gives ints and doubles as different types; `x: 7` in a YAML file means 7.0.
+bool AsDouble(XmlRpcValue& v, double* out) {
+  if (v.getType() == XmlRpcValue::TypeDouble) {
+    *out = static_cast<double>(v);
+  } else if (v.getType() == XmlRpcValue::TypeInt) {
+    *out = static_cast<int>(v);
+  } else {
+    return false;
+  }
+  return std::isfinite(*out);
+}
+
+// An integer in [lo, hi] or false.
+bool AsInt(XmlRpcValue& v, int lo, int hi, int* out) {
+  if (v.getType() != XmlRpcValue::TypeInt) return false;
+  *out = static_cast<int>(v);
+  return lo <= *out && *out <= hi;
+}
+
+// A list of exactly `n` finite numbers.
+bool AsNumbers(XmlRpcValue& v, int n, std::vector<double>* out) {
+  if (v.getType() != XmlRpcValue::TypeArray || v.size() != n) return false;
+  out->assign(static_cast<std::size_t>(n), 0.0);
+  for (int i = 0; i < n; ++i) {
+    if (!AsDouble(v[i], &(*out)[static_cast<std::size_t>(i)])) return false;
+  }
+  return true;
+}
+
+// Reads one missions-file entry; `error` says which key is wrong.
+bool MissionFromXmlRpc(XmlRpcValue& e, core::MissionSpec* spec, std::string* error) {
+  static const std::set<std::string> kKeys = {"id",      "robots_from", "robots_to", "robot_ids",
+                                              "leaders", "object",      "target",    "mode"};
+  if (e.getType() != XmlRpcValue::TypeStruct) {
+    *error = "must be a dictionary";
+    return false;
+  }
+  for (auto& kv : e) {
+    if (kKeys.count(kv.first) == 0) {
+      *error = "unknown key '" + kv.first +
+               "' (known: id, robots_from, robots_to, robot_ids, leaders, object, target, mode)";
+      return false;
+    }
+  }
+  core::MissionSpec m;
+  int value = 0;
+  if (e.hasMember("id")) {
+    if (!AsInt(e["id"], 0, 65535, &value)) {
+      *error = "'id' must be an integer in [0, 65535] (0 = next free id)";
+      return false;
+    }
+    m.id = static_cast<std::uint16_t>(value);
+  }
+  const bool has_range = e.hasMember("robots_from") || e.hasMember("robots_to");
+  if (has_range == e.hasMember("robot_ids")) {
+    *error = "give either robots_from and robots_to (half-open range) or robot_ids (a list)";
+    return false;
+  }
+  if (has_range) {
+    int from = 0, to = 0;
+    if (!e.hasMember("robots_from") || !e.hasMember("robots_to") ||
+        !AsInt(e["robots_from"], 0, 65535, &from) || !AsInt(e["robots_to"], 0, 65535, &to)) {
+      *error = "'robots_from' and 'robots_to' must both be integers in [0, 65535]";
+      return false;
+    }
+    m.range_from = static_cast<std::uint16_t>(from);
+    m.range_to = static_cast<std::uint16_t>(to);
+  } else {
+    XmlRpcValue& ids = e["robot_ids"];
+    if (ids.getType() != XmlRpcValue::TypeArray || ids.size() == 0) {
+      *error = "'robot_ids' must be a non-empty list of robot ids";
+      return false;
+    }
+    for (int i = 0; i < ids.size(); ++i) {
+      if (!AsInt(ids[i], 0, 65535, &value)) {
+        *error = "'robot_ids' must hold integers in [0, 65535]";
+        return false;
+      }
+      m.robot_ids.push_back(static_cast<std::uint16_t>(value));
+    }
+  }
+  if (!e.hasMember("leaders") || !AsInt(e["leaders"], 1, 255, &m.leader_number)) {
+    *error = "'leaders' must be an integer in [1, 255]";
+    return false;
+  }
+  std::vector<double> v;
+  if (!e.hasMember("target") || !AsNumbers(e["target"], 2, &v)) {
+    *error = "'target' must be [x, y], finite numbers (m)";
+    return false;
+  }
+  m.target = {v[0], v[1]};
+  if (e.hasMember("object")) {
+    if (!AsNumbers(e["object"], 4, &v)) {
+      *error =
+          "'object' must be [x, y, size_x, size_y], finite numbers (m), or left out for a "
+          "leader-only mission";
+      return false;
+    }
+    m.object_centre = {v[0], v[1]};
+    m.object_size = {v[2], v[3]};
+  } else {
+    m.object_centre = m.target;  // leader-only: the position is ignored, keep it meaningful
+  }
+  if (e.hasMember("mode")) {
+    XmlRpcValue& mode = e["mode"];
+    if (mode.getType() == XmlRpcValue::TypeString) {
+      const std::string name = static_cast<std::string>(mode);
+      value = name == "swarm" ? 0 : name == "formation" ? 1 : -1;
+    } else if (!AsInt(mode, 0, 1, &value)) {
+      value = -1;
+    }
+    if (value < 0) {
+      *error = "'mode' must be 0 (swarm) or 1 (formation)";
+      return false;
+    }
+    m.transport_mode = static_cast<std::uint8_t>(value);
+  }
+  *spec = m;
+  return true;
+}
+
+// Optional private parameters: missing keeps the default, a wrong type is an error.
+bool ReadDouble(const ros::NodeHandle& nh, const char* key, double* out, std::string* error) {
+  XmlRpcValue v;
+  if (!nh.getParam(key, v)) return true;
+  if (!AsDouble(v, out)) {
+    *error = std::string("~") + key + " must be a finite number";
+    return false;
+  }
+  return true;
+}
+
+bool ReadInt(const ros::NodeHandle& nh, const char* key, int* out, std::string* error) {
+  XmlRpcValue v;
+  if (!nh.getParam(key, v)) return true;
+  if (v.getType() != XmlRpcValue::TypeInt) {
+    *error = std::string("~") + key + " must be an integer";
+    return false;
+  }
+  *out = static_cast<int>(v);
+  return true;
+}
+
+bool ReadString(const ros::NodeHandle& nh, const char* key, std::string* out, std::string* error) {
+  XmlRpcValue v;
+  if (!nh.getParam(key, v)) return true;
+  if (v.getType() != XmlRpcValue::TypeString) {
+    *error = std::string("~") + key + " must be a string";
+    return false;
+  }
+  *out = static_cast<std::string>(v);
+  return true;
+}
+
+const char* EventName(core::MissionEventKind kind) {
+  return kind == core::MissionEventKind::kLoaded ? "LOADED" : "UNLOADED";
+}
+
+std::string Describe(const core::MissionSpec& m) {
+  std::ostringstream os;
+  os << std::setprecision(4);
+  const std::vector<std::uint16_t> assigned = m.Assigned();
+  os << assigned.size() << (assigned.size() == 1 ? " robot " : " robots ");
+  if (m.robot_ids.empty()) {
+    os << "[" << m.range_from << ", " << m.range_to << ")";
+  } else {
+    constexpr std::size_t kShown = 10;
+    os << "{";
+    for (std::size_t i = 0; i < assigned.size() && i < kShown; ++i) {
+      os << (i > 0 ? ", " : "") << assigned[i];
+    }
+    os << (assigned.size() > kShown ? ", ...}" : "}");
+  }
+  os << ", " << m.leader_number << " leader(s), first leader " << m.FirstLeader() << ", ";
+  if (m.LeaderOnly()) {
+    os << "leader-only to (" << m.target.x << ", " << m.target.y << ")";
+  } else {
+    os << m.object_size.x << " x " << m.object_size.y << " object at (" << m.object_centre.x << ", "
+       << m.object_centre.y << ") to (" << m.target.x << ", " << m.target.y << "), "
+       << (m.transport_mode == 1 ? "formation" : "swarm") << " mode";
+  }
+  return os.str();
+}
+
+}  // namespace
+
+std::string DispatcherOptions::Validate() const {
+  std::ostringstream os;
+  if (!std::isfinite(loaded_delay_s) || !std::isfinite(unloaded_delay_s)) {
+    os << "loaded_delay_s and unloaded_delay_s must be finite (s; negative = never send)";
+  } else if (!(start_delay_s >= 0.0) || !std::isfinite(start_delay_s)) {
+    os << "~start_delay_s must be a finite number >= 0 (s) but is " << start_delay_s;
+  } else if (max_live_missions < 1 || max_live_missions > 65535) {
+    os << "~max_live_missions must be in [1, 65535] but is " << max_live_missions;
+  }
+  return os.str();
+}
+
+bool MissionsFromXmlRpc(XmlRpcValue& file, std::vector<core::MissionSpec>* missions,
+                        std::string* error) {
+  if (file.getType() != XmlRpcValue::TypeStruct || !file.hasMember("missions") ||
+      file["missions"].getType() != XmlRpcValue::TypeArray) {
+    *error = "the file must hold a list under the key 'missions'";
+    return false;
+  }
+  XmlRpcValue& list = file["missions"];
+  std::vector<core::MissionSpec> out;
+  for (int i = 0; i < list.size(); ++i) {
+    core::MissionSpec spec;
+    std::string why;
+    if (!MissionFromXmlRpc(list[i], &spec, &why)) {
+      *error = "missions[" + std::to_string(i) + "]: " + why;
+      return false;
+    }
+    out.push_back(spec);
+  }
+  *missions = out;
+  return true;
+}
+
+bool TrackedMission::Live() const {
+  return phase != MissionPhase::kDone && phase != MissionPhase::kAborted &&
+         phase != MissionPhase::kRejected;
+}
+
+MissionDispatcher::MissionDispatcher(ros::NodeHandle nh, ros::NodeHandle private_nh)
+    : nh_(nh), private_nh_(private_nh) {}
+
+bool MissionDispatcher::LoadOptions(std::string* error) {
+  XmlRpcValue swarm;
+  if (nh_.getParam("/swarm", swarm) && !ConfigFromXmlRpc(swarm, &config_, error)) {
+    *error = "/swarm: " + *error;
+    return false;
+  }
+  options_.loaded_delay_s = config_.loaded_delay_s;
+  options_.unloaded_delay_s = config_.unloaded_delay_s;
+  if (!ReadDouble(private_nh_, "loaded_delay_s", &options_.loaded_delay_s, error) ||
+      !ReadDouble(private_nh_, "unloaded_delay_s", &options_.unloaded_delay_s, error) ||
+      !ReadString(private_nh_, "missions_file", &options_.missions_file, error) ||
+      !ReadDouble(private_nh_, "start_delay_s", &options_.start_delay_s, error) ||
+      !ReadInt(private_nh_, "max_live_missions", &options_.max_live_missions, error)) {
+    return false;
+  }
+  *error = options_.Validate();
+  if (!error->empty()) return false;
+  if (options_.missions_file.empty()) return true;
+
+  const std::string& path = options_.missions_file;
+  XmlRpcValue file;
+  if (!XmlRpcFromYamlFile(path, &file, error)) {
+    *error = "~missions_file: " + *error;  // the reader names the path
+    return false;
+  }
+  if (!MissionsFromXmlRpc(file, &file_missions_, error)) {
+    *error = "~missions_file " + path + ": " + *error;
+    return false;
+  }
+  // Check what can be checked before any robot is known; ids of the file must not clash.
+  core::MissionContext context;
+  context.world_size_m = config_.flocking.world_size_m;
+  for (std::size_t i = 0; i < file_missions_.size(); ++i) {
+    const core::MissionSpec& m = file_missions_[i];
+    std::string reason = core::ValidateMission(m, context);
+    if (context.live_missions.count(m.id) > 0) {
+      reason = "id " + std::to_string(m.id) + " appears twice in the file";
+    }
+    if (!reason.empty()) {
+      *error = "~missions_file " + path + ": missions[" + std::to_string(i) + "]: " + reason;
+      return false;
+    }
+    if (m.id != 0) context.live_missions.insert(m.id);
+  }
+  return true;
+}
+
+bool MissionDispatcher::Initialize() {
+  std::string error;
+  if (!LoadOptions(&error)) {
+    ROS_FATAL("%s: invalid parameters: %s", kNode, error.c_str());
+    return false;
+  }
+  // Latched so that a robot (or `rostopic echo`) connecting later still gets the last order.
+  new_pub_ = nh_.advertise<New_Mission>(names::kMissionNew, 10, true);
+  status_pub_ = nh_.advertise<Mission_Status>(names::kMissionStatus, 100);
+  event_pub_ = nh_.advertise<Mission_Event>(names::kMissionEvent, 10);
+  positions_sub_ = nh_.subscribe(names::kPositions, 1, &MissionDispatcher::OnPositions, this);
+  new_sub_ = nh_.subscribe(names::kMissionNew, 100, &MissionDispatcher::OnNewMission, this);
+  status_sub_ = nh_.subscribe(names::kMissionStatus, 100, &MissionDispatcher::OnStatus, this);
+  // Private names: with the default node name they are names::kSubmitMission and
+  // names::kSignalMission.
+  submit_srv_ = private_nh_.advertiseService("submit", &MissionDispatcher::OnSubmit, this);
+  signal_srv_ = private_nh_.advertiseService("signal", &MissionDispatcher::OnSignal, this);
+  status_srv_ = private_nh_.advertiseService("status", &MissionDispatcher::OnStatusService, this);
+
+  const auto delay = [](double s) {
+    std::ostringstream os;
+    if (s < 0.0) {
+      os << "on a signal only";
+    } else {
+      os << "after " << s << " s";
+    }
+    return os.str();
+  };
+  ROS_INFO("%s: up (arena %.3f m, LOADED %s, UNLOADED %s, %zu file mission(s), at most %d live)",
+           kNode, config_.flocking.world_size_m, delay(options_.loaded_delay_s).c_str(),
+           delay(options_.unloaded_delay_s).c_str(), file_missions_.size(),
+           options_.max_live_missions);
+  if (!file_missions_.empty()) {
+    ROS_INFO("%s: submitting the file missions %.2f s after the first %s", kNode,
+             options_.start_delay_s, names::kPositions);
+  }
+  return true;
+}
+
+void MissionDispatcher::Shutdown() {
+  start_timer_.stop();
+  for (auto& kv : missions_) kv.second.signal_timer.stop();
+}
+
+bool MissionDispatcher::FromSelf(const std::string& publisher) const {
+  return publisher == ros::this_node::getName();
+}
+
+core::MissionContext MissionDispatcher::Context(int ignore_id) const {
+  core::MissionContext c;
+  c.world_size_m = config_.flocking.world_size_m;
+  if (positions_) {
+    for (const Robot_Position& r : positions_->robots) {
+      if (r.type == Robot_Position::TYPE_PHYSICAL) c.known_robots.insert(r.robot_id);
+    }
+  }
+  for (const auto& kv : missions_) {
+    if (kv.second.Live() && kv.first != ignore_id) c.live_missions.insert(kv.first);
+  }
+  return c;
+}
+
+std::uint16_t MissionDispatcher::NextFreeId() {
+  // The table is bounded far below 65535 entries, so a free id is always found.
+  for (int tries = 0; tries < 65535; ++tries) {
+    const std::uint16_t id = next_id_;
+    next_id_ = next_id_ == 65535 ? 1 : static_cast<std::uint16_t>(next_id_ + 1);
+    if (missions_.count(id) == 0) return id;
+  }
+  return next_id_;
+}
+
+void MissionDispatcher::PublishStatus(const core::MissionSpec& spec, MissionPhase phase,
+                                      const std::string& reason) {
+  Mission_Status msg;
+  msg.mission_id = spec.id;
+  msg.state = static_cast<std::uint8_t>(phase);
+  msg.reason = reason;
+  msg.stamp = ros::Time::now();
+  msg.tick = 0;
+  msg.robots_assigned =
+      static_cast<std::uint16_t>(std::min<std::size_t>(spec.Assigned().size(), 65535));
+  if (spec.all_finite && !spec.LeaderOnly()) {
+    msg.object_position_x = static_cast<float>(spec.object_centre.x);
+    msg.object_position_y = static_cast<float>(spec.object_centre.y);
+    msg.distance_to_target = static_cast<float>(core::Distance(spec.object_centre, spec.target));
+  }
+  status_pub_.publish(msg);
+}
+
+MissionDispatcher::Verdict MissionDispatcher::Submit(core::MissionSpec spec,
+                                                     const std::string& source, bool auto_id,
+                                                     bool publish) {
+  Verdict verdict;
+  const std::uint16_t next_id = next_id_;
+  if (auto_id && spec.id == 0) spec.id = NextFreeId();
+  verdict.id = spec.id;
+  auto it = missions_.find(spec.id);
+  // A mission first seen through its leader's status (its order arrived late) gets the order
+  // attached instead of a "duplicate id" rejection.
+  const bool attach =
+      it != missions_.end() && it->second.Live() && !it->second.has_spec && !publish;
+  std::string reason = core::ValidateMission(spec, Context(attach ? spec.id : -1));
+  if (reason.empty() && !attach) {
+    int live = 0;
+    for (const auto& kv : missions_) live += kv.second.Live() ? 1 : 0;
+    if (live >= options_.max_live_missions) {
+      reason = "too many live missions (" + std::to_string(live) + ", ~max_live_missions)";
+    }
+  }
+  if (!reason.empty()) {
+    ROS_WARN("%s: rejected mission %u from %s: %s", kNode, spec.id, source.c_str(), reason.c_str());
+    PublishStatus(spec, MissionPhase::kRejected, reason);
+    next_id_ = next_id;  // a rejected mission does not use up an automatic id
+    verdict.message = "mission " + std::to_string(spec.id) + " rejected: " + reason;
+    return verdict;
+  }
+  verdict.accepted = true;
+  if (attach) {
+    it->second.spec = spec;
+    it->second.has_spec = true;
+    verdict.message = "mission " + std::to_string(spec.id) + " (already running) attached";
+    return verdict;
+  }
+  if (it != missions_.end()) {
+    // A finished mission's id is reused: its entry and its place in the finished list go.
+    const auto old = std::make_pair(it->first, it->second.generation);
+    finished_.erase(std::remove(finished_.begin(), finished_.end(), old), finished_.end());
+    missions_.erase(it);
+  }
+  TrackedMission& m = missions_[spec.id];
+  m.spec = spec;
+  m.has_spec = true;
+  m.source = source;
+  m.generation = next_generation_++;
+  m.robots_assigned =
+      static_cast<std::uint16_t>(std::min<std::size_t>(spec.Assigned().size(), 65535));
+  if (!spec.LeaderOnly()) m.distance_to_target_m = core::Distance(spec.object_centre, spec.target);
+  m.phase = MissionPhase::kQueued;
+  m.entered[static_cast<std::size_t>(MissionPhase::kQueued)] = ros::Time::now();
+  m.reached = 1u << static_cast<unsigned>(MissionPhase::kQueued);
+  if (publish) new_pub_.publish(ToNewMission(spec));
+  PublishStatus(spec, MissionPhase::kQueued, "accepted from " + source);
+  const std::string what = Describe(spec);
+  ROS_INFO("%s: queued mission %u from %s: %s", kNode, spec.id, source.c_str(), what.c_str());
+  verdict.message = "mission " + std::to_string(spec.id) + " queued: " + what;
+  return verdict;
+}
+
+void MissionDispatcher::SubmitFileMissions() {
+  for (const core::MissionSpec& spec : file_missions_) {
+    Submit(spec, "missions_file", true, true);
+  }
+  file_missions_.clear();
+}
+
+void MissionDispatcher::OnPositions(const Robot_Positions::ConstPtr& msg) {
+  positions_ = msg;
+  if (file_missions_scheduled_ || file_missions_.empty()) return;
+  file_missions_scheduled_ = true;
+  if (options_.start_delay_s > 0.0) {
+    // ros::Timer runs on ros::Time: simulated under /use_sim_time, like the robots' ticks.
+    start_timer_ = nh_.createTimer(ros::Duration(options_.start_delay_s),
+                                   &MissionDispatcher::OnStartTimer, this, true);
+  } else {
+    SubmitFileMissions();
+  }
+}
+
+void MissionDispatcher::OnStartTimer(const ros::TimerEvent& /*event*/) { SubmitFileMissions(); }
+
+void MissionDispatcher::OnNewMission(const ros::MessageEvent<New_Mission const>& event) {
+  // The dispatcher hears its own publications on this topic; those are tracked already.
+  if (FromSelf(event.getPublisherName())) return;
+  Submit(ToMissionSpec(*event.getMessage()), "topic (" + event.getPublisherName() + ")", false,
+         false);
+}
+
+void MissionDispatcher::OnStatus(const ros::MessageEvent<Mission_Status const>& event) {
+  if (FromSelf(event.getPublisherName())) return;
+  const Mission_Status& msg = *event.getMessage();
+  if (msg.state >= kPhaseCount) {
+    ROS_WARN("%s: ignored a Mission_Status of mission %u from %s: unknown state %u", kNode,
+             msg.mission_id, event.getPublisherName().c_str(), msg.state);
+    return;
+  }
+  if (!std::isfinite(msg.object_position_x) || !std::isfinite(msg.object_position_y) ||
+      !std::isfinite(msg.distance_to_target)) {
+    ROS_WARN("%s: ignored a Mission_Status of mission %u from %s: a field is not finite", kNode,
+             msg.mission_id, event.getPublisherName().c_str());
+    return;
+  }
+  const auto phase = static_cast<MissionPhase>(msg.state);
+  auto it = missions_.find(msg.mission_id);
+  if (it != missions_.end() && !it->second.Live()) return;  // late news of a finished mission
+  if (it == missions_.end()) {
+    // A REJECTED from elsewhere is about a submission, not about a mission to follow.
+    if (phase == MissionPhase::kRejected) return;
+    int live = 0;
+    for (const auto& kv : missions_) live += kv.second.Live() ? 1 : 0;
+    if (live >= options_.max_live_missions) {
+      ROS_WARN_THROTTLE(5.0, "%s: not tracking mission %u: too many live missions", kNode,
+                        msg.mission_id);
+      return;
+    }
+    // A mission whose order the dispatcher missed (e.g. it started later): follow it anyway.
+    TrackedMission& m = missions_[msg.mission_id];
+    m.source = "status";
+    m.generation = next_generation_++;
+    m.spec.id = msg.mission_id;
+    it = missions_.find(msg.mission_id);
+    ROS_INFO("%s: following mission %u first seen in a status from %s", kNode, msg.mission_id,
+             event.getPublisherName().c_str());
+  } else if (phase == MissionPhase::kRejected && it->second.phase != MissionPhase::kQueued) {
+    // Someone rejected a duplicate of a running mission's id: the running one goes on.
+    return;
+  }
+  TrackedMission& m = it->second;
+  if (msg.robots_assigned > 0) m.robots_assigned = msg.robots_assigned;
+  m.robots_inside = msg.robots_inside;
+  m.distance_to_target_m = msg.distance_to_target;
+  if (!msg.reason.empty()) m.reason = msg.reason;
+  if (phase != m.phase || m.reached == 0) EnterPhase(msg.mission_id, &m, phase);
+}
+
+void MissionDispatcher::EnterPhase(std::uint16_t id, TrackedMission* m, MissionPhase phase) {
+  const auto index = static_cast<unsigned>(phase);
+  m->phase = phase;
+  if ((m->reached & (1u << index)) == 0) {
+    m->reached |= 1u << index;
+    m->entered[index] = ros::Time::now();
+  }
+  ROS_INFO("%s: mission %u is %s%s%s", kNode, id, core::PhaseName(phase),
+           m->reason.empty() ? "" : ": ", m->reason.c_str());
+  if (phase == MissionPhase::kLoading) ScheduleSignal(id, m, core::MissionEventKind::kLoaded);
+  if (phase == MissionPhase::kUnloading) {
+    ScheduleSignal(id, m, core::MissionEventKind::kUnloaded);
+  }
+  if (!m->Live()) {
+    m->signal_timer.stop();
+    finished_.emplace_back(id, m->generation);
+    Forget();  // never the mission just finished: it is the newest
+  }
+}
+
+void MissionDispatcher::Forget() {
+  while (finished_.size() > kMaxFinishedMissions) {
+    const auto oldest = finished_.front();
+    finished_.pop_front();
+    auto it = missions_.find(oldest.first);
+    if (it != missions_.end() && it->second.generation == oldest.second && !it->second.Live()) {
+      missions_.erase(it);
+    }
+  }
+}
+
+void MissionDispatcher::ScheduleSignal(std::uint16_t id, TrackedMission* m,
+                                       core::MissionEventKind kind) {
+  const bool loaded = kind == core::MissionEventKind::kLoaded;
+  const double delay_s = loaded ? options_.loaded_delay_s : options_.unloaded_delay_s;
+  if (delay_s < 0.0 || (loaded ? m->loaded_sent : m->unloaded_sent)) return;
+  if (delay_s == 0.0) {
+    SendEvent(id, kind, "at once");
+    (loaded ? m->loaded_sent : m->unloaded_sent) = true;
+    return;
+  }
+  const std::uint64_t generation = m->generation;
+  m->signal_timer = nh_.createTimer(
+      ros::Duration(delay_s),
+      [this, id, generation, kind](const ros::TimerEvent&) { OnSignalTimer(id, generation, kind); },
+      true);
+}
+
+void MissionDispatcher::OnSignalTimer(std::uint16_t id, std::uint64_t generation,
+                                      core::MissionEventKind kind) {
+  auto it = missions_.find(id);
+  if (it == missions_.end() || it->second.generation != generation) return;
+  TrackedMission& m = it->second;
+  const bool loaded = kind == core::MissionEventKind::kLoaded;
+  const MissionPhase waiting = loaded ? MissionPhase::kLoading : MissionPhase::kUnloading;
+  // Sent already (by hand through ~signal) or the robots moved on: nothing to do.
+  if (m.phase != waiting || (loaded ? m.loaded_sent : m.unloaded_sent)) return;
+  SendEvent(id, kind, "after the configured delay");
+  (loaded ? m.loaded_sent : m.unloaded_sent) = true;
+}
+
+void MissionDispatcher::SendEvent(std::uint16_t id, core::MissionEventKind kind, const char* why) {
+  Mission_Event msg;
+  msg.mission_id = id;
+  msg.event = static_cast<std::uint8_t>(kind);
+  event_pub_.publish(msg);
+  ROS_INFO("%s: sent %s for mission %u (%s)", kNode, EventName(kind), id, why);
+}
+
+bool MissionDispatcher::OnSubmit(Submit_Mission::Request& req, Submit_Mission::Response& res) {
+  const Verdict verdict = Submit(ToMissionSpec(req.mission), "service", true, true);
+  res.code = verdict.accepted ? Submit_Mission::Response::OK : Submit_Mission::Response::REJECTED;
+  res.message = verdict.message;
+  return true;
+}
+
+bool MissionDispatcher::OnSignal(Mission_Signal::Request& req, Mission_Signal::Response& res) {
+  res.code = Mission_Signal::Response::ERROR;
+  const std::string mission = "mission " + std::to_string(req.mission_id);
+  if (req.event != static_cast<std::uint8_t>(core::MissionEventKind::kLoaded) &&
+      req.event != static_cast<std::uint8_t>(core::MissionEventKind::kUnloaded)) {
+    res.message = "event must be 1 (LOADED) or 2 (UNLOADED) but is " + std::to_string(req.event);
+  } else if (missions_.count(req.mission_id) == 0) {
+    res.message = mission + " is unknown";
+  } else if (!missions_[req.mission_id].Live()) {
+    res.message =
+        mission + " is finished (" + core::PhaseName(missions_[req.mission_id].phase) + ")";
+  }
+  if (!res.message.empty()) {
+    ROS_WARN("%s: refused a signal: %s", kNode, res.message.c_str());
+    return true;
+  }
+  TrackedMission& m = missions_[req.mission_id];
+  const auto kind = static_cast<core::MissionEventKind>(req.event);
+  SendEvent(req.mission_id, kind, "requested through ~signal");
+  (kind == core::MissionEventKind::kLoaded ? m.loaded_sent : m.unloaded_sent) = true;
+  res.code = Mission_Signal::Response::OK;
+  res.message = std::string(EventName(kind)) + " sent for " + mission + " (now " +
+                core::PhaseName(m.phase) + ")";
+  return true;
+}
+
+bool MissionDispatcher::OnStatusService(std_srvs::Trigger::Request& /*req*/,
+                                        std_srvs::Trigger::Response& res) {
+  res.success = true;
+  res.message = StatusTable();
+  return true;
+}
+
+std::string MissionDispatcher::StatusTable() const {
+  const ros::Time now = ros::Time::now();
+  int live = 0;
+  for (const auto& kv : missions_) live += kv.second.Live() ? 1 : 0;
+  std::ostringstream os;
+  os << missions_.size() << " mission(s) tracked, " << live << " live\n";
+  if (missions_.empty()) return os.str();
+  char line[160];
+  std::snprintf(line, sizeof(line), "%-6s %-10s %-14s %6s %6s %8s  %s\n", "id", "state", "source",
+                "robots", "inside", "dist_m", "seconds per phase | reason");
+  os << line;
+  static const char* const kShort[] = {"Q", "G", "L", "T", "U"};
+  for (const auto& kv : missions_) {
+    const TrackedMission& m = kv.second;
+    const std::string source = m.source.substr(0, m.source.find(' '));
+    std::snprintf(line, sizeof(line), "%-6u %-10s %-14s %6u %6u %8.2f ", kv.first,
+                  core::PhaseName(m.phase), source.c_str(), m.robots_assigned, m.robots_inside,
+                  m.distance_to_target_m);
+    os << line;
+    // Each phase lasts from its entry to the entry of the next phase reached (or until now).
+    for (unsigned p = 0; p <= static_cast<unsigned>(MissionPhase::kUnloading); ++p) {
+      if ((m.reached & (1u << p)) == 0) continue;
+      ros::Time end = now;
+      for (unsigned q = p + 1; q < kPhaseCount; ++q) {
+        if (m.reached & (1u << q)) {
+          end = m.entered[q];
+          break;
+        }
+      }
+      std::snprintf(line, sizeof(line), " %s %.1f", kShort[p], (end - m.entered[p]).toSec());
+      os << line;
+    }
+    if (!m.reason.empty()) os << " | " << m.reason;
+    os << "\n";
+  }
+  return os.str();
+}
+
+}  // namespace swarm_transport

@@ -1,0 +1,90 @@
+#include "swarm_transport/core/angle.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace swarm_transport {
+namespace core {
+namespace {
+
+constexpr double kTolerance = 1e-9;
+
+TEST(AngleTest, SumWrapsPastFullTurn) {
+  EXPECT_EQ(Angle(350) + Angle(20), Angle(10));
+  EXPECT_NEAR((Angle(350) + Angle(20)).degrees(), 10.0, kTolerance);
+}
+
+TEST(AngleTest, NegativeAndLargeDegreesWrapIntoRange) {
+  EXPECT_NEAR(Angle(-30).degrees(), 330.0, kTolerance);
+  EXPECT_NEAR(Angle(-720).degrees(), 0.0, kTolerance);
+  EXPECT_NEAR(Angle(725).degrees(), 5.0, kTolerance);
+  EXPECT_NEAR((Angle(10) - Angle(20)).degrees(), 350.0, kTolerance);
+}
+
+TEST(AngleTest, TinyNegativeWrapsToZeroNotToFullTurn) {
+  // -1e-15 + 360 rounds to exactly 360, which is outside [0, 360).
+  EXPECT_LT(Angle(-1e-15).degrees(), 360.0);
+  EXPECT_EQ(Angle(-1e-15), Angle(0));
+}
+
+TEST(AngleTest, RadiansConvertBothWays) {
+  EXPECT_NEAR(Angle(180).radians(), M_PI, kTolerance);
+  EXPECT_NEAR(Angle::FromRadians(-M_PI / 2).degrees(), 270.0, kTolerance);
+}
+
+TEST(AngleTest, EqualityTreatsJustBelowFullTurnAsZero) {
+  EXPECT_EQ(Angle(360.0 - 1e-12), Angle(0));
+  EXPECT_NE(Angle(359.9), Angle(0));
+}
+
+TEST(AngleTest, SignedDifferenceTakesTheShortWay) {
+  EXPECT_NEAR(Angle::SignedDifference(Angle(10), Angle(350)), 20.0, kTolerance);
+  EXPECT_NEAR(Angle::SignedDifference(Angle(350), Angle(10)), -20.0, kTolerance);
+  EXPECT_NEAR(Angle::SignedDifference(Angle(271), Angle(90)), -179.0, kTolerance);
+  EXPECT_NEAR(Angle::SignedDifference(Angle(90), Angle(90)), 0.0, kTolerance);
+}
+
+TEST(AngleTest, SignedDifferenceOfOppositeHeadingsIsPlus180) {
+  EXPECT_NEAR(Angle::SignedDifference(Angle(180), Angle(0)), 180.0, kTolerance);
+  EXPECT_NEAR(Angle::SignedDifference(Angle(0), Angle(180)), 180.0, kTolerance);
+}
+
+TEST(AngleTest, CircularMeanOf45And315IsZero) {
+  bool defined = false;
+  EXPECT_EQ(CircularMean({Angle(45), Angle(315)}, &defined), Angle(0));
+  EXPECT_TRUE(defined);
+}
+
+TEST(AngleTest, CircularMeanOfOppositeHeadingsIsUndefined) {
+  bool defined = true;
+  EXPECT_EQ(CircularMean({Angle(0), Angle(180)}, &defined), Angle(0));
+  EXPECT_FALSE(defined);
+  defined = true;
+  EXPECT_EQ(CircularMean({Angle(90), Angle(270)}, &defined), Angle(0));
+  EXPECT_FALSE(defined);
+}
+
+TEST(AngleTest, CircularMeanOfNothingIsUndefined) {
+  bool defined = true;
+  CircularMean({}, &defined);
+  EXPECT_FALSE(defined);
+}
+
+TEST(AngleTest, CircularMeanWeighsEachAngle) {
+  bool defined = false;
+  EXPECT_EQ(CircularMean({Angle(0), Angle(90)}, &defined, {1.0, 1.0}), Angle(45));
+  // atan2(sqrt(3), 1) = 60 degrees.
+  EXPECT_EQ(CircularMean({Angle(0), Angle(90)}, &defined, {1.0, std::sqrt(3.0)}), Angle(60));
+  EXPECT_TRUE(defined);
+}
+
+TEST(AngleTest, CircularMeanRejectsMismatchedWeights) {
+  bool defined = false;
+  EXPECT_THROW(CircularMean({Angle(0), Angle(90)}, &defined, {1.0}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace core
+}  // namespace swarm_transport

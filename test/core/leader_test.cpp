@@ -1,0 +1,171 @@
+#include "swarm_transport/core/leader.h"
+
+#include <gtest/gtest.h>
+
+namespace swarm_transport {
+namespace core {
+namespace {
+
+constexpr double kTolerance = 1e-9;
+constexpr double kTick = 1.0;
+
+// Flocking parameters a leader must ignore (free will, cohesion) are deliberately non-zero.
+FlockingParams Params() {
+  FlockingParams p;
+  p.local_range_m = 1.0;
+  p.speed_m_per_tick = 0.1;
+  p.free_will_deg = 90.0;
+  p.cohesion = 0.5;
+  p.speed_reduction = 0.5;
+  p.speed_retries = 2;
+  return p;
+}
+
+LeaderParams Alone() {
+  LeaderParams lp;
+  lp.keep_flock = false;
+  return lp;
+}
+
+Neighbour Robot(std::uint16_t id, double x, double y, std::uint8_t type = 0) {
+  Neighbour n;
+  n.id = id;
+  n.type = type;
+  n.position = {x, y};
+  n.heading = Angle(180);
+  return n;
+}
+
+Perception At(double x, double y, double heading_deg) {
+  Perception in;
+  in.self_id = 1;
+  in.self = {{x, y}, Angle(heading_deg)};
+  return in;
+}
+
+TEST(LeaderParamsTest, ValidatesToleranceAndWaitFraction) {
+  EXPECT_EQ(LeaderParams().Validate(), "");
+  LeaderParams tolerance;
+  tolerance.goal_tolerance_m = 0.0;
+  EXPECT_EQ(tolerance.Validate(), "goal_tolerance_m must be finite and > 0 but is 0");
+  LeaderParams fraction;
+  fraction.wait_fraction = 1.5;
+  EXPECT_EQ(fraction.Validate(), "wait_fraction must be in (0, 1] but is 1.5");
+  fraction.wait_fraction = 1.0;
+  EXPECT_EQ(fraction.Validate(), "");
+}
+
+TEST(LeaderStepTest, HeadsForTheGoalIgnoringTheFlock) {
+  Perception in = At(5.0, 5.0, 0.0);
+  in.others = {Robot(2, 5.3, 5.0)};  // heading 180 and east of it: alignment, cohesion would turn
+  Rng rng(1, 0);
+  LeaderMemory memory;
+  const LeaderDecision d =
+      LeaderStep(in, Params(), Alone(), {5.0, 8.0}, Angle(90), rng, kTick, &memory);
+  EXPECT_FALSE(d.arrived);
+  EXPECT_EQ(d.move.outcome, MoveOutcome::kStraight);
+  EXPECT_EQ(d.move.heading, Angle(90));
+  EXPECT_NEAR(d.move.distance_m, 0.1, kTolerance);
+}
+
+TEST(LeaderStepTest, StopsAtTheGoalInsteadOfOvershooting) {
+  Rng rng(1, 0);
+  LeaderMemory memory;
+  const LeaderDecision d = LeaderStep(At(5.0, 5.0, 90.0), Params(), Alone(), {5.0, 5.08}, Angle(90),
+                                      rng, kTick, &memory);
+  EXPECT_NEAR(d.move.distance_m, 0.08, kTolerance);
+}
+
+TEST(LeaderStepTest, NeverSwervesWhenBlocked) {
+  // A thin danger strip covers the straight line ahead at every speed; one degree aside is free
+  // (a normal robot swerves there), but a leader stands.
+  Perception in = At(5.0, 5.0, 90.0);
+  in.zones = {Zone{1, Shape::FromRect({5.0, 5.06}, {0.0012, 0.1}), false}};
+  ASSERT_EQ(AvoidCollisions(in, Params(), Angle(90), kTick).outcome, MoveOutcome::kSwerved);
+  Rng rng(1, 0);
+  LeaderMemory memory;
+  const LeaderDecision d =
+      LeaderStep(in, Params(), Alone(), {5.0, 8.0}, Angle(90), rng, kTick, &memory);
+  EXPECT_EQ(d.move.outcome, MoveOutcome::kStand);
+  EXPECT_EQ(d.move.distance_m, 0.0);
+  EXPECT_EQ(d.move.heading, Angle(90));
+  EXPECT_EQ(memory.blocked_waits, 1u);
+}
+
+TEST(LeaderStepTest, SlowsDownWhenOnlyFullSpeedIsBlocked) {
+  Perception in = At(5.0, 5.0, 90.0);
+  in.zones = {Zone{1, Shape::FromRect({5.0, 5.1}, {0.01, 0.04}), false}};
+  Rng rng(1, 0);
+  LeaderMemory memory;
+  const LeaderDecision d =
+      LeaderStep(in, Params(), Alone(), {5.0, 8.0}, Angle(90), rng, kTick, &memory);
+  EXPECT_EQ(d.move.outcome, MoveOutcome::kSlowed);
+  EXPECT_EQ(d.move.heading, Angle(90));
+  EXPECT_NEAR(d.move.distance_m, 0.05, kTolerance);
+  EXPECT_EQ(memory.blocked_waits, 0u);
+}
+
+TEST(LeaderStepTest, WaitsWhileTheSwarmCentroidIsBeyondHalfTheRange) {
+  Perception in = At(5.0, 5.0, 0.0);
+  in.others = {Robot(2, 5.6, 5.0), Robot(3, 5.8, 5.0)};  // centroid 0.7 away
+  Rng rng(1, 0);
+  LeaderMemory memory;
+  const LeaderDecision d =
+      LeaderStep(in, Params(), LeaderParams(), {8.0, 5.0}, Angle(0), rng, kTick, &memory);
+  EXPECT_EQ(d.move.outcome, MoveOutcome::kStand);
+  EXPECT_EQ(d.move.distance_m, 0.0);
+  EXPECT_EQ(memory.swarm_waits, 1u);
+  EXPECT_FALSE(memory.gave_up);
+}
+
+TEST(LeaderStepTest, MovesWhileTheSwarmCentroidIsWithinHalfTheRange) {
+  Perception in = At(5.0, 5.0, 0.0);
+  in.others = {Robot(2, 4.7, 5.0), Robot(3, 4.5, 5.0),  // centroid 0.4 away
+               Robot(9, 1.0, 1.0, 2)};                  // a statist is no swarm member
+  Rng rng(1, 0);
+  LeaderMemory memory;
+  const LeaderDecision d =
+      LeaderStep(in, Params(), LeaderParams(), {8.0, 5.0}, Angle(0), rng, kTick, &memory);
+  EXPECT_EQ(d.move.outcome, MoveOutcome::kStraight);
+  EXPECT_EQ(memory.swarm_waits, 0u);
+}
+
+TEST(LeaderStepTest, GivesUpWhenNoRobotIsInRange) {
+  Perception in = At(5.0, 5.0, 0.0);
+  in.others = {Robot(2, 7.0, 5.0)};
+  Rng rng(1, 0);
+  LeaderMemory memory;
+  LeaderDecision d =
+      LeaderStep(in, Params(), LeaderParams(), {8.0, 5.0}, Angle(0), rng, kTick, &memory);
+  EXPECT_TRUE(memory.gave_up);
+  EXPECT_EQ(d.move.outcome, MoveOutcome::kStraight);
+  // Having given up, a far centroid no longer makes it wait.
+  in.others = {Robot(2, 5.8, 5.0)};
+  d = LeaderStep(in, Params(), LeaderParams(), {8.0, 5.0}, Angle(0), rng, kTick, &memory);
+  EXPECT_EQ(d.move.outcome, MoveOutcome::kStraight);
+  EXPECT_EQ(memory.swarm_waits, 0u);
+}
+
+TEST(LeaderStepTest, ArrivesWithinTheGoalTolerance) {
+  Rng rng(1, 0);
+  LeaderMemory memory;
+  const LeaderDecision d = LeaderStep(At(5.0, 5.0, 0.0), Params(), Alone(), {5.03, 5.03}, Angle(45),
+                                      rng, kTick, &memory);
+  EXPECT_TRUE(d.arrived);
+  EXPECT_EQ(d.move.outcome, MoveOutcome::kStand);
+  EXPECT_EQ(d.move.distance_m, 0.0);
+  EXPECT_EQ(memory.blocked_waits, 0u);
+}
+
+TEST(LeaderStepTest, AdvancesTheRandomSequenceLikeAFlockingStep) {
+  Rng rng(5, 1);
+  Rng reference(5, 1);
+  LeaderMemory memory;
+  LeaderStep(At(5.0, 5.0, 0.0), Params(), Alone(), {8.0, 5.0}, Angle(0), rng, kTick, &memory);
+  FlockingStep(At(5.0, 5.0, 0.0), Params(), reference, kTick);
+  EXPECT_EQ(rng.Next(), reference.Next());
+}
+
+}  // namespace
+}  // namespace core
+}  // namespace swarm_transport

@@ -1,0 +1,274 @@
+// MissionSpec and ValidateMission [SPEC 6, 10]: the group, its leaders, and every rejection.
+#include "swarm_transport/core/mission.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace swarm_transport {
+namespace core {
+namespace {
+
+using Ids = std::vector<std::uint16_t>;
+using Runs = std::vector<std::pair<std::uint16_t, std::uint16_t>>;
+
+// The thesis mission [T7.4]: robots [0, 12), 3 leaders, a 2 x 2 object at (7, 7) to (3, 3).
+MissionSpec ThesisMission() {
+  MissionSpec m;
+  m.id = 7;
+  m.range_from = 0;
+  m.range_to = 12;
+  m.leader_number = 3;
+  m.object_centre = {7.0, 7.0};
+  m.object_size = {2.0, 2.0};
+  m.target = {3.0, 3.0};
+  m.transport_mode = 0;
+  return m;
+}
+
+// Robot 4 alone drives to (9, 9) [T5.3].
+MissionSpec LeaderOnlyMission() {
+  MissionSpec m;
+  m.id = 8;
+  m.range_from = 4;
+  m.range_to = 5;
+  m.leader_number = 1;
+  m.target = {9.0, 9.0};
+  return m;
+}
+
+MissionContext Context() {
+  MissionContext c;
+  c.world_size_m = 11.088889;
+  return c;
+}
+
+// The reason must be non-empty and mention `word`, so that the log line says what is wrong.
+void ExpectRejected(const MissionSpec& m, const MissionContext& c, const std::string& word) {
+  const std::string reason = ValidateMission(m, c);
+  EXPECT_FALSE(reason.empty()) << "expected a rejection mentioning '" << word << "'";
+  EXPECT_NE(reason.find(word), std::string::npos) << "reason: " << reason;
+}
+
+TEST(MissionSpecTest, AssignedFromRangeIsHalfOpen) {
+  const MissionSpec m = ThesisMission();
+  EXPECT_EQ(m.Assigned(), (Ids{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}));
+  EXPECT_TRUE(m.Assigns(0));
+  EXPECT_TRUE(m.Assigns(11));
+  EXPECT_FALSE(m.Assigns(12));
+}
+
+TEST(MissionSpecTest, AssignedFromRobotIdsIsSortedUniqueAndReplacesTheRange) {
+  MissionSpec m = ThesisMission();
+  m.robot_ids = {9, 1, 4, 9};
+  EXPECT_EQ(m.Assigned(), (Ids{1, 4, 9}));
+  EXPECT_TRUE(m.Assigns(4));
+  EXPECT_FALSE(m.Assigns(0));  // in the range, but robot_ids replaces it
+  EXPECT_FALSE(m.Assigns(5));
+}
+
+TEST(MissionSpecTest, EmptyRangeAssignsNobody) {
+  MissionSpec m = ThesisMission();
+  m.range_from = 5;
+  m.range_to = 5;
+  EXPECT_TRUE(m.Assigned().empty());
+  EXPECT_EQ(m.FirstLeader(), 0);
+}
+
+TEST(MissionSpecTest, LeadersAreTheLowestAssignedIds) {
+  const MissionSpec m = ThesisMission();
+  EXPECT_EQ(m.Leaders(), (Ids{0, 1, 2}));
+  EXPECT_EQ(m.FirstLeader(), 0);
+  EXPECT_TRUE(m.IsLeader(2));
+  EXPECT_FALSE(m.IsLeader(3));
+}
+
+TEST(MissionSpecTest, LeadersFromRobotIds) {
+  MissionSpec m = ThesisMission();
+  m.robot_ids = {8, 3, 7, 1};
+  m.leader_number = 2;
+  EXPECT_EQ(m.Leaders(), (Ids{1, 3}));
+  EXPECT_EQ(m.FirstLeader(), 1);
+  EXPECT_TRUE(m.IsLeader(3));
+  EXPECT_FALSE(m.IsLeader(7));
+}
+
+TEST(MissionSpecTest, AssignedRunsCoverTheIdsWithMaximalHalfOpenRanges) {
+  MissionSpec m = ThesisMission();
+  m.robot_ids = {1, 2, 3, 7, 8};
+  EXPECT_EQ(m.AssignedRuns(), (Runs{{1, 4}, {7, 9}}));
+  m.robot_ids = {8, 7, 3, 2, 1, 2};  // order and duplicates do not matter
+  EXPECT_EQ(m.AssignedRuns(), (Runs{{1, 4}, {7, 9}}));
+  m.robot_ids.clear();
+  EXPECT_EQ(m.AssignedRuns(), (Runs{{0, 12}}));
+}
+
+TEST(MissionSpecTest, LeaderOnlyMeansAZeroByZeroObject) {
+  EXPECT_TRUE(LeaderOnlyMission().LeaderOnly());
+  EXPECT_FALSE(ThesisMission().LeaderOnly());
+  MissionSpec m = ThesisMission();
+  m.object_size = {0.0, 2.0};  // zero on one axis only is a bad transport, not leader-only
+  EXPECT_FALSE(m.LeaderOnly());
+}
+
+TEST(MissionSpecTest, PhaseNames) {
+  EXPECT_STREQ(PhaseName(MissionPhase::kQueued), "QUEUED");
+  EXPECT_STREQ(PhaseName(MissionPhase::kGathering), "GATHERING");
+  EXPECT_STREQ(PhaseName(MissionPhase::kLoading), "LOADING");
+  EXPECT_STREQ(PhaseName(MissionPhase::kTransport), "TRANSPORT");
+  EXPECT_STREQ(PhaseName(MissionPhase::kUnloading), "UNLOADING");
+  EXPECT_STREQ(PhaseName(MissionPhase::kDone), "DONE");
+  EXPECT_STREQ(PhaseName(MissionPhase::kAborted), "ABORTED");
+  EXPECT_STREQ(PhaseName(MissionPhase::kRejected), "REJECTED");
+  EXPECT_STREQ(PhaseName(static_cast<MissionPhase>(42)), "UNKNOWN");
+}
+
+TEST(ValidateMissionTest, AcceptsTheThesisMission) {
+  EXPECT_EQ(ValidateMission(ThesisMission(), Context()), "");
+}
+
+TEST(ValidateMissionTest, AcceptsALeaderOnlyMission) {
+  EXPECT_EQ(ValidateMission(LeaderOnlyMission(), Context()), "");
+}
+
+TEST(ValidateMissionTest, AcceptsFormationModeAndTheArenaBorder) {
+  MissionSpec m = ThesisMission();
+  m.transport_mode = 1;
+  m.target = {0.0, 11.088889};  // on the border is inside
+  EXPECT_EQ(ValidateMission(m, Context()), "");
+}
+
+TEST(ValidateMissionTest, RejectsNonFiniteFields) {
+  MissionSpec m = ThesisMission();
+  m.all_finite = false;
+  ExpectRejected(m, Context(), "finite");
+}
+
+TEST(ValidateMissionTest, RejectsAnEmptyOrInvertedRange) {
+  MissionSpec m = ThesisMission();
+  m.range_from = 12;
+  m.range_to = 12;
+  ExpectRejected(m, Context(), "from must be < to");
+  m.range_from = 12;
+  m.range_to = 3;
+  ExpectRejected(m, Context(), "from must be < to");
+}
+
+TEST(ValidateMissionTest, RobotIdsMakeTheRangeIrrelevant) {
+  MissionSpec m = ThesisMission();
+  m.range_from = 12;
+  m.range_to = 3;
+  m.robot_ids = {1, 2, 3, 7, 8};
+  EXPECT_EQ(ValidateMission(m, Context()), "");
+}
+
+TEST(ValidateMissionTest, RejectsZeroLeaders) {
+  MissionSpec m = ThesisMission();
+  m.leader_number = 0;
+  ExpectRejected(m, Context(), "leader_number must be >= 1");
+}
+
+TEST(ValidateMissionTest, RejectsMoreLeadersThanRobots) {
+  MissionSpec m = ThesisMission();
+  m.leader_number = 13;
+  ExpectRejected(m, Context(), "larger than the group of 12");
+  m.robot_ids = {1, 1, 2};  // duplicates count once
+  m.leader_number = 3;
+  ExpectRejected(m, Context(), "larger than the group of 2");
+}
+
+TEST(ValidateMissionTest, RejectsAnUnknownTransportMode) {
+  MissionSpec m = ThesisMission();
+  m.transport_mode = 2;
+  ExpectRejected(m, Context(), "transport_mode");
+}
+
+TEST(ValidateMissionTest, RejectsAnObjectSizeNotAboveZero) {
+  MissionSpec m = ThesisMission();
+  m.object_size = {2.0, 0.0};
+  ExpectRejected(m, Context(), "object size");
+  m.object_size = {-2.0, 2.0};
+  ExpectRejected(m, Context(), "object size");
+  m.object_size = {-1.0, -1.0};
+  ExpectRejected(m, Context(), "object size");
+}
+
+TEST(ValidateMissionTest, RejectsALeaderOnlyMissionWithFollowers) {
+  MissionSpec m = LeaderOnlyMission();
+  m.range_to = 7;  // robots 4, 5, 6 but one leader
+  ExpectRejected(m, Context(), "leader-only");
+}
+
+TEST(ValidateMissionTest, RejectsAnObjectOutsideTheArena) {
+  MissionSpec m = ThesisMission();
+  m.object_centre = {12.0, 7.0};
+  ExpectRejected(m, Context(), "object centre");
+  m.object_centre = {7.0, -0.1};
+  ExpectRejected(m, Context(), "object centre");
+}
+
+TEST(ValidateMissionTest, IgnoresTheObjectPositionOfALeaderOnlyMission) {
+  MissionSpec m = LeaderOnlyMission();
+  m.object_centre = {-50.0, 99.0};
+  EXPECT_EQ(ValidateMission(m, Context()), "");
+}
+
+TEST(ValidateMissionTest, RejectsATargetOutsideTheArena) {
+  MissionSpec m = ThesisMission();
+  m.target = {3.0, 11.2};
+  ExpectRejected(m, Context(), "target");
+  m = LeaderOnlyMission();
+  m.target = {-1.0, 3.0};
+  ExpectRejected(m, Context(), "target");
+}
+
+TEST(ValidateMissionTest, UsesTheContextsWorldSize) {
+  MissionSpec m = ThesisMission();
+  MissionContext c = Context();
+  c.world_size_m = 5.0;
+  ExpectRejected(m, c, "object centre");
+  m.object_centre = {2.0, 2.0};
+  m.target = {4.5, 4.5};
+  EXPECT_EQ(ValidateMission(m, c), "");
+}
+
+TEST(ValidateMissionTest, RejectsADuplicateLiveId) {
+  MissionContext c = Context();
+  c.live_missions = {3, 7};
+  ExpectRejected(ThesisMission(), c, "mission_id 7 is already live");
+  c.live_missions = {3, 8};
+  EXPECT_EQ(ValidateMission(ThesisMission(), c), "");
+}
+
+TEST(ValidateMissionTest, RejectsAnUnknownRobot) {
+  MissionContext c = Context();
+  for (std::uint16_t id = 0; id < 11; ++id) c.known_robots.insert(id);
+  ExpectRejected(ThesisMission(), c, "robot 11 is unknown");
+  c.known_robots.insert(11);
+  EXPECT_EQ(ValidateMission(ThesisMission(), c), "");
+}
+
+TEST(ValidateMissionTest, SkipsTheRobotCheckWhenNoRobotIsKnown) {
+  MissionSpec m = ThesisMission();
+  m.robot_ids = {1000, 2000};
+  m.leader_number = 1;
+  EXPECT_EQ(ValidateMission(m, Context()), "");
+}
+
+TEST(ValidateMissionTest, ReportsTheFirstProblemOnly) {
+  MissionSpec m = ThesisMission();
+  m.all_finite = false;
+  m.leader_number = 0;
+  m.target = {-1.0, -1.0};
+  const std::string reason = ValidateMission(m, Context());
+  EXPECT_NE(reason.find("finite"), std::string::npos) << reason;
+  EXPECT_EQ(reason.find("leader_number"), std::string::npos) << reason;
+}
+
+}  // namespace
+}  // namespace core
+}  // namespace swarm_transport

@@ -1,0 +1,142 @@
+#!/usr/bin/env python3
+"""Missions beyond the single transport: a leader-only mission with a passive swarm, two
+queued missions (one sent as a raw New_Mission) completed one after the other, and bad
+missions rejected without any robot changing behaviour."""
+
+import math
+import sys
+import unittest
+
+import rospy
+import rostest
+from std_srvs.srv import Trigger
+from swarm_transport.msg import New_Mission
+from swarm_transport.srv import Submit_Mission
+
+import swarm_testing as st
+
+
+def component_of(leader, pos, local_range):
+    """The robots connected to `leader` by chains of neighbours within local_range."""
+    seen, todo = {leader}, [leader]
+    while todo:
+        a = todo.pop()
+        for b, p in pos.items():
+            if b not in seen and math.hypot(pos[a][0] - p[0], pos[a][1] - p[1]) <= local_range:
+                seen.add(b)
+                todo.append(b)
+    return seen
+
+
+class Missions(unittest.TestCase):
+
+    def start(self, **launch):
+        self.log, self.status = st.PositionLog(), st.StatusLog()
+        self.raw = rospy.Publisher('/flock/mission/new', New_Mission, queue_size=10)
+        self.swarm = st.launch_swarm(lockstep=True, max_ticks=0, **launch)
+        self.timeout = rospy.get_param('~timeout_s')
+        self.assertTrue(self.log.wait_tick(3, self.timeout), 'the swarm never ticked')
+        self.submit = rospy.ServiceProxy('/mission_dispatcher/submit', Submit_Mission)
+        self.submit.wait_for_service(self.timeout)
+
+    def tearDown(self):
+        self.swarm.shutdown()
+        self.log.close()
+
+    def describe(self, robots):
+        out = {}
+        for rid in range(robots):
+            srv = rospy.ServiceProxy('/robot_%d/robot/describe' % rid, Trigger)
+            srv.wait_for_service(self.timeout)
+            out[rid] = srv().message
+        return out
+
+    def test_leader_only_mission_brings_its_swarm(self):
+        g = lambda k: rospy.get_param('~leader/' + k)  # noqa: E731
+        robots = g('passive') + 1
+        self.start(robots=robots, seed=g('seed'), placement='corner',
+                   extra_config=rospy.get_param('~leader/config'))
+        leader = robots - 1  # the corner cluster's last robot leads the others
+        target = (g('target_x'), g('target_y'))
+        m = st.mission(21, leader, leader + 1, 1, (0, 0, 0, 0), target)
+        self.assertEqual(self.submit(m).code, 0)
+        self.assertTrue(st.wait_for(lambda: self.status.final(21), self.timeout),
+                        'leader mission did not finish: %s' % self.status.states(21))
+        done = self.status.first(21, 5)
+        self.assertIsNotNone(done, 'mission ended %s' % self.status.states(21))
+        pos = self.log.at(done.tick) or self.log.at(self.log.latest_tick())
+        self.assertLessEqual(st.moved(pos[leader], target), g('goal_tolerance_m') + 0.11,
+                             'leader ended at %s' % (pos[leader],))
+        swarm = component_of(leader, pos, rospy.get_param('/swarm/local_range_m'))
+        arrived = len(swarm) - 1
+        rospy.loginfo('leader-only: %d of %d passive robots arrived in the leader\'s swarm',
+                      arrived, g('passive'))
+        self.assertGreaterEqual(arrived, g('min_arrived_fraction') * g('passive'))
+
+    def test_two_queued_missions_one_after_the_other(self):
+        g = lambda k: rospy.get_param('~queue/' + k)  # noqa: E731
+        robots = g('robots')
+        self.start(robots=robots, seed=g('seed'))
+        first = st.mission(31, 0, g('group'), 2, (7.0, 7.0, 2.0, 2.0), (5.0, 5.0))
+        self.assertEqual(self.submit(first).code, 0)
+        self.assertTrue(st.wait_for(lambda: self.raw.get_num_connections() >= robots + 1,
+                                    self.timeout))
+        # The second one goes out as a raw message, like `rostopic pub` would send it.
+        self.raw.publish(st.mission(32, 0, g('group'), 2, (3.0, 8.0, 2.0, 2.0), (5.0, 8.0)))
+        self.assertTrue(st.wait_for(lambda: self.status.final(31) and self.status.final(32),
+                                    self.timeout),
+                        'states: 31 %s, 32 %s' % (self.status.states(31), self.status.states(32)))
+        done31 = self.status.first(31, 5)
+        gather32 = self.status.first(32, 1)
+        self.assertIsNotNone(done31, '31 ended %s' % self.status.states(31))
+        self.assertIsNotNone(self.status.first(32, 5), '32 ended %s' % self.status.states(32))
+        self.assertGreaterEqual(gather32.tick, done31.tick,
+                                'mission 32 started gathering before 31 was done')
+
+    def test_bad_missions_are_rejected_and_change_nothing(self):
+        robots = rospy.get_param('~bad/robots')
+        self.start(robots=robots, seed=rospy.get_param('~bad/seed'))
+        nan = float('nan')
+        bad = {
+            41: st.mission(41, 0, 5, 1, (nan, 7.0, 2.0, 2.0), (3.0, 3.0)),
+            42: st.mission(42, 5, 5, 1, (7.0, 7.0, 2.0, 2.0), (3.0, 3.0)),
+            43: st.mission(43, 0, 5, 6, (7.0, 7.0, 2.0, 2.0), (3.0, 3.0)),
+            44: st.mission(44, 0, 5, 0, (7.0, 7.0, 2.0, 2.0), (3.0, 3.0)),
+            45: st.mission(45, 0, 5, 1, (7.0, 7.0, -1.0, 2.0), (3.0, 3.0)),
+            46: st.mission(46, 0, 5, 1, (7.0, 7.0, 2.0, 2.0), (30.0, 3.0)),
+            47: st.mission(47, 0, 5, 1, (7.0, 7.0, 2.0, 2.0), (3.0, 3.0)),
+        }
+        bad[47].robot_ids = [1, 2, 900]  # robot 900 does not exist
+        for mid, m in sorted(bad.items()):
+            answer = self.submit(m)
+            self.assertNotEqual(answer.code, 0, 'mission %d was accepted' % mid)
+            self.assertTrue(answer.message, 'mission %d rejected without a reason' % mid)
+        # The same bad orders as raw messages: REJECTED statuses with reasons.
+        self.assertTrue(st.wait_for(lambda: self.raw.get_num_connections() >= robots + 1,
+                                    self.timeout))
+        for mid, m in sorted(bad.items()):
+            self.raw.publish(m)
+            rospy.sleep(0.05)
+        for mid in bad:
+            self.assertTrue(st.wait_for(lambda: self.status.first(mid, 7) is not None, 30),
+                            'no REJECTED status for mission %d' % mid)
+            self.assertTrue(self.status.first(mid, 7).reason)
+        # A duplicate live id: the first is accepted, the second rejected.
+        ok = st.mission(48, 0, 5, 1, (7.0, 7.0, 2.0, 2.0), (3.0, 3.0))
+        self.assertEqual(self.submit(ok).code, 0)
+        dup = st.mission(48, 5, 10, 1, (3.0, 8.0, 2.0, 2.0), (8.0, 3.0))
+        self.assertNotEqual(self.submit(dup).code, 0, 'duplicate live mission id accepted')
+        t = self.log.latest_tick()
+        self.assertTrue(self.log.wait_tick(t + 20, self.timeout), 'the swarm stopped ticking')
+        for rid, text in self.describe(robots).items():
+            held = {int(item.split(':')[0])
+                    for item in text.split('missions=[')[1].split(']')[0].split()}
+            # Every robot knows the one accepted mission (as safety or danger), none of the bad.
+            self.assertEqual(held, {48}, 'robot %d holds missions %s: %s' % (rid, held, text))
+            if rid >= 5:
+                self.assertIn('active=none', text, 'robot %d works on a mission: %s' % (rid, text))
+
+
+if __name__ == '__main__':
+    rospy.init_node('missions_test')
+    rostest.rosrun('swarm_transport', 'missions', Missions, sys.argv)
