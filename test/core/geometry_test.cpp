@@ -70,6 +70,12 @@ TEST(GeometryTest, UnionUsesTheNearestPart) {
   ExpectNear(shape.NearestPoint({7.0, 0.0}), {9.0, 0.0});
 }
 
+TEST(GeometryTest, EmptyShapeHasNoPoint) {
+  const Shape empty;
+  EXPECT_FALSE(empty.Contains({0.0, 0.0}));
+  EXPECT_TRUE(std::isinf(empty.DistanceTo({0.0, 0.0})));
+}
+
 TEST(GeometryTest, CentreIsTheBoundingBoxCentreAndTranslationMovesEveryPart) {
   const Shape shape = LShape();
   ExpectNear(shape.Centre(), {1.5, 1.5});

@@ -1,0 +1,63 @@
+#include "swarm_transport/core/angle.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace swarm_transport {
+namespace core {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kFullTurnDeg = 360.0;
+constexpr double kEqualToleranceDeg = 1e-9;
+// Below this length the summed unit vectors give no direction [T5.2: 0 and 180 cancel].
+constexpr double kUndefinedMeanLength = 1e-9;
+
+}  // namespace
+
+Angle::Angle(double degrees) : degrees_(std::fmod(degrees, kFullTurnDeg)) {
+  if (degrees_ < 0.0) degrees_ += kFullTurnDeg;
+  // A tiny negative input becomes 360 - epsilon, which rounds to exactly 360.
+  if (degrees_ >= kFullTurnDeg) degrees_ = 0.0;
+}
+
+Angle Angle::FromRadians(double radians) { return Angle(radians * 180.0 / kPi); }
+
+double Angle::radians() const { return degrees_ * kPi / 180.0; }
+
+Angle Angle::operator+(Angle other) const { return Angle(degrees_ + other.degrees_); }
+
+Angle Angle::operator-(Angle other) const { return Angle(degrees_ - other.degrees_); }
+
+bool Angle::operator==(Angle other) const {
+  const double diff = std::fabs(degrees_ - other.degrees_);
+  return diff <= kEqualToleranceDeg || kFullTurnDeg - diff <= kEqualToleranceDeg;
+}
+
+double Angle::SignedDifference(Angle to, Angle from) {
+  double diff = to.degrees_ - from.degrees_;  // in (-360, 360) as both are wrapped
+  if (diff > 180.0) diff -= kFullTurnDeg;
+  if (diff <= -180.0) diff += kFullTurnDeg;
+  return diff;
+}
+
+Angle CircularMean(const std::vector<Angle>& angles, bool* defined,
+                   const std::vector<double>& weights) {
+  if (!weights.empty() && weights.size() != angles.size()) {
+    throw std::invalid_argument("CircularMean: weights must be empty or match the angles");
+  }
+  double sum_x = 0.0;
+  double sum_y = 0.0;
+  for (std::size_t i = 0; i < angles.size(); ++i) {
+    const double weight = weights.empty() ? 1.0 : weights[i];
+    sum_x += weight * std::cos(angles[i].radians());
+    sum_y += weight * std::sin(angles[i].radians());
+  }
+  const bool is_defined = std::hypot(sum_x, sum_y) >= kUndefinedMeanLength;
+  if (defined != nullptr) *defined = is_defined;
+  if (!is_defined) return Angle(0.0);
+  return Angle::FromRadians(std::atan2(sum_y, sum_x));
+}
+
+}  // namespace core
+}  // namespace swarm_transport

@@ -1,0 +1,222 @@
+#include "swarm_transport/core/flocking.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace swarm_transport {
+namespace core {
+namespace {
+
+constexpr std::uint8_t kTypePhysical = 0;
+constexpr std::uint8_t kTypeStatist = 2;
+// Closer than this the centroid gives no direction to turn to.
+constexpr double kCentroidTolerance = 1e-9;
+// Samples along a move's arc for the path check: the chords between them stray from an arc of
+// one tick's length far less than a robot radius.
+constexpr int kPathSamples = 5;
+// The avoidance search turns in whole degrees up to a step back [T5.2].
+constexpr int kMaxSwerveDeg = 180;
+
+std::string Problem(const std::string& field, const std::string& requirement, double value) {
+  std::ostringstream out;
+  out << field << " must be " << requirement << " but is " << value;
+  return out.str();
+}
+
+bool IsSelf(const Perception& in, const Neighbour& n) {
+  return n.id == in.self_id && n.sub_id == 0 && n.type == kTypePhysical;
+}
+
+// Physical robots other than itself: the only ones a move can collide with.
+bool IsOtherRobot(const Perception& in, const Neighbour& n) {
+  return n.type == kTypePhysical && n.id != in.self_id;
+}
+
+// How far `value` lies outside [lo, hi] (0 inside).
+double Excess(double value, double lo, double hi) {
+  return std::max({0.0, lo - value, value - hi});
+}
+
+// How far p is from being allowed by the zone: 0 when allowed.
+double ZoneDepth(const Zone& zone, Vec2 p) { return Distance(p, zone.NearestAllowedPoint(p, 0.0)); }
+
+}  // namespace
+
+std::string FlockingParams::Validate() const {
+  if (!std::isfinite(local_range_m) || local_range_m <= 0.0) {
+    return Problem("local_range_m", "finite and > 0", local_range_m);
+  }
+  if (!(speed_m_per_tick > 0.0 && speed_m_per_tick < local_range_m)) {
+    return Problem("speed_m_per_tick", "in (0, local_range_m)", speed_m_per_tick);
+  }
+  if (!(free_will_deg >= 0.0 && free_will_deg <= 360.0)) {
+    return Problem("free_will_deg", "in [0, 360]", free_will_deg);
+  }
+  if (!(cohesion >= -1.0 && cohesion <= 1.0)) return Problem("cohesion", "in [-1, 1]", cohesion);
+  if (!std::isfinite(robot_radius_m) || robot_radius_m <= 0.0) {
+    return Problem("robot_radius_m", "finite and > 0", robot_radius_m);
+  }
+  if (!std::isfinite(collision_margin) || collision_margin < 0.0) {
+    return Problem("collision_margin", "finite and >= 0", collision_margin);
+  }
+  if (!std::isfinite(world_size_m) || world_size_m <= 4.0 * robot_radius_m) {
+    return Problem("world_size_m", "finite and > 4 * robot_radius_m", world_size_m);
+  }
+  if (!(speed_reduction > 0.0 && speed_reduction < 1.0)) {
+    return Problem("speed_reduction", "in (0, 1)", speed_reduction);
+  }
+  if (speed_retries < 0) return Problem("speed_retries", ">= 0", speed_retries);
+  if (!std::isfinite(zone_margin_m) || zone_margin_m < 0.0) {
+    return Problem("zone_margin_m", "finite and >= 0", zone_margin_m);
+  }
+  return "";
+}
+
+std::vector<Neighbour> NeighbourhoodOf(const Perception& in, const FlockingParams& p) {
+  Neighbour self;
+  self.id = in.self_id;
+  self.position = in.self.position;
+  self.heading = in.self.heading;
+  std::vector<Neighbour> neighbourhood{self};
+  for (const Neighbour& other : in.others) {
+    // Its own echo would count it twice.
+    if (IsSelf(in, other)) continue;
+    if (other.type == kTypeStatist ||
+        Distance(in.self.position, other.position) <= p.local_range_m) {
+      neighbourhood.push_back(other);
+    }
+  }
+  return neighbourhood;
+}
+
+Angle DesiredHeading(const Perception& in, const FlockingParams& p, Rng& rng, bool* fleeing) {
+  const double free_will = rng.Uniform(-p.free_will_deg / 2.0, p.free_will_deg / 2.0);
+  const Vec2 position = in.self.position;
+
+  // Step 4 first: it overrides 1-3. Of the zones' escape points prefer one no zone forbids,
+  // so that fleeing one zone does not lead straight into another.
+  std::vector<Vec2> escapes;
+  for (const Zone& zone : in.zones) {
+    if (zone.Forbids(position)) {
+      escapes.push_back(zone.NearestAllowedPoint(position, p.zone_margin_m));
+    }
+  }
+  if (fleeing != nullptr) *fleeing = !escapes.empty();
+  if (!escapes.empty()) {
+    auto allowed = [&in](Vec2 q) {
+      return std::none_of(in.zones.begin(), in.zones.end(),
+                          [q](const Zone& zone) { return zone.Forbids(q); });
+    };
+    auto closer = [position](Vec2 a, Vec2 b) {
+      return Distance(position, a) < Distance(position, b);
+    };
+    Vec2 target = *std::min_element(escapes.begin(), escapes.end(), closer);
+    for (const Vec2& escape : escapes) {
+      if (allowed(escape) && (!allowed(target) || closer(escape, target))) target = escape;
+    }
+    return Bearing(position, target);
+  }
+
+  const std::vector<Neighbour> neighbourhood = NeighbourhoodOf(in, p);
+  std::vector<Angle> headings;
+  Vec2 sum;
+  for (const Neighbour& n : neighbourhood) {
+    // Statists stand still: they have a place but no heading to align with.
+    if (n.type != kTypeStatist) headings.push_back(n.heading);
+    sum = sum + n.position;
+  }
+  bool aligned = false;
+  const Angle mean = CircularMean(headings, &aligned);
+  // Cancelling headings leave every direction acceptable [T5.2]: keep going straight on.
+  Angle heading = (aligned ? mean : in.self.heading) + Angle(free_will);
+
+  const Vec2 centroid = sum * (1.0 / static_cast<double>(neighbourhood.size()));
+  if (Distance(position, centroid) > kCentroidTolerance) {
+    const Angle to_centroid = Bearing(position, centroid);
+    heading = heading + Angle(p.cohesion * Angle::SignedDifference(to_centroid, heading));
+  }
+  return heading;
+}
+
+bool IsMoveValid(const Perception& in, const FlockingParams& p, Angle heading, double distance_m,
+                 double duration_s) {
+  const Pose2& start = in.self;
+  const Velocity command = CommandFor(start, heading, distance_m, duration_s);
+  const Vec2 from = start.position;
+  const Vec2 to = Integrate(start, command, duration_s).position;
+
+  // The arena border is an obstacle [T7.2]; a robot pushed beyond it may still come back.
+  const double lo = p.robot_radius_m;
+  const double hi = p.world_size_m - p.robot_radius_m;
+  if (Excess(to.x, lo, hi) > Excess(from.x, lo, hi)) return false;
+  if (Excess(to.y, lo, hi) > Excess(from.y, lo, hi)) return false;
+
+  // Every robot counts here, not only those in range: a collision does not care about range.
+  const double min_separation = p.MinSeparation();
+  for (const Neighbour& other : in.others) {
+    if (!IsOtherRobot(in, other)) continue;
+    const double before = Distance(from, other.position);
+    const double after = Distance(to, other.position);
+    // Already too close (e.g. after a push by the simulator): only moving apart is allowed.
+    if (after < min_separation && !(before < min_separation && after > before)) return false;
+  }
+
+  for (const Zone& zone : in.zones) {
+    if (!zone.Forbids(to)) continue;
+    if (!zone.Forbids(from) || ZoneDepth(zone, to) > ZoneDepth(zone, from)) return false;
+  }
+
+  if (!p.check_path) return true;
+  const std::vector<Vec2> path = SampleArc(start, command, duration_s, kPathSamples);
+  const double touching = 2.0 * p.robot_radius_m;
+  for (const Neighbour& other : in.others) {
+    // A robot it already overlaps would block every move; the separation rule handles it.
+    if (!IsOtherRobot(in, other) || Distance(from, other.position) <= touching) continue;
+    for (std::size_t i = 1; i < path.size(); ++i) {
+      if (DistancePointSegment(other.position, path[i - 1], path[i]) <= touching) return false;
+    }
+  }
+  return true;
+}
+
+MoveDecision AvoidCollisions(const Perception& in, const FlockingParams& p, Angle desired,
+                             double duration_s) {
+  MoveDecision decision;
+  decision.desired_heading = desired;
+  double speed = p.speed_m_per_tick;
+  for (int attempt = 0; attempt <= p.speed_retries; ++attempt) {
+    for (int swerve = 0; swerve <= kMaxSwerveDeg; ++swerve) {
+      for (const int sign : {1, -1}) {
+        // 0 and 180 have no distinct mirror image: try them once.
+        if (sign < 0 && (swerve == 0 || swerve == kMaxSwerveDeg)) continue;
+        const Angle heading = desired + Angle(sign * swerve);
+        if (!IsMoveValid(in, p, heading, speed, duration_s)) continue;
+        decision.heading = heading;
+        decision.distance_m = speed;
+        decision.outcome = attempt > 0  ? MoveOutcome::kSlowed
+                           : swerve > 0 ? MoveOutcome::kSwerved
+                                        : MoveOutcome::kStraight;
+        return decision;
+      }
+    }
+    speed *= p.speed_reduction;
+  }
+  decision.heading = in.self.heading;
+  decision.distance_m = 0.0;
+  decision.outcome = MoveOutcome::kStand;
+  return decision;
+}
+
+MoveDecision FlockingStep(const Perception& in, const FlockingParams& p, Rng& rng,
+                          double duration_s) {
+  bool fleeing = false;
+  const Angle desired = DesiredHeading(in, p, rng, &fleeing);
+  MoveDecision decision = AvoidCollisions(in, p, desired, duration_s);
+  decision.fleeing = fleeing;
+  decision.neighbours_in_range = static_cast<int>(NeighbourhoodOf(in, p).size());
+  return decision;
+}
+
+}  // namespace core
+}  // namespace swarm_transport

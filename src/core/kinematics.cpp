@@ -1,0 +1,52 @@
+#include "swarm_transport/core/kinematics.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace swarm_transport {
+namespace core {
+namespace {
+
+// Below this turn rate the arc formula divides by ~0: treat the motion as a straight line.
+constexpr double kStraightAngularRadPerS = 1e-12;
+
+}  // namespace
+
+Pose2 Integrate(const Pose2& pose, Velocity velocity, double duration_s) {
+  const double theta = pose.heading.radians();
+  const double turn = velocity.angular * duration_s;
+  Pose2 result;
+  if (std::fabs(velocity.angular) < kStraightAngularRadPerS) {
+    const double length = velocity.linear * duration_s;
+    result.position = {pose.position.x + length * std::cos(theta),
+                       pose.position.y + length * std::sin(theta)};
+  } else {
+    const double radius = velocity.linear / velocity.angular;
+    result.position = {pose.position.x + radius * (std::sin(theta + turn) - std::sin(theta)),
+                       pose.position.y - radius * (std::cos(theta + turn) - std::cos(theta))};
+  }
+  result.heading = Angle::FromRadians(theta + turn);
+  return result;
+}
+
+Velocity CommandFor(const Pose2& pose, Angle heading, double distance, double duration_s) {
+  if (!(duration_s > 0.0)) throw std::invalid_argument("CommandFor: duration_s must be > 0");
+  // The shortest signed turn, so a robot never spins the long way round.
+  const double turn_rad = Angle::SignedDifference(heading, pose.heading) * M_PI / 180.0;
+  return Velocity{distance / duration_s, turn_rad / duration_s};
+}
+
+std::vector<Vec2> SampleArc(const Pose2& pose, Velocity velocity, double duration_s, int samples) {
+  if (samples < 2) throw std::invalid_argument("SampleArc: samples must be >= 2");
+  std::vector<Vec2> points;
+  points.reserve(static_cast<std::size_t>(samples));
+  for (int i = 0; i < samples; ++i) {
+    // The last sample uses duration_s itself so that it equals Integrate's destination exactly.
+    const double t = i == samples - 1 ? duration_s : duration_s * i / (samples - 1);
+    points.push_back(Integrate(pose, velocity, t).position);
+  }
+  return points;
+}
+
+}  // namespace core
+}  // namespace swarm_transport

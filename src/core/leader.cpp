@@ -1,0 +1,97 @@
+#include "swarm_transport/core/leader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace swarm_transport {
+namespace core {
+namespace {
+
+constexpr std::uint8_t kTypePhysical = 0;
+// Steering this close to the goal's bearing means heading for the goal: do not overshoot it.
+constexpr double kAtGoalBearingDeg = 1.0;
+
+std::string Problem(const std::string& field, const std::string& requirement, double value) {
+  std::ostringstream out;
+  out << field << " must be " << requirement << " but is " << value;
+  return out.str();
+}
+
+MoveDecision Stand(const Perception& in, Angle desired) {
+  MoveDecision move;
+  move.desired_heading = desired;
+  move.heading = in.self.heading;
+  move.distance_m = 0.0;
+  move.outcome = MoveOutcome::kStand;
+  return move;
+}
+
+}  // namespace
+
+std::string LeaderParams::Validate() const {
+  if (!std::isfinite(goal_tolerance_m) || goal_tolerance_m <= 0.0) {
+    return Problem("goal_tolerance_m", "finite and > 0", goal_tolerance_m);
+  }
+  if (!(wait_fraction > 0.0 && wait_fraction <= 1.0)) {
+    return Problem("wait_fraction", "in (0, 1]", wait_fraction);
+  }
+  return "";
+}
+
+LeaderDecision LeaderStep(const Perception& in, const FlockingParams& p, const LeaderParams& lp,
+                          Vec2 goal, Angle steer, Rng& rng, double duration_s,
+                          LeaderMemory* memory) {
+  // A leader has no free will, but draws the sample FlockingStep would draw so that its random
+  // sequence stays aligned when it changes role.
+  rng.Uniform(-p.free_will_deg / 2.0, p.free_will_deg / 2.0);
+
+  const std::vector<Neighbour> neighbourhood = NeighbourhoodOf(in, p);
+  const Vec2 position = in.self.position;
+  LeaderDecision decision;
+  decision.move = Stand(in, steer);
+  decision.move.neighbours_in_range = static_cast<int>(neighbourhood.size());
+
+  const double to_goal = Distance(position, goal);
+  if (to_goal <= lp.goal_tolerance_m) {
+    decision.arrived = true;
+    return decision;
+  }
+
+  if (lp.keep_flock && !memory->gave_up) {
+    Vec2 sum;
+    int swarm_size = 0;
+    for (const Neighbour& n : neighbourhood) {
+      // Virtual copies and statists are not robots that could be left behind.
+      if (n.type != kTypePhysical || n.id == in.self_id) continue;
+      sum = sum + n.position;
+      ++swarm_size;
+    }
+    if (swarm_size == 0) {
+      // The swarm left its range entirely: waiting would not bring it back [T7.3].
+      memory->gave_up = true;
+    } else if (Distance(position, sum * (1.0 / swarm_size)) > lp.wait_fraction * p.local_range_m) {
+      ++memory->swarm_waits;
+      return decision;
+    }
+  }
+
+  const bool heading_for_goal =
+      std::fabs(Angle::SignedDifference(steer, Bearing(position, goal))) <= kAtGoalBearingDeg;
+  double speed = p.speed_m_per_tick;
+  for (int attempt = 0; attempt <= p.speed_retries; ++attempt) {
+    const double distance = heading_for_goal ? std::min(speed, to_goal) : speed;
+    if (IsMoveValid(in, p, steer, distance, duration_s)) {
+      decision.move.heading = steer;
+      decision.move.distance_m = distance;
+      decision.move.outcome = attempt == 0 ? MoveOutcome::kStraight : MoveOutcome::kSlowed;
+      return decision;
+    }
+    speed *= p.speed_reduction;
+  }
+  ++memory->blocked_waits;
+  return decision;
+}
+
+}  // namespace core
+}  // namespace swarm_transport
