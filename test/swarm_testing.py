@@ -15,6 +15,7 @@ def launch_swarm(**args):
     """Starts launch/swarm.launch with the given args in the running master; returns the
     parent (call .shutdown())."""
     path = rospkg.RosPack().get_path('swarm_transport') + '/launch/swarm.launch'
+    args.setdefault('observers', 1)  # the test's PositionLog must see the first tick
     cli = ['%s:=%s' % (k, str(v).lower() if isinstance(v, bool) else v) for k, v in args.items()]
     uuid = roslaunch.rlutil.get_or_generate_uuid(None, False)
     parent = roslaunch.parent.ROSLaunchParent(uuid, [(path, cli)], is_core=False)

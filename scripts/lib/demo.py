@@ -70,7 +70,7 @@ def main(argv):
         st_ros.log('[demo] private ROS master on port %d, logs in %s' % (ros.port, ros.log_dir))
         if a.rviz:
             st_ros.log('[demo] rviz on display %s' % start_display(ros))
-        launch_args = {'robots': a.robots, 'seed': a.seed,
+        launch_args = {'robots': a.robots, 'seed': a.seed, 'observers': 1,
                        'lockstep': 'false' if a.realtime else 'true',
                        'rviz': 'true' if a.rviz else 'false'}
         if a.config:

@@ -83,7 +83,9 @@ class PrivateRos(object):
         raise RuntimeError('rosmaster did not come up on port %d' % self.port)
 
     def launch(self, launch_file, launch_args, name='roslaunch'):
-        args = ['roslaunch', '--wait', '-p', str(self.port), 'swarm_transport', launch_file]
+        # No --wait: with it this roslaunch spins forever after finding the master; the master
+        # is known to be up here (start_master waited for its port).
+        args = ['roslaunch', '-p', str(self.port), 'swarm_transport', launch_file]
         args += ['%s:=%s' % (k, v) for k, v in launch_args.items()]
         return self.start(args, name)
 

@@ -171,8 +171,10 @@ bool IsMoveValid(const Perception& in, const FlockingParams& p, Angle heading, d
   const std::vector<Vec2> path = SampleArc(start, command, duration_s, kPathSamples);
   const double touching = 2.0 * p.robot_radius_m;
   for (const Neighbour& other : in.others) {
-    // A robot it already overlaps would block every move; the separation rule handles it.
-    if (!IsOtherRobot(in, other) || Distance(from, other.position) <= touching) continue;
+    // A robot it is already closer to than the separation (touching after a push by the
+    // simulator, rounded to float) would block every move: the separation rule above already
+    // lets it only move away from that one.
+    if (!IsOtherRobot(in, other) || Distance(from, other.position) < min_separation) continue;
     for (std::size_t i = 1; i < path.size(); ++i) {
       if (DistancePointSegment(other.position, path[i - 1], path[i]) <= touching) return false;
     }

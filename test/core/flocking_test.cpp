@@ -394,6 +394,20 @@ TEST(FlockingStepTest, SameSeedGivesTheSameDecision) {
   }
 }
 
+// The simulator pushes overlapping robots apart to exactly 2r; rounded to float32 they sit a
+// hair beyond touching. Facing each other, every arc starts towards the other robot, so a path
+// check against it would refuse every move and leave both stuck for good.
+TEST(AvoidCollisionsTest, RobotPushedToTouchingCanMoveAway) {
+  Perception in = At(5.0, 5.0, 0.0);
+  in.others = {Robot(2, 5.10000005, 5.0, 180.0)};
+  const MoveDecision d = AvoidCollisions(in, Quiet(), Angle(0.0), kTick);
+  EXPECT_NE(d.outcome, MoveOutcome::kStand);
+  EXPECT_GT(d.distance_m, 0.0);
+  const Vec2 to = Integrate(in.self, CommandFor(in.self, d.heading, d.distance_m, kTick), kTick)
+                      .position;
+  EXPECT_GT(Distance(to, {5.10000005, 5.0}), 0.10000005);
+}
+
 }  // namespace
 }  // namespace core
 }  // namespace swarm_transport

@@ -1,0 +1,21 @@
+// The simulator: a turtlesim-like world for the swarm, with real-time or lock-step clock.
+#include <ros/ros.h>
+
+#include <csignal>
+
+#include "simulator.h"
+
+int main(int argc, char** argv) {
+  // Our own SIGINT handler: roscpp's would silence rosconsole before the final summary.
+  ros::init(argc, argv, "simulator", ros::init_options::NoSigintHandler);
+  std::signal(SIGINT, [](int) { swarm_transport::Simulator::RequestStop(); });
+  std::signal(SIGTERM, [](int) { swarm_transport::Simulator::RequestStop(); });
+  ros::NodeHandle nh;
+  ros::NodeHandle private_nh("~");
+  swarm_transport::Simulator simulator(nh, private_nh);
+  if (!simulator.Initialize()) return 1;
+  simulator.Run();
+  simulator.Shutdown();
+  ros::shutdown();
+  return 0;
+}

@@ -1,0 +1,995 @@
+#include "simulator.h"
+
+#include <geometry_msgs/TransformStamped.h>
+#include <rosgraph_msgs/Clock.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "swarm_transport/Pose.h"
+#include "swarm_transport/Robot_Positions.h"
+#include "swarm_transport/ros/conversions.h"
+#include "swarm_transport/ros/names.h"
+
+namespace swarm_transport {
+namespace {
+
+constexpr char kClockTopic[] = "/clock";
+// Stream of the radio-loss generator ("radio"); robots use their id (< 65536) as stream.
+constexpr std::uint64_t kRadioStream = 0x726164696fULL;
+constexpr int kMaxRobots = 65536;
+// Queue sizes. Neighbors: one message per tick, a robot is never more than one tick behind.
+// cmd_vel: lock-step sends one per tick; real time may burst. /flock/position: every robot
+// publishes every tick and only virtual copies / statists matter, so it must hold a whole
+// swarm's tick. /flock/positions: the recorder must see every lock-step tick.
+constexpr std::uint32_t kNeighborsQueue = 2;
+constexpr std::uint32_t kPoseQueue = 10;
+constexpr std::uint32_t kCmdVelQueue = 10;
+constexpr std::uint32_t kPositionQueue = 10000;
+constexpr std::uint32_t kPositionsQueue = 100;
+constexpr std::uint32_t kMissionQueue = 100;
+constexpr std::uint32_t kMarkersQueue = 2;
+// Polling period of the lock-step wait (s): also bounds a robot-less tick to ~1 ms.
+constexpr double kPollS = 0.001;
+// Period of the idle loop after the last lock-step tick and of the start wait (s).
+constexpr double kIdleS = 0.01;
+// A robot must be connected this long (wall s) before lock-step counts on its answers.
+constexpr double kSettleS = 0.2;
+// At most one warning of a kind per this many wall seconds (ROS_*_THROTTLE uses ros::Time,
+// which stands still at 0 under use_sim_time before /clock runs).
+constexpr double kWarnPeriodS = 5.0;
+// Marker look: z thickness of flat shapes (m), alpha of zones, objects and range circles.
+constexpr double kFlatM = 0.02;
+constexpr float kZoneAlpha = 0.35f;
+constexpr float kObjectAlpha = 0.6f;
+constexpr float kRangeAlpha = 0.08f;
+constexpr double kTargetDiameterM = 0.1;
+// 1 / golden ratio: consecutive ids get well separated hues.
+constexpr double kHueStep = 0.618033988749895;
+
+// True (and `last` updated) when `period_s` of wall time passed since the last true.
+bool WallThrottle(ros::WallTime* last, double period_s) {
+  const ros::WallTime now = ros::WallTime::now();
+  if (!last->isZero() && (now - *last).toSec() < period_s) return false;
+  *last = now;
+  return true;
+}
+
+// HSV (all in [0, 1]) plus alpha to a colour.
+std_msgs::ColorRGBA Hsv(double h, double s, double v, float alpha) {
+  const double i = std::floor(h * 6.0);
+  const double f = h * 6.0 - i;
+  const double p = v * (1.0 - s);
+  const double q = v * (1.0 - f * s);
+  const double t = v * (1.0 - (1.0 - f) * s);
+  const double rgb[6][3] = {{v, t, p}, {q, v, p}, {p, v, t}, {p, q, v}, {t, p, v}, {v, p, q}};
+  const int k = static_cast<int>(i) % 6;
+  const double r = rgb[k][0], g = rgb[k][1], b = rgb[k][2];
+  std_msgs::ColorRGBA c;
+  c.r = static_cast<float>(r);
+  c.g = static_cast<float>(g);
+  c.b = static_cast<float>(b);
+  c.a = alpha;
+  return c;
+}
+
+std_msgs::ColorRGBA Rgba(float r, float g, float b, float a) {
+  std_msgs::ColorRGBA c;
+  c.r = r;
+  c.g = g;
+  c.b = b;
+  c.a = a;
+  return c;
+}
+
+std_msgs::ColorRGBA RobotColour(std::uint16_t id, float alpha) {
+  return Hsv(std::fmod(id * kHueStep, 1.0), 0.8, 0.95, alpha);
+}
+
+geometry_msgs::Quaternion YawQuaternion(double yaw_rad) {
+  geometry_msgs::Quaternion q;
+  q.z = std::sin(0.5 * yaw_rad);
+  q.w = std::cos(0.5 * yaw_rad);
+  return q;
+}
+
+visualization_msgs::Marker MakeMarker(const std::string& ns, int id, int type, ros::Time stamp) {
+  visualization_msgs::Marker m;
+  m.header.frame_id = names::kWorldFrame;
+  m.header.stamp = stamp;
+  m.ns = ns;
+  m.id = id;
+  m.type = type;
+  m.action = visualization_msgs::Marker::ADD;
+  m.pose.orientation.w = 1.0;
+  return m;
+}
+
+// Reads an optional private parameter; a present value of the wrong type is an error.
+template <typename T>
+bool ReadParam(const ros::NodeHandle& nh, const std::string& name, const char* type, T* value,
+               std::string* error) {
+  if (!nh.hasParam(name)) return true;
+  if (!nh.getParam(name, *value)) {
+    *error = "~" + name + " must be " + type;
+    return false;
+  }
+  return true;
+}
+
+bool IsFinite(const core::Vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+
+}  // namespace
+
+std::string SimulatorParams::Validate() const {
+  std::ostringstream os;
+  const std::string swarm_error = swarm.Validate();
+  if (!swarm_error.empty()) {
+    os << "/swarm: " << swarm_error;
+  } else if (!std::isfinite(radio_loss) || radio_loss < 0.0 || radio_loss > 1.0) {
+    os << "/swarm/radio_loss must be a probability in [0, 1] but is " << radio_loss;
+  } else if (placement != "random" && placement != "corner" && placement != "file") {
+    os << "~placement must be random, corner or file but is '" << placement << "'";
+  } else if (placement == "file" && placement_file.empty()) {
+    os << "~placement_file must name a file when ~placement is file";
+  } else if (robots > kMaxRobots || robots < (placement == "file" ? -1 : 0)) {
+    os << "~robots must be in [0, " << kMaxRobots << "] but is " << robots;
+  } else if (clock != "realtime" && clock != "lockstep") {
+    os << "~clock must be realtime or lockstep but is '" << clock << "'";
+  } else if (!std::isfinite(lockstep_timeout_s) || !(lockstep_timeout_s > 0.0)) {
+    os << "~lockstep_timeout_s must be > 0 but is " << lockstep_timeout_s;
+  } else if (lockstep_max_ticks < 0) {
+    os << "~lockstep_max_ticks must be >= 0 (0: unbounded) but is " << lockstep_max_ticks;
+  } else if (lockstep_observers < 0) {
+    os << "~lockstep_observers must be >= 0 but is " << lockstep_observers;
+  } else if (!std::isfinite(lockstep_start_timeout_s) || lockstep_start_timeout_s < 0.0) {
+    os << "~lockstep_start_timeout_s must be >= 0 but is " << lockstep_start_timeout_s;
+  } else if (!std::isfinite(integration_step_s) || !(integration_step_s > 0.0) ||
+             integration_step_s > swarm.tick_period_s) {
+    os << "~integration_step_s must be in (0, tick_period_s = " << swarm.tick_period_s
+       << "] but is " << integration_step_s;
+  } else if (!std::isfinite(markers_rate_hz) || markers_rate_hz < 0.0) {
+    os << "~markers_rate_hz must be >= 0 (0: off) but is " << markers_rate_hz;
+  } else if (!std::isfinite(radio_range_m) || !(radio_range_m > 0.0)) {
+    os << "~radio_range_m must be > 0 but is " << radio_range_m;
+  }
+  return os.str();
+}
+
+volatile std::sig_atomic_t Simulator::stop_requested_ = 0;
+
+Simulator::Simulator(ros::NodeHandle nh, ros::NodeHandle private_nh)
+    : nh_(nh), private_nh_(private_nh) {}
+
+void Simulator::RequestStop() { stop_requested_ = 1; }
+
+bool Simulator::Running() { return stop_requested_ == 0 && ros::ok(); }
+
+bool Simulator::LoadParams(std::string* error) {
+  XmlRpc::XmlRpcValue swarm;
+  if (nh_.getParam("/swarm", swarm) && !ConfigFromXmlRpc(swarm, &params_.swarm, error)) {
+    *error = "/swarm: " + *error;
+    return false;
+  }
+  if (nh_.hasParam("/swarm/radio_loss") && !nh_.getParam("/swarm/radio_loss", params_.radio_loss)) {
+    *error = "/swarm/radio_loss must be a number";
+    return false;
+  }
+  params_.radio_range_m = params_.swarm.flocking.local_range_m;
+  const ros::NodeHandle& p = private_nh_;
+  if (!ReadParam(p, "placement", "a string", &params_.placement, error)) return false;
+  // With a placement file, robots defaults to every line of it.
+  if (params_.placement == "file") params_.robots = -1;
+  if (!ReadParam(p, "robots", "an integer", &params_.robots, error) ||
+      !ReadParam(p, "placement_file", "a string", &params_.placement_file, error) ||
+      !ReadParam(p, "clock", "a string", &params_.clock, error) ||
+      !ReadParam(p, "lockstep_timeout_s", "a number", &params_.lockstep_timeout_s, error) ||
+      !ReadParam(p, "lockstep_max_ticks", "an integer", &params_.lockstep_max_ticks, error) ||
+      !ReadParam(p, "lockstep_start_timeout_s", "a number", &params_.lockstep_start_timeout_s,
+                 error) ||
+      !ReadParam(p, "lockstep_observers", "an integer", &params_.lockstep_observers, error) ||
+      !ReadParam(p, "integration_step_s", "a number", &params_.integration_step_s, error) ||
+      !ReadParam(p, "markers_rate_hz", "a number", &params_.markers_rate_hz, error) ||
+      !ReadParam(p, "tf", "true or false", &params_.tf, error) ||
+      !ReadParam(p, "range_circles", "true or false", &params_.range_circles, error) ||
+      !ReadParam(p, "radio_range_m", "a number", &params_.radio_range_m, error)) {
+    return false;
+  }
+  *error = params_.Validate();
+  if (!error->empty()) return false;
+
+  sim::WorldParams world;
+  world.world_size_m = params_.swarm.flocking.world_size_m;
+  world.robot_radius_m = params_.swarm.flocking.robot_radius_m;
+  world.integration_step_s = params_.integration_step_s;
+  // A command is one tick's move: it is held exactly one tick (turtlesim holds 1 s).
+  world.command_duration_s = params_.swarm.tick_period_s;
+  *error = world.Validate();
+  if (!error->empty()) return false;
+  world_ = std::make_unique<sim::World2D>(world);
+  lockstep_ = params_.clock == "lockstep";
+  return true;
+}
+
+bool Simulator::PlaceInitialRobots(std::string* error) {
+  std::vector<core::Pose2> poses;
+  const sim::WorldParams& world = world_->params();
+  if (params_.placement == "random") {
+    poses = sim::PlaceRandom(params_.robots, params_.swarm.seed, world, error);
+  } else if (params_.placement == "corner") {
+    poses = sim::PlaceCorner(params_.robots, world, error);
+  } else {
+    std::ifstream in(params_.placement_file);
+    std::stringstream text;
+    if (!in || !(text << in.rdbuf())) {
+      *error = "cannot read ~placement_file '" + params_.placement_file + "'";
+      return false;
+    }
+    if (!sim::ParsePlacement(text.str(), &poses, error)) {
+      *error = params_.placement_file + ": " + *error;
+      return false;
+    }
+    if (params_.robots < 0) params_.robots = static_cast<int>(poses.size());
+    if (static_cast<int>(poses.size()) < params_.robots || poses.size() > kMaxRobots) {
+      std::ostringstream os;
+      os << params_.placement_file << " has " << poses.size() << " poses but ~robots is "
+         << params_.robots;
+      *error = os.str();
+      return false;
+    }
+    poses.resize(static_cast<std::size_t>(params_.robots));
+  }
+  if (static_cast<int>(poses.size()) != params_.robots) return false;  // error set by Place*
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    if (!world_->Spawn(static_cast<std::uint16_t>(i), poses[i], error)) {
+      *error = "robot " + std::to_string(i) + " (placement " + params_.placement + "): " + *error;
+      return false;
+    }
+  }
+  return true;
+}
+
+bool Simulator::Initialize() {
+  std::string error;
+  if (!LoadParams(&error) || !PlaceInitialRobots(&error)) {
+    ROS_FATAL("simulator: invalid parameters: %s", error.c_str());
+    return false;
+  }
+  radio_rng_ = std::make_unique<core::Rng>(params_.swarm.seed, kRadioStream);
+
+  // Latched: a late subscriber (a test after the last lock-step tick) still gets the state.
+  positions_pub_ = nh_.advertise<Robot_Positions>(names::kPositions, kPositionsQueue, true);
+  robots_pub_ = nh_.advertise<Robot_Positions>(names::kRobots, 1, true);
+  markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>(names::kMarkers, kMarkersQueue);
+  if (lockstep_) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>(kClockTopic, 10);
+  if (params_.tf) tf_broadcaster_ = std::make_unique<tf2_ros::TransformBroadcaster>();
+  spawn_srv_ = nh_.advertiseService(names::kSpawn, &Simulator::OnSpawn, this);
+  kill_srv_ = nh_.advertiseService(names::kKill, &Simulator::OnKill, this);
+  reset_srv_ = nh_.advertiseService(names::kReset, &Simulator::OnReset, this);
+  // /flock/position also carries every robot's own position each tick; we only keep virtual
+  // copies and statists, but the queue must hold a whole tick of the swarm.
+  position_sub_ = nh_.subscribe(names::kPosition, kPositionQueue, &Simulator::OnPosition, this,
+                                ros::TransportHints().tcpNoDelay());
+  robot_delete_sub_ =
+      nh_.subscribe(names::kRobotDelete, kMissionQueue, &Simulator::OnRobotDelete, this);
+  mission_new_sub_ =
+      nh_.subscribe(names::kMissionNew, kMissionQueue, &Simulator::OnMissionNew, this);
+  object_update_sub_ =
+      nh_.subscribe(names::kObjectUpdate, kMissionQueue, &Simulator::OnObjectUpdate, this);
+  object_delete_sub_ =
+      nh_.subscribe(names::kObjectDelete, kMissionQueue, &Simulator::OnObjectDelete, this);
+  for (const auto& entry : world_->robots()) AddRobotIo(entry.first);
+  PublishRobotList();
+
+  bool use_sim_time = false;
+  nh_.getParam("/use_sim_time", use_sim_time);
+  if (!lockstep_ && use_sim_time) {
+    ROS_WARN("simulator: realtime clock but /use_sim_time is true: nobody publishes /clock");
+  }
+  ROS_INFO(
+      "simulator: %zu robots (%s placement), %s clock, tick %.3f s, step %.3f s, "
+      "arena %.3f m, radius %.3f m, radio range %.3f m, loss %.2f, seed %llu",
+      world_->size(), params_.placement.c_str(), params_.clock.c_str(), params_.swarm.tick_period_s,
+      params_.integration_step_s, params_.swarm.flocking.world_size_m,
+      params_.swarm.flocking.robot_radius_m, params_.radio_range_m, params_.radio_loss,
+      static_cast<unsigned long long>(params_.swarm.seed));
+  return true;
+}
+
+void Simulator::AddRobotIo(std::uint16_t id) {
+  ros::NodeHandle robot_nh(nh_, names::RobotNamespace(id));
+  RobotIo io;
+  io.generation = ++next_generation_;
+  const std::uint64_t generation = io.generation;
+  // Status callbacks run on the global queue, i.e. from our own loop like everything else.
+  auto counter = [this, id, generation](int RobotIo::*field, int delta) {
+    return [this, id, generation, field, delta](const ros::SingleSubscriberPublisher&) {
+      CountSubscriber(id, generation, field, delta);
+    };
+  };
+  io.neighbors = robot_nh.advertise<Neighbors>(names::kNeighbors, kNeighborsQueue,
+                                               counter(&RobotIo::neighbors_subscribers, 1),
+                                               counter(&RobotIo::neighbors_subscribers, -1));
+  io.pose =
+      robot_nh.advertise<Pose>(names::kPose, kPoseQueue, counter(&RobotIo::pose_subscribers, 1),
+                               counter(&RobotIo::pose_subscribers, -1));
+  ros::SubscribeOptions ops = ros::SubscribeOptions::create<geometry_msgs::Twist>(
+      names::kCmdVel, kCmdVelQueue,
+      [this, id](const geometry_msgs::Twist::ConstPtr& msg) { OnCmdVel(id, msg); },
+      ros::VoidConstPtr(), &cmd_queue_);
+  // A tick's command is one small message: Nagle's algorithm would delay it by ~40 ms.
+  ops.transport_hints = ros::TransportHints().tcpNoDelay();
+  io.cmd_vel = robot_nh.subscribe(ops);
+  io.teleport_absolute =
+      robot_nh.advertiseService<TeleportAbsolute::Request, TeleportAbsolute::Response>(
+          names::kTeleportAbsolute,
+          [this, id](TeleportAbsolute::Request& req, TeleportAbsolute::Response& res) {
+            return OnTeleportAbsolute(id, req, res);
+          });
+  io.teleport_relative =
+      robot_nh.advertiseService<TeleportRelative::Request, TeleportRelative::Response>(
+          names::kTeleportRelative,
+          [this, id](TeleportRelative::Request& req, TeleportRelative::Response& res) {
+            return OnTeleportRelative(id, req, res);
+          });
+  io_[id] = io;
+}
+
+void Simulator::CountSubscriber(std::uint16_t id, std::uint64_t generation, int RobotIo::*field,
+                                int delta) {
+  auto it = io_.find(id);
+  if (it == io_.end() || it->second.generation != generation) return;
+  it->second.*field = std::max(0, it->second.*field + delta);
+}
+
+bool Simulator::Ready(RobotIo* io) {
+  // Only checked until the robot is live: getNumPublishers() scans every subscription.
+  const bool connected = io->neighbors_subscribers > 0 && io->cmd_vel.getNumPublishers() > 0;
+  const ros::WallTime now = ros::WallTime::now();
+  if (!connected) {
+    io->connected_since = ros::WallTime();
+  } else if (io->connected_since.isZero()) {
+    io->connected_since = now;
+  }
+  // A publisher link counts before its handshake is done: a command sent in that window
+  // would be lost, so a robot must stay connected a moment before it is asked to answer.
+  return connected && (now - io->connected_since).toSec() >= kSettleS;
+}
+
+void Simulator::RemoveRobot(std::uint16_t id) {
+  world_->Kill(id, nullptr);
+  auto it = io_.find(id);
+  if (it != io_.end()) {
+    RobotIo& io = it->second;
+    if (io.live && !io.answered && awaiting_ > 0) --awaiting_;
+    io.neighbors.shutdown();
+    io.pose.shutdown();
+    io.cmd_vel.shutdown();
+    io.teleport_absolute.shutdown();
+    io.teleport_relative.shutdown();
+    io_.erase(it);
+  }
+  // Its virtual copies die with it.
+  for (auto r = relayed_.begin(); r != relayed_.end();) {
+    if (r->first.first == id && r->second.type == Robot_Position::TYPE_VIRTUAL) {
+      r = relayed_.erase(r);
+    } else {
+      ++r;
+    }
+  }
+}
+
+void Simulator::Run() {
+  start_wall_ = ros::WallTime::now();
+  next_visuals_wall_ = start_wall_;
+  if (lockstep_) {
+    RunLockstep();
+  } else {
+    RunRealtime();
+  }
+}
+
+void Simulator::Shutdown() {
+  for (auto& entry : io_) {
+    entry.second.neighbors.shutdown();
+    entry.second.pose.shutdown();
+    entry.second.cmd_vel.shutdown();
+    entry.second.teleport_absolute.shutdown();
+    entry.second.teleport_relative.shutdown();
+  }
+  io_.clear();
+  position_sub_.shutdown();
+  robot_delete_sub_.shutdown();
+  mission_new_sub_.shutdown();
+  object_update_sub_.shutdown();
+  object_delete_sub_.shutdown();
+  spawn_srv_.shutdown();
+  kill_srv_.shutdown();
+  reset_srv_.shutdown();
+  positions_pub_.shutdown();
+  markers_pub_.shutdown();
+  clock_pub_.shutdown();
+  tf_broadcaster_.reset();
+}
+
+void Simulator::SpinOnce() {
+  cmd_queue_.callAvailable();
+  ros::spinOnce();
+}
+
+void Simulator::RunRealtime() {
+  ros::WallRate rate(1.0 / params_.integration_step_s);
+  const ros::WallDuration tick(params_.swarm.tick_period_s);
+  ros::WallTime next_radio = start_wall_;
+  while (Running()) {
+    SpinOnce();
+    const ros::WallTime now = ros::WallTime::now();
+    if (now >= next_radio) {
+      PublishRadio();
+      ++tick_;
+      next_radio += tick;
+      if (next_radio < now) next_radio = now + tick;  // fell behind: skip, do not burst
+    }
+    world_->Step(params_.integration_step_s);
+    PublishPoses();
+    PublishVisualsIfDue();
+    rate.sleep();
+  }
+  ROS_INFO("simulator: realtime finished after %llu radio rounds",
+           static_cast<unsigned long long>(tick_));
+}
+
+void Simulator::WaitForRobots() {
+  const ros::WallTime deadline =
+      ros::WallTime::now() + ros::WallDuration(params_.lockstep_start_timeout_s);
+  std::size_t connected = 0;
+  while (Running()) {
+    connected = 0;
+    for (auto& entry : io_) {
+      if (Ready(&entry.second)) ++connected;
+    }
+    const bool observed = params_.lockstep_observers == 0 ||
+                          positions_pub_.getNumSubscribers() >=
+                              static_cast<std::uint32_t>(params_.lockstep_observers);
+    if (connected == io_.size() && observed) break;
+    if (ros::WallTime::now() >= deadline) {
+      ROS_WARN(
+          "lockstep: only %zu of %zu robots connected after %.1f s; starting anyway "
+          "(the others join when they connect)",
+          connected, io_.size(), params_.lockstep_start_timeout_s);
+      break;
+    }
+    SpinOnce();
+    PublishVisualsIfDue();
+    ros::WallDuration(kIdleS).sleep();
+  }
+  ROS_INFO("lockstep: %zu robots connected", connected);
+}
+
+void Simulator::UpdateLiveness() {
+  for (auto& entry : io_) {
+    RobotIo& io = entry.second;
+    if (!io.live && Ready(&io)) {
+      io.live = true;
+      io.cmds_received = io.neighbors_sent;
+      io.answered = false;
+      io.stale = false;
+      if (tick_ > 0) {
+        ROS_INFO("lockstep: robot %u connected at tick %llu", entry.first,
+                 static_cast<unsigned long long>(tick_));
+      }
+    } else if (io.live && io.neighbors_subscribers == 0) {
+      io.live = false;
+      io.connected_since = ros::WallTime();
+      ROS_WARN("lockstep: robot %u disconnected at tick %llu", entry.first,
+               static_cast<unsigned long long>(tick_));
+    } else if (io.live && !io.answered && io.stale) {
+      // It answered, but only older ticks: it must have missed a Neighbors message. Count
+      // its next answer as the answer to the next tick instead of lagging forever.
+      io.cmds_received = io.neighbors_sent;
+      ROS_WARN("lockstep: robot %u answers an old tick; resynchronised at tick %llu", entry.first,
+               static_cast<unsigned long long>(tick_));
+    }
+  }
+}
+
+void Simulator::WaitForAnswers() {
+  const ros::WallTime deadline =
+      ros::WallTime::now() + ros::WallDuration(params_.lockstep_timeout_s);
+  do {
+    cmd_queue_.callAvailable(ros::WallDuration(kPollS));
+    ros::spinOnce();
+    PublishVisualsIfDue();
+  } while (awaiting_ > 0 && Running() && ros::WallTime::now() < deadline);
+  // Whatever robots sent together with their answers (virtual copies) is in before the next
+  // radio round.
+  ros::spinOnce();
+  if (awaiting_ == 0 || !Running()) return;
+  std::size_t late = 0;
+  std::size_t live = 0;
+  int first_late = -1;
+  for (const auto& entry : io_) {
+    if (!entry.second.live) continue;
+    ++live;
+    if (!entry.second.answered) {
+      ++late;
+      if (first_late < 0) first_late = entry.first;
+    }
+  }
+  if (WallThrottle(&last_late_warning_wall_, kWarnPeriodS)) {
+    ROS_WARN(
+        "lockstep tick %llu: %zu of %zu robots did not answer within %.2f s (first: robot "
+        "%d); they stand this tick",
+        static_cast<unsigned long long>(tick_), late, live, params_.lockstep_timeout_s, first_late);
+  }
+}
+
+void Simulator::ApplyAnswers() {
+  for (const auto& entry : io_) {
+    const RobotIo& io = entry.second;
+    if (!io.live) continue;
+    world_->SetCommand(entry.first, io.answered ? io.answer : core::Velocity(), nullptr);
+  }
+}
+
+void Simulator::RunLockstep() {
+  WaitForRobots();
+  const ros::WallTime started = ros::WallTime::now();
+  const std::uint64_t max_ticks = static_cast<std::uint64_t>(params_.lockstep_max_ticks);
+  while (Running() && (max_ticks == 0 || tick_ < max_ticks)) {
+    UpdateLiveness();
+    PublishClock();
+    PublishRadio();
+    PublishPoses();
+    WaitForAnswers();
+    // All answers of this tick apply together: the result does not depend on arrival order.
+    ApplyAnswers();
+    world_->Step(params_.swarm.tick_period_s);
+    ++tick_;
+    if (tick_ % 100 == 0) {
+      ROS_DEBUG("lockstep: tick %llu, %.1f ticks/s", static_cast<unsigned long long>(tick_),
+                tick_ / std::max(1e-9, (ros::WallTime::now() - started).toSec()));
+    }
+  }
+  const double wall_s = std::max(1e-9, (ros::WallTime::now() - started).toSec());
+  ROS_INFO("lockstep finished after %llu ticks (%.1f ticks/s)",
+           static_cast<unsigned long long>(tick_), tick_ / wall_s);
+  if (!Running()) return;
+  // The final state at the final time, for the recorder and tests; then the world stands.
+  finished_ = true;
+  PublishClock();
+  awaiting_ = 0;
+  for (auto& entry : io_) entry.second.live = false;  // no Neighbors: nobody is asked to answer
+  PublishRadio();
+  PublishPoses();
+  Idle();
+}
+
+void Simulator::Idle() {
+  while (Running()) {
+    cmd_queue_.callAvailable(ros::WallDuration(kIdleS));
+    ros::spinOnce();
+    PublishVisualsIfDue();
+  }
+}
+
+double Simulator::SimTime() const {
+  if (lockstep_) return static_cast<double>(tick_) * params_.swarm.tick_period_s;
+  return (ros::WallTime::now() - start_wall_).toSec();
+}
+
+ros::Time Simulator::Stamp() const { return lockstep_ ? ros::Time(SimTime()) : ros::Time::now(); }
+
+bool Simulator::Lost() {
+  return params_.radio_loss > 0.0 && radio_rng_->Uniform(0.0, 1.0) < params_.radio_loss;
+}
+
+void Simulator::PublishClock() {
+  rosgraph_msgs::Clock msg;
+  msg.clock = ros::Time(SimTime());
+  clock_pub_.publish(msg);
+}
+
+void Simulator::PublishRadio() {
+  const double sim_time = SimTime();
+  const auto& robots = world_->robots();
+  std::vector<std::uint16_t> ids;
+  std::vector<Robot_Position> truth;
+  ids.reserve(robots.size());
+  truth.reserve(robots.size());
+  for (const auto& entry : robots) {
+    ids.push_back(entry.first);
+    truth.push_back(ToRobotPosition(entry.first, entry.second.pose));
+  }
+  // Index of a physical robot in `ids`, or -1.
+  auto index_of = [&ids](std::uint16_t id) -> long {
+    const auto it = std::lower_bound(ids.begin(), ids.end(), id);
+    return it != ids.end() && *it == id ? it - ids.begin() : -1;
+  };
+  // Virtual copies are stacked on their robot: they are relayed at its true pose (so what a
+  // neighbour hears does not depend on when the copy's message arrived); copies of robots
+  // not in the world, and statists, where they were announced.
+  std::vector<Robot_Position> relayed;
+  relayed.reserve(relayed_.size());
+  for (const auto& entry : relayed_) {
+    Robot_Position p = entry.second;
+    const long owner = p.type == Robot_Position::TYPE_VIRTUAL ? index_of(p.robot_id) : -1;
+    if (owner >= 0) {
+      p.pos_x = truth[static_cast<std::size_t>(owner)].pos_x;
+      p.pos_y = truth[static_cast<std::size_t>(owner)].pos_y;
+      p.angle = truth[static_cast<std::size_t>(owner)].angle;
+    }
+    relayed.push_back(p);
+  }
+  std::map<std::uint16_t, std::vector<const Mission*>> missions_of;
+  for (const auto& entry : missions_) {
+    for (std::uint16_t member : entry.second.members) missions_of[member].push_back(&entry.second);
+  }
+
+  const auto lists = world_->NeighbourLists(params_.radio_range_m);
+  const double range2 = params_.radio_range_m * params_.radio_range_m;
+  std::vector<char> heard(ids.size(), 0);
+  std::vector<std::size_t> touched;
+  awaiting_ = 0;
+  std::size_t i = 0;
+  for (auto robot = robots.begin(); robot != robots.end(); ++robot, ++i) {
+    const std::uint16_t id = robot->first;
+    auto io = io_.find(id);
+    if (io == io_.end()) continue;
+    const bool deliver = lockstep_ ? io->second.live : io->second.neighbors_subscribers > 0;
+    if (!deliver) continue;
+    Neighbors msg;
+    msg.tick = tick_;
+    msg.sim_time = sim_time;
+    msg.pose = ToPoseMsg(robot->second.pose, robot->second.last_velocity);
+    msg.robots.reserve(lists[i].size() + relayed.size());
+    for (std::uint16_t other : lists[i]) {
+      if (Lost()) continue;
+      const std::size_t j = static_cast<std::size_t>(index_of(other));
+      msg.robots.push_back(truth[j]);
+      heard[j] = 1;
+      touched.push_back(j);
+    }
+    const core::Vec2 self = robot->second.pose.position;
+    for (const Robot_Position& p : relayed) {
+      if (p.type == Robot_Position::TYPE_VIRTUAL) {
+        if (p.robot_id == id) continue;  // a robot does not hear its own copies
+        const double dx = p.pos_x - self.x;
+        const double dy = p.pos_y - self.y;
+        if (dx * dx + dy * dy > range2) continue;
+      }
+      if (Lost()) continue;
+      msg.robots.push_back(p);
+    }
+    // The mission channel: every other member of its missions, wherever it is.
+    const auto mine = missions_of.find(id);
+    if (mine != missions_of.end()) {
+      for (const Mission* mission : mine->second) {
+        for (std::uint16_t member : mission->members) {
+          const long j = index_of(member);
+          if (member == id || j < 0 || heard[static_cast<std::size_t>(j)]) continue;
+          heard[static_cast<std::size_t>(j)] = 1;
+          touched.push_back(static_cast<std::size_t>(j));
+          msg.mission_peers.push_back(truth[static_cast<std::size_t>(j)]);
+        }
+      }
+    }
+    for (std::size_t j : touched) heard[j] = 0;
+    touched.clear();
+    io->second.neighbors.publish(msg);
+    if (lockstep_) {
+      ++io->second.neighbors_sent;
+      io->second.answered = false;
+      io->second.stale = false;
+      ++awaiting_;
+    }
+  }
+
+  Robot_Positions all;
+  all.tick = tick_;
+  all.sim_time = sim_time;
+  all.robots = std::move(truth);
+  positions_pub_.publish(all);
+}
+
+void Simulator::PublishRobotList() {
+  Robot_Positions list;
+  list.tick = tick_;
+  for (const auto& entry : world_->robots()) {
+    list.robots.push_back(ToRobotPosition(entry.first, entry.second.pose));
+  }
+  robots_pub_.publish(list);
+}
+
+void Simulator::PublishPoses() {
+  for (const auto& entry : io_) {
+    if (entry.second.pose_subscribers == 0) continue;
+    const sim::Robot* robot = world_->Find(entry.first);
+    if (robot != nullptr) entry.second.pose.publish(ToPoseMsg(robot->pose, robot->last_velocity));
+  }
+}
+
+void Simulator::PublishVisualsIfDue() {
+  if (!(params_.markers_rate_hz > 0.0)) return;
+  const ros::WallTime now = ros::WallTime::now();
+  if (now < next_visuals_wall_) return;
+  const ros::WallDuration period(1.0 / params_.markers_rate_hz);
+  next_visuals_wall_ += period;
+  if (next_visuals_wall_ < now) next_visuals_wall_ = now + period;
+  if (markers_pub_.getNumSubscribers() > 0) PublishMarkers();
+  if (tf_broadcaster_) PublishTransforms();
+}
+
+void Simulator::PublishMarkers() {
+  using visualization_msgs::Marker;
+  const ros::Time stamp = Stamp();
+  const double r = world_->params().robot_radius_m;
+  visualization_msgs::MarkerArray array;
+  std::set<std::pair<std::string, int>> shown;
+  auto add = [&array, &shown](const Marker& m) {
+    array.markers.push_back(m);
+    shown.emplace(m.ns, m.id);
+  };
+
+  for (const auto& entry : world_->robots()) {
+    const core::Pose2& pose = entry.second.pose;
+    const double yaw = pose.heading.radians();
+    // An arrow of 3 r through the robot's centre, pointing where it heads.
+    Marker arrow = MakeMarker("robots", entry.first, Marker::ARROW, stamp);
+    arrow.pose.position.x = pose.position.x - r * std::cos(yaw);
+    arrow.pose.position.y = pose.position.y - r * std::sin(yaw);
+    arrow.pose.orientation = YawQuaternion(yaw);
+    arrow.scale.x = 3.0 * r;
+    arrow.scale.y = r;
+    arrow.scale.z = r;
+    arrow.color = RobotColour(entry.first, 1.0f);
+    add(arrow);
+    if (params_.range_circles) {
+      Marker circle = MakeMarker("ranges", entry.first, Marker::CYLINDER, stamp);
+      circle.pose.position.x = pose.position.x;
+      circle.pose.position.y = pose.position.y;
+      circle.scale.x = circle.scale.y = 2.0 * params_.swarm.flocking.local_range_m;
+      circle.scale.z = 0.5 * kFlatM;
+      circle.color = RobotColour(entry.first, kRangeAlpha);
+      add(circle);
+    }
+  }
+
+  int zone_part = 0;
+  for (const core::Zone& zone : params_.swarm.danger_zones) {
+    for (const core::Primitive& part : zone.shape.parts()) {
+      const bool is_rect = part.kind == core::Primitive::Kind::kRect;
+      Marker m =
+          MakeMarker("danger_zones", zone_part++, is_rect ? Marker::CUBE : Marker::CYLINDER, stamp);
+      if (is_rect) {
+        m.pose.position.x = part.rect.centre.x;
+        m.pose.position.y = part.rect.centre.y;
+        m.scale.x = part.rect.size.x;
+        m.scale.y = part.rect.size.y;
+      } else {
+        m.pose.position.x = part.circle.centre.x;
+        m.pose.position.y = part.circle.centre.y;
+        m.scale.x = m.scale.y = 2.0 * part.circle.radius;
+      }
+      m.scale.z = kFlatM;
+      m.color = Rgba(0.9f, 0.1f, 0.1f, kZoneAlpha);
+      add(m);
+    }
+  }
+
+  for (const auto& entry : missions_) {
+    const Mission& mission = entry.second;
+    if (mission.object_size.x > 0.0 && mission.object_size.y > 0.0) {
+      Marker object = MakeMarker("objects", entry.first, Marker::CUBE, stamp);
+      object.pose.position.x = mission.object_position.x;
+      object.pose.position.y = mission.object_position.y;
+      object.scale.x = mission.object_size.x;
+      object.scale.y = mission.object_size.y;
+      object.scale.z = 2.0 * kFlatM;
+      object.color = Rgba(0.85f, 0.55f, 0.15f, kObjectAlpha);
+      add(object);
+    }
+    Marker target = MakeMarker("targets", entry.first, Marker::SPHERE, stamp);
+    target.pose.position.x = mission.target.x;
+    target.pose.position.y = mission.target.y;
+    target.scale.x = target.scale.y = target.scale.z = kTargetDiameterM;
+    target.color = Rgba(0.1f, 0.8f, 0.2f, 0.8f);
+    add(target);
+  }
+
+  // Whatever was on screen and is gone now (killed robots, deleted objects) is deleted.
+  for (const auto& key : shown_markers_) {
+    if (shown.count(key) != 0) continue;
+    Marker gone = MakeMarker(key.first, key.second, Marker::ARROW, stamp);
+    gone.action = Marker::DELETE;
+    array.markers.push_back(gone);
+  }
+  shown_markers_ = std::move(shown);
+  markers_pub_.publish(array);
+}
+
+void Simulator::PublishTransforms() {
+  const ros::Time stamp = Stamp();
+  std::vector<geometry_msgs::TransformStamped> transforms;
+  transforms.reserve(world_->size());
+  for (const auto& entry : world_->robots()) {
+    geometry_msgs::TransformStamped t;
+    t.header.stamp = stamp;
+    t.header.frame_id = names::kWorldFrame;
+    // tf frame ids are not graph names: they cannot be resolved, so they are composed here.
+    t.child_frame_id = names::RobotNamespace(entry.first) + "/" + names::kBaseLink;
+    t.transform.translation.x = entry.second.pose.position.x;
+    t.transform.translation.y = entry.second.pose.position.y;
+    t.transform.rotation = YawQuaternion(entry.second.pose.heading.radians());
+    transforms.push_back(t);
+  }
+  if (!transforms.empty()) tf_broadcaster_->sendTransform(transforms);
+}
+
+void Simulator::OnCmdVel(std::uint16_t id, const geometry_msgs::Twist::ConstPtr& msg) {
+  auto it = io_.find(id);
+  if (it == io_.end() || finished_) return;
+  RobotIo& io = it->second;
+  const bool finite = IsFinite(*msg);
+  if (!finite && WallThrottle(&last_bad_cmd_warning_wall_, kWarnPeriodS)) {
+    ROS_WARN("simulator: robot %u sent a cmd_vel with a non-finite value; it stands instead", id);
+  }
+  const core::Velocity velocity = finite ? ToVelocity(*msg) : core::Velocity();
+  if (!lockstep_ || !io.live) {
+    // Real time, or a robot outside the lock-step protocol: the command applies at once.
+    if (finite) world_->SetCommand(id, velocity, nullptr);
+    return;
+  }
+  if (io.cmds_received >= io.neighbors_sent) {
+    if (WallThrottle(&last_unsolicited_warning_wall_, kWarnPeriodS)) {
+      ROS_WARN("lockstep: robot %u sent a cmd_vel it was not asked for (tick %llu); ignored", id,
+               static_cast<unsigned long long>(tick_));
+    }
+    return;
+  }
+  ++io.cmds_received;
+  if (io.cmds_received == io.neighbors_sent) {
+    io.answer = velocity;
+    io.answered = true;
+    if (awaiting_ > 0) --awaiting_;
+  } else {
+    io.stale = true;  // the late answer to an earlier tick: it stood then and stays ignored
+  }
+}
+
+bool Simulator::OnSpawn(Spawn::Request& req, Spawn::Response& res) {
+  std::string error;
+  const core::Pose2 pose{{req.x, req.y}, core::Angle::FromRadians(req.theta)};
+  if (!world_->Spawn(req.robot_id, pose, &error)) {
+    ROS_WARN("simulator: spawn of robot %u rejected: %s", req.robot_id, error.c_str());
+    res.code = Spawn::Response::ERROR;
+    res.message = error;
+    return true;
+  }
+  AddRobotIo(req.robot_id);
+  PublishRobotList();
+  ROS_INFO("simulator: spawned robot %u at (%.3f, %.3f, %.3f rad)", req.robot_id, req.x, req.y,
+           req.theta);
+  res.code = Spawn::Response::OK;
+  res.message = "spawned robot " + std::to_string(req.robot_id);
+  return true;
+}
+
+bool Simulator::OnKill(Kill::Request& req, Kill::Response& res) {
+  if (world_->Find(req.robot_id) == nullptr) {
+    res.code = Kill::Response::ERROR;
+    res.message = "robot " + std::to_string(req.robot_id) + " does not exist";
+    ROS_WARN("simulator: kill rejected: %s", res.message.c_str());
+    return true;
+  }
+  RemoveRobot(req.robot_id);
+  PublishRobotList();
+  ROS_INFO("simulator: killed robot %u", req.robot_id);
+  res.code = Kill::Response::OK;
+  res.message = "killed robot " + std::to_string(req.robot_id);
+  return true;
+}
+
+bool Simulator::OnReset(std_srvs::Empty::Request& /*req*/, std_srvs::Empty::Response& /*res*/) {
+  world_->Reset();
+  ROS_INFO("simulator: reset %zu robots to their spawn poses", world_->size());
+  return true;
+}
+
+bool Simulator::OnTeleportAbsolute(std::uint16_t id, TeleportAbsolute::Request& req,
+                                   TeleportAbsolute::Response& res) {
+  std::string error;
+  const core::Pose2 pose{{req.x, req.y}, core::Angle::FromRadians(req.theta)};
+  if (!world_->TeleportAbsolute(id, pose, &error)) {
+    ROS_WARN("simulator: teleport_absolute of robot %u rejected: %s", id, error.c_str());
+    res.code = TeleportAbsolute::Response::ERROR;
+    res.message = error;
+    return true;
+  }
+  res.code = TeleportAbsolute::Response::OK;
+  res.message = "ok";
+  return true;
+}
+
+bool Simulator::OnTeleportRelative(std::uint16_t id, TeleportRelative::Request& req,
+                                   TeleportRelative::Response& res) {
+  std::string error;
+  if (!world_->TeleportRelative(id, req.linear, req.angular, &error)) {
+    ROS_WARN("simulator: teleport_relative of robot %u rejected: %s", id, error.c_str());
+    res.code = TeleportRelative::Response::ERROR;
+    res.message = error;
+    return true;
+  }
+  res.code = TeleportRelative::Response::OK;
+  res.message = "ok";
+  return true;
+}
+
+void Simulator::OnPosition(const Robot_Position::ConstPtr& msg) {
+  if (msg->type == Robot_Position::TYPE_PHYSICAL) return;  // the world's truth is relayed
+  if (!IsFinite(*msg)) {
+    if (WallThrottle(&last_bad_position_warning_wall_, kWarnPeriodS)) {
+      ROS_WARN("simulator: rejected a Robot_Position of robot %u/%u with a non-finite value",
+               msg->robot_id, msg->sub_id);
+    }
+    return;
+  }
+  if (msg->type != Robot_Position::TYPE_VIRTUAL && msg->type != Robot_Position::TYPE_STATIST) {
+    if (WallThrottle(&last_bad_position_warning_wall_, kWarnPeriodS)) {
+      ROS_WARN("simulator: rejected a Robot_Position of robot %u/%u with unknown type %u",
+               msg->robot_id, msg->sub_id, msg->type);
+    }
+    return;
+  }
+  Robot_Position p = *msg;
+  p.angle = static_cast<float>(core::Angle(p.angle).degrees());
+  if (p.angle >= 360.0f) p.angle = 0.0f;
+  relayed_[RelayKey(p.robot_id, p.sub_id)] = p;
+}
+
+void Simulator::OnRobotDelete(const Delete_Robot::ConstPtr& msg) {
+  relayed_.erase(RelayKey(msg->robot_id, msg->sub_id));
+}
+
+void Simulator::OnMissionNew(const New_Mission::ConstPtr& msg) {
+  Mission mission;
+  mission.object_position = {msg->object_position_x, msg->object_position_y};
+  mission.object_size = {msg->object_size_x, msg->object_size_y};
+  mission.target = {msg->target_x, msg->target_y};
+  if (!IsFinite(mission.object_position) || !IsFinite(mission.object_size) ||
+      !IsFinite(mission.target)) {
+    ROS_WARN("simulator: ignored New_Mission %u with a non-finite value", msg->mission_id);
+    return;
+  }
+  if (!msg->robot_ids.empty()) {
+    mission.members = msg->robot_ids;
+    std::sort(mission.members.begin(), mission.members.end());
+    mission.members.erase(std::unique(mission.members.begin(), mission.members.end()),
+                          mission.members.end());
+  } else if (msg->robot_index_from < msg->robot_index_to) {
+    for (std::uint32_t id = msg->robot_index_from; id < msg->robot_index_to; ++id) {
+      mission.members.push_back(static_cast<std::uint16_t>(id));
+    }
+  } else {
+    ROS_WARN("simulator: ignored New_Mission %u: no robot_ids and an empty range [%u, %u)",
+             msg->mission_id, msg->robot_index_from, msg->robot_index_to);
+    return;
+  }
+  missions_[msg->mission_id] = mission;
+}
+
+void Simulator::OnObjectUpdate(const Update_Object::ConstPtr& msg) {
+  const core::Vec2 position{msg->object_position_x, msg->object_position_y};
+  auto it = missions_.find(msg->mission_id);
+  if (it == missions_.end() || !IsFinite(position)) return;
+  it->second.object_position = position;
+}
+
+void Simulator::OnObjectDelete(const Delete_Object::ConstPtr& msg) {
+  missions_.erase(msg->mission_id);
+}
+
+}  // namespace swarm_transport

@@ -1,0 +1,209 @@
+// The simulator node: adapts the pure World2D to ROS, owns the clock and plays the radio.
+#ifndef SWARM_TRANSPORT_SIM_SIMULATOR_H_
+#define SWARM_TRANSPORT_SIM_SIMULATOR_H_
+
+#include <geometry_msgs/Twist.h>
+#include <ros/callback_queue.h>
+#include <ros/ros.h>
+#include <std_srvs/Empty.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include <csignal>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "swarm_transport/Delete_Object.h"
+#include "swarm_transport/Delete_Robot.h"
+#include "swarm_transport/Kill.h"
+#include "swarm_transport/Neighbors.h"
+#include "swarm_transport/New_Mission.h"
+#include "swarm_transport/Robot_Position.h"
+#include "swarm_transport/Spawn.h"
+#include "swarm_transport/TeleportAbsolute.h"
+#include "swarm_transport/TeleportRelative.h"
+#include "swarm_transport/Update_Object.h"
+#include "swarm_transport/core/random.h"
+#include "swarm_transport/ros/params.h"
+#include "world2d.h"
+
+namespace swarm_transport {
+
+// Everything the simulator is configured with: the shared /swarm configuration plus its
+// private parameters (~name), units in the names.
+struct SimulatorParams {
+  SwarmConfig swarm;                 // /swarm: world size, radius, range, tick, seed, zones
+  double radio_loss = 0.0;           // /swarm/radio_loss: drop probability per message, [0, 1]
+  int robots = 0;                    // ~robots: initial robots, ids 0..robots-1
+  std::string placement = "random";  // ~placement: random | corner | file
+  std::string placement_file;        // ~placement_file: lines "x y theta_deg"
+  std::string clock = "realtime";    // ~clock: realtime | lockstep
+  double lockstep_timeout_s = 2.0;   // ~lockstep_timeout_s: wait this long for a tick's answers
+  int lockstep_max_ticks = 0;        // ~lockstep_max_ticks: stop ticking after this many (0: never)
+  // ~lockstep_observers: also wait until /flock/positions has this many subscribers (a
+  // recorder, a test, the demo) so that nobody misses the first ticks.
+  int lockstep_observers = 0;
+  double lockstep_start_timeout_s = 60.0;  // ~lockstep_start_timeout_s: wait for robots to connect
+  double integration_step_s = 0.01;  // ~integration_step_s: world sub-step (real time: loop period)
+  double markers_rate_hz = 10.0;     // ~markers_rate_hz: markers and tf, wall clock (0: off)
+  bool tf = true;                    // ~tf: broadcast world -> robot_<id>/base_link
+  bool range_circles = false;        // ~range_circles: draw each robot's local range
+  double radio_range_m = 1.0;        // ~radio_range_m: default /swarm/local_range_m
+
+  // Empty when valid, else one sentence naming the first bad parameter and its accepted range.
+  std::string Validate() const;
+};
+
+// The turtlesim-like simulator [SPEC 7]: per-robot cmd_vel, pose, neighbors and teleport
+// services, global spawn/kill/reset, /flock/positions, markers, tf, and in lock-step /clock.
+// Single-threaded: every callback runs from Run()'s loop between world steps, so the world
+// needs no lock and a tick's result never depends on thread scheduling.
+class Simulator {
+ public:
+  Simulator(ros::NodeHandle nh, ros::NodeHandle private_nh);
+  // Loads and validates parameters, places the initial robots, connects topics and services.
+  // False (after one ROS_FATAL) on bad parameters.
+  bool Initialize();
+  // Runs the clock until ROS shuts down.
+  void Run();
+  // Disconnects everything.
+  void Shutdown();
+  // Async-signal-safe: makes Run() return at the end of the current tick. For a SIGINT handler
+  // installed instead of roscpp's, whose shutdown would silence rosconsole before Run() can
+  // log its summary.
+  static void RequestStop();
+
+ private:
+  // The ROS side of one robot and its lock-step bookkeeping.
+  struct RobotIo {
+    ros::Publisher neighbors;
+    ros::Publisher pose;
+    ros::Subscriber cmd_vel;
+    ros::ServiceServer teleport_absolute;
+    ros::ServiceServer teleport_relative;
+    // Connected subscribers, counted by connect / disconnect callbacks: getNumSubscribers()
+    // scans every publication of the node, O(robots) per call.
+    int neighbors_subscribers = 0;
+    int pose_subscribers = 0;
+    std::uint64_t generation = 0;      // tells this robot's callbacks from a killed namesake's
+    ros::WallTime connected_since;     // lock-step: both links up since (zero: not connected)
+    bool live = false;                 // lock-step: connected, so it must answer every tick
+    std::uint64_t neighbors_sent = 0;  // while live
+    std::uint64_t cmds_received = 0;   // while live; == sent: the current tick is answered
+    bool answered = false;             // the current tick's command arrived
+    bool stale = false;                // an old tick's answer arrived during the current tick
+    core::Velocity answer;
+  };
+  // What the simulator knows of a live mission: who is in it and where its object is.
+  struct Mission {
+    std::vector<std::uint16_t> members;  // ascending
+    core::Vec2 object_position;
+    core::Vec2 object_size;
+    core::Vec2 target;
+  };
+  using RelayKey = std::pair<std::uint16_t, std::uint8_t>;  // (robot_id, sub_id)
+
+  // ROS is up and no stop was requested.
+  static bool Running();
+  bool LoadParams(std::string* error);
+  bool PlaceInitialRobots(std::string* error);
+  void AddRobotIo(std::uint16_t id);
+  // Counts a (dis)connected subscriber of robot `id`'s `field` (+1 / -1).
+  void CountSubscriber(std::uint16_t id, std::uint64_t generation, int RobotIo::*field, int delta);
+  // Lock-step: the robot has listened to its Neighbors and published cmd_vel for kSettleS.
+  static bool Ready(RobotIo* io);
+  void RemoveRobot(std::uint16_t id);
+
+  void RunRealtime();
+  void RunLockstep();
+  // Lock-step: waits until every robot is connected (or the start timeout passed).
+  void WaitForRobots();
+  // Lock-step: marks connected robots live and disconnected ones not live.
+  void UpdateLiveness();
+  // Lock-step: spins until every live robot answered the current tick or the timeout passed.
+  void WaitForAnswers();
+  // Lock-step: the current tick's answers (zero for late robots) become the world's commands.
+  void ApplyAnswers();
+  // Idles after the last lock-step tick: services, markers and tf stay up.
+  void Idle();
+
+  // One radio round: Neighbors to every receiving robot, then /flock/positions.
+  void PublishRadio();
+  // Latched /flock/robots: the robots that exist (robots check missions against it).
+  void PublishRobotList();
+  void PublishPoses();
+  void PublishClock();
+  // Markers and tf when their wall-clock period has passed.
+  void PublishVisualsIfDue();
+  void PublishMarkers();
+  void PublishTransforms();
+  // Spins the callback queues once without blocking.
+  void SpinOnce();
+  double SimTime() const;
+  ros::Time Stamp() const;
+  bool Lost();
+
+  void OnCmdVel(std::uint16_t id, const geometry_msgs::Twist::ConstPtr& msg);
+  bool OnSpawn(Spawn::Request& req, Spawn::Response& res);
+  bool OnKill(Kill::Request& req, Kill::Response& res);
+  bool OnReset(std_srvs::Empty::Request& req, std_srvs::Empty::Response& res);
+  bool OnTeleportAbsolute(std::uint16_t id, TeleportAbsolute::Request& req,
+                          TeleportAbsolute::Response& res);
+  bool OnTeleportRelative(std::uint16_t id, TeleportRelative::Request& req,
+                          TeleportRelative::Response& res);
+  void OnPosition(const Robot_Position::ConstPtr& msg);
+  void OnRobotDelete(const Delete_Robot::ConstPtr& msg);
+  void OnMissionNew(const New_Mission::ConstPtr& msg);
+  void OnObjectUpdate(const Update_Object::ConstPtr& msg);
+  void OnObjectDelete(const Delete_Object::ConstPtr& msg);
+
+  static volatile std::sig_atomic_t stop_requested_;
+
+  ros::NodeHandle nh_;
+  ros::NodeHandle private_nh_;
+  SimulatorParams params_;
+  bool lockstep_ = false;
+  std::unique_ptr<sim::World2D> world_;
+  std::unique_ptr<core::Rng> radio_rng_;
+
+  // cmd_vel callbacks have their own queue so that lock-step can wait for answers without
+  // running services (which may spawn or kill robots) at arbitrary points.
+  ros::CallbackQueue cmd_queue_;
+  std::map<std::uint16_t, RobotIo> io_;
+  std::map<RelayKey, Robot_Position> relayed_;  // virtual copies (type 1) and statists (type 2)
+  std::map<std::uint16_t, Mission> missions_;
+
+  ros::Publisher positions_pub_;
+  ros::Publisher robots_pub_;
+  ros::Publisher clock_pub_;
+  ros::Publisher markers_pub_;
+  std::unique_ptr<tf2_ros::TransformBroadcaster> tf_broadcaster_;
+  ros::ServiceServer spawn_srv_;
+  ros::ServiceServer kill_srv_;
+  ros::ServiceServer reset_srv_;
+  ros::Subscriber position_sub_;
+  ros::Subscriber robot_delete_sub_;
+  ros::Subscriber mission_new_sub_;
+  ros::Subscriber object_update_sub_;
+  ros::Subscriber object_delete_sub_;
+
+  std::uint64_t next_generation_ = 0;
+  std::uint64_t tick_ = 0;    // radio rounds so far (lock-step: ticks)
+  std::size_t awaiting_ = 0;  // lock-step: live robots that have not answered yet
+  bool finished_ = false;     // lock-step: max ticks reached, the world is frozen
+  ros::WallTime start_wall_;
+  ros::WallTime next_visuals_wall_;
+  ros::WallTime last_late_warning_wall_;  // wall-clock throttles of repeated warnings
+  ros::WallTime last_bad_cmd_warning_wall_;
+  ros::WallTime last_unsolicited_warning_wall_;
+  ros::WallTime last_bad_position_warning_wall_;
+  std::set<std::pair<std::string, int>> shown_markers_;  // (ns, id) on screen
+};
+
+}  // namespace swarm_transport
+
+#endif  // SWARM_TRANSPORT_SIM_SIMULATOR_H_
