@@ -208,7 +208,11 @@ bool World2D::SetCommand(std::uint16_t id, core::Velocity velocity, std::string*
     SetError(error, "the velocity must be finite");
     return false;
   }
-  it->second.command = velocity;
+  // Turn in place at once, then drive straight for the command's duration: the thesis's tick
+  // (teleport_relative, then 1 s of driving) and exactly what core::TurnThenDrive predicts.
+  it->second.pose.heading =
+      it->second.pose.heading + core::Angle::FromRadians(velocity.angular * params_.command_duration_s);
+  it->second.command = core::Velocity{velocity.linear, 0.0};
   it->second.command_remaining_s = params_.command_duration_s;
   return true;
 }

@@ -1,5 +1,7 @@
-"""scripts/demo: a swarm of N robots on a private ROS master, headless unless --rviz, for a
-bounded time; prints what happened."""
+"""scripts/demo: a swarm of N robots on a private ROS master, headless unless --rviz. By default
+it sends the thesis's transport mission (robots [0, 12), 3 leaders, 2x2 object at (7, 7) to
+(3, 3)), runs it to DONE and prints the phases; --no-mission only lets the swarm flock for a
+bounded time."""
 
 import argparse
 import math
@@ -43,11 +45,20 @@ def parse_args(argv):
     p.add_argument('--screenshot', default='',
                    help='with --rviz: save a PNG of the rviz window at the end')
     p.add_argument('--config', default='', help='extra YAML merged over config/swarm.yaml')
+    p.add_argument('--no-mission', action='store_true',
+                   help='no transport mission: let the swarm flock for --ticks / --seconds')
+    p.add_argument('--group', type=int, default=12,
+                   help='mission: robots [0, group) carry the object (default 12)')
+    p.add_argument('--leaders', type=int, default=3, help='mission: leaders (default 3)')
+    p.add_argument('--timeout', type=float, default=600.0,
+                   help='mission: give up after this many wall seconds (default 600)')
     a = p.parse_args(argv)
     if a.robots < 1 or a.robots > 65535:
         p.error('--robots must be in [1, 65535]')
-    if a.ticks < 1 or not (a.seconds > 0):
-        p.error('--ticks and --seconds must be positive')
+    if a.ticks < 1 or not (a.seconds > 0) or not (a.timeout > 0):
+        p.error('--ticks, --seconds and --timeout must be positive')
+    if not a.no_mission and not 1 <= a.leaders <= a.group <= a.robots:
+        p.error('need 1 <= --leaders <= --group <= --robots')
     return a
 
 
@@ -75,7 +86,7 @@ def main(argv):
                        'rviz': 'true' if a.rviz else 'false'}
         if a.config:
             launch_args['extra_config'] = os.path.abspath(a.config)
-        if not a.realtime:
+        if not a.realtime and a.no_mission:
             launch_args['max_ticks'] = a.ticks
         started = time.time()
         ros.launch('swarm.launch', launch_args)
@@ -96,6 +107,13 @@ def main(argv):
                 state['counts'].append((msg.tick, msg.sim_time, swarm_count(pts, local_range)))
 
         rospy.Subscriber('/flock/positions', Robot_Positions, on_positions, queue_size=50)
+        if not a.no_mission:
+            ok = _run_mission(a, ros, state)
+            if a.rviz and a.screenshot:
+                _screenshot(ros, a.screenshot)
+            rospy.signal_shutdown('demo done')
+            _report(a, state, local_range, time.time() - started)
+            return 0 if ok else 1
         limit = a.seconds if a.realtime else max(a.seconds, 60.0 + a.ticks * a.robots * 0.002)
         deadline = time.time() + limit + 60.0
         ok = True
@@ -123,6 +141,65 @@ def main(argv):
             st_ros.log('[demo] FAILED: no tick was ever simulated (see %s)' % ros.log_dir)
             ok = False
     return 0 if ok else 1
+
+
+PHASES = {0: 'QUEUED', 1: 'GATHERING', 2: 'LOADING', 3: 'TRANSPORT', 4: 'UNLOADING',
+          5: 'DONE', 6: 'ABORTED', 7: 'REJECTED'}
+MISSION_ID = 7
+OBJECT = (7.0, 7.0, 2.0, 2.0)
+TARGET = (3.0, 3.0)
+
+
+def _run_mission(a, ros, state):
+    """Sends the thesis mission through the dispatcher and follows it to its end."""
+    import rospy
+    from swarm_transport.msg import Mission_Status, New_Mission
+    from swarm_transport.srv import Submit_Mission
+    phases = []  # (state, tick, wall)
+
+    def on_status(msg):
+        if msg.mission_id == MISSION_ID and (not phases or phases[-1][0] != msg.state):
+            phases.append((msg.state, msg.tick, time.time(), msg))
+            st_ros.log('[demo] mission %d %-9s tick %6d  inside %2d/%-2d  object (%.2f, %.2f)'
+                       % (MISSION_ID, PHASES.get(msg.state, '?'), msg.tick, msg.robots_inside,
+                          msg.robots_assigned, msg.object_position_x, msg.object_position_y))
+
+    rospy.Subscriber('/flock/mission/status', Mission_Status, on_status, queue_size=100)
+    submit = rospy.ServiceProxy('/mission_dispatcher/submit', Submit_Mission)
+    try:
+        submit.wait_for_service(60)
+    except rospy.ROSException:
+        st_ros.log('[demo] FAILED: the mission dispatcher did not come up (see %s)' % ros.log_dir)
+        return False
+    deadline = time.time() + 60
+    while state['last'] is None and time.time() < deadline:
+        time.sleep(0.05)
+    m = New_Mission(robot_index_from=0, robot_index_to=a.group, leader_number=a.leaders,
+                    mission_id=MISSION_ID, object_position_x=OBJECT[0],
+                    object_position_y=OBJECT[1], object_size_x=OBJECT[2],
+                    object_size_y=OBJECT[3], target_x=TARGET[0], target_y=TARGET[1])
+    sent = time.time()
+    answer = submit(m)
+    st_ros.log('[demo] submitted: %s' % answer.message)
+    if answer.code != 0:
+        st_ros.log('[demo] FAILED: the dispatcher rejected the mission')
+        return False
+    deadline = sent + a.timeout
+    while time.time() < deadline:
+        if phases and phases[-1][0] in (5, 6, 7):
+            break
+        if not ros.alive('roslaunch'):
+            st_ros.log('[demo] FAILED: roslaunch ended early: see %s' % ros.log_dir)
+            return False
+        time.sleep(0.1)
+    state['phases'], state['sent'] = phases, sent
+    if not phases or phases[-1][0] != 5:
+        reason = phases[-1][3].reason if phases else 'no status at all'
+        st_ros.log('[demo] FAILED: mission %d ended %s after %.0f s: %s'
+                   % (MISSION_ID, PHASES.get(phases[-1][0], '?') if phases else 'nowhere',
+                      time.time() - sent, reason or 'timeout'))
+        return False
+    return True
 
 
 def _wait_param():
@@ -161,6 +238,24 @@ def _report(a, state, local_range, wall):
     if state['counts']:
         st_ros.log('swarm count by tick  ' + ', '.join('%d:%d' % (t, c)
                                                      for t, _, c in state['counts'][-8:]))
+    phases = state.get('phases')
+    if phases:
+        st_ros.log('mission %d: robots [0, %d), %d leaders, object %.0fx%.0f at (%.0f, %.0f) '
+                   '-> (%.0f, %.0f)' % ((MISSION_ID, a.group, a.leaders) + OBJECT[2:] + OBJECT[:2] +
+                                        TARGET))
+        st_ros.log('  %-10s %8s %8s %10s' % ('phase', 'tick', 'ticks', 'wall s'))
+        for i, (code, tick, at, _) in enumerate(phases):
+            nxt = phases[i + 1] if i + 1 < len(phases) else None
+            # QUEUED comes from the dispatcher, which has no tick: its row shows wall time only.
+            ticks = '%d' % (nxt[1] - tick) if nxt and code != 0 else '-'
+            st_ros.log('  %-10s %8s %8s %10s' % (
+                PHASES.get(code, '?'), tick if code != 0 else '-', ticks,
+                '%.2f' % (nxt[2] - at) if nxt else '-'))
+        end = phases[-1][3]
+        err = math.hypot(end.object_position_x - TARGET[0], end.object_position_y - TARGET[1])
+        st_ros.log('object error at the end %.4f m (tolerance 0.05)' % err)
+        st_ros.log('mission wall time      %.2f s (submit to %s)'
+                   % (phases[-1][2] - state['sent'], PHASES.get(phases[-1][0], '?')))
     moved = sum(1 for p, q in zip(pts0, pts) if math.hypot(p[0] - q[0], p[1] - q[1]) > 1e-3)
     st_ros.log('robots that moved    %d of %d' % (moved, len(pts)))
     st_ros.log('total wall time      %.1f s' % wall)

@@ -47,6 +47,9 @@ class PrivateRos(object):
         self.procs = []
 
     def __enter__(self):
+        # A SIGTERM (timeout, CI) must still stop what this session started: turn it into an
+        # exception so that __exit__ runs.
+        signal.signal(signal.SIGTERM, _terminate)
         self.start_master()
         os.environ.update({k: self.env[k] for k in (
             'ROS_MASTER_URI', 'ROS_IP', 'ROS_HOSTNAME', 'ROS_LOG_DIR', 'ROS_PACKAGE_PATH',
@@ -107,6 +110,10 @@ class PrivateRos(object):
                     p.wait()
             log.close()
         self.procs = []
+
+
+def _terminate(signum, _frame):
+    raise SystemExit(128 + signum)
 
 
 def log(msg):

@@ -14,7 +14,6 @@ constexpr std::uint8_t kTypeStatist = 2;
 constexpr double kCentroidTolerance = 1e-9;
 // Samples along a move's arc for the path check: the chords between them stray from an arc of
 // one tick's length far less than a robot radius.
-constexpr int kPathSamples = 5;
 // The avoidance search turns in whole degrees up to a step back [T5.2].
 constexpr int kMaxSwerveDeg = 180;
 
@@ -144,7 +143,7 @@ bool IsMoveValid(const Perception& in, const FlockingParams& p, Angle heading, d
   const Pose2& start = in.self;
   const Velocity command = CommandFor(start, heading, distance_m, duration_s);
   const Vec2 from = start.position;
-  const Vec2 to = Integrate(start, command, duration_s).position;
+  const Vec2 to = TurnThenDrive(start, command, duration_s).position;
 
   // The arena border is an obstacle [T7.2]; a robot pushed beyond it may still come back.
   const double lo = p.robot_radius_m;
@@ -154,13 +153,25 @@ bool IsMoveValid(const Perception& in, const FlockingParams& p, Angle heading, d
 
   // Every robot counts here, not only those in range: a collision does not care about range.
   const double min_separation = p.MinSeparation();
+  // Robots already closer than the separation (simultaneous moves, or a push by the
+  // simulator) must not pin each other for good: with several of them around, as in a packed
+  // corner, moving away from one means moving towards another. So a move is valid when it
+  // comes too close to no new robot and strictly reduces the summed overlap with those that
+  // already were too close.
+  double overlap_before = 0.0;
+  double overlap_after = 0.0;
   for (const Neighbour& other : in.others) {
     if (!IsOtherRobot(in, other)) continue;
     const double before = Distance(from, other.position);
     const double after = Distance(to, other.position);
-    // Already too close (e.g. after a push by the simulator): only moving apart is allowed.
-    if (after < min_separation && !(before < min_separation && after > before)) return false;
+    if (before >= min_separation) {
+      if (after < min_separation) return false;
+      continue;
+    }
+    overlap_before += min_separation - before;
+    overlap_after += std::max(0.0, min_separation - after);
   }
+  if (overlap_before > 0.0 && !(overlap_after < overlap_before)) return false;
 
   for (const Zone& zone : in.zones) {
     if (!zone.Forbids(to)) continue;
@@ -168,16 +179,14 @@ bool IsMoveValid(const Perception& in, const FlockingParams& p, Angle heading, d
   }
 
   if (!p.check_path) return true;
-  const std::vector<Vec2> path = SampleArc(start, command, duration_s, kPathSamples);
+  // The path is the straight segment of the drive (the turn happens in place).
   const double touching = 2.0 * p.robot_radius_m;
   for (const Neighbour& other : in.others) {
     // A robot it is already closer to than the separation (touching after a push by the
-    // simulator, rounded to float) would block every move: the separation rule above already
-    // lets it only move away from that one.
+    // simulator, rounded to float) would block every move: the overlap rule above already
+    // decides how it may move relative to that one.
     if (!IsOtherRobot(in, other) || Distance(from, other.position) < min_separation) continue;
-    for (std::size_t i = 1; i < path.size(); ++i) {
-      if (DistancePointSegment(other.position, path[i - 1], path[i]) <= touching) return false;
-    }
+    if (DistancePointSegment(other.position, from, to) <= touching) return false;
   }
   return true;
 }

@@ -48,5 +48,11 @@ std::vector<Vec2> SampleArc(const Pose2& pose, Velocity velocity, double duratio
   return points;
 }
 
+Pose2 TurnThenDrive(const Pose2& pose, Velocity velocity, double duration_s) {
+  Pose2 turned = pose;
+  turned.heading = pose.heading + Angle::FromRadians(velocity.angular * duration_s);
+  return Integrate(turned, Velocity{velocity.linear, 0.0}, duration_s);
+}
+
 }  // namespace core
 }  // namespace swarm_transport

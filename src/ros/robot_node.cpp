@@ -124,7 +124,9 @@ bool RobotNode::OnDescribe(std_srvs::Trigger::Request& /*req*/,
   for (std::uint16_t m : agent_.LiveIds()) os << m << ":" << core::PhaseName(agent_.PhaseOf(m)) << " ";
   os << "] zones=[";
   for (const core::Zone& z : last_plan_.zones) os << z.id << (z.inverted ? ":safety " : ":danger ");
-  os << "]";
+  os << "] heard=" << last_heard_ << " desired=" << last_move_.desired_heading.degrees()
+     << " heading=" << last_move_.heading.degrees() << " distance=" << last_move_.distance_m
+     << " fleeing=" << (last_move_.fleeing ? 1 : 0);
   res.success = true;
   res.message = os.str();
   return true;
@@ -290,6 +292,8 @@ void RobotNode::Tick() {
   } else {
     move = core::FlockingStep(in, config_.flocking, *rng_, config_.tick_period_s);
   }
+  last_move_ = move;
+  last_heard_ = in.others.size();
   core::Velocity command;
   if (!frozen_ && move.distance_m > 0.0) {
     command = core::CommandFor(in.self, move.heading, move.distance_m, config_.tick_period_s);
@@ -299,7 +303,7 @@ void RobotNode::Tick() {
   Publish(outbox);
   // A frozen robot keeps computing (its random sequence stays aligned) but sends zero.
   cmd_pub_.publish(ToTwist(command));
-  const core::Pose2 after = core::Integrate(in.self, command, config_.tick_period_s);
+  const core::Pose2 after = core::TurnThenDrive(in.self, command, config_.tick_period_s);
   position_pub_.publish(ToRobotPosition(id_, after));
   ++ticks_;
 }

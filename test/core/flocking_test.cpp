@@ -58,7 +58,7 @@ std::vector<Neighbour> Ring(Vec2 centre, double radius, int count) {
 // Where a move turning by `turn_deg` and driving `distance` from `in` ends.
 Vec2 Destination(const Perception& in, double turn_deg, double distance) {
   const Angle heading = in.self.heading + Angle(turn_deg);
-  return Integrate(in.self, CommandFor(in.self, heading, distance, kTick), kTick).position;
+  return TurnThenDrive(in.self, CommandFor(in.self, heading, distance, kTick), kTick).position;
 }
 
 double Heading(Angle a) { return Angle::SignedDifference(a, Angle(0)); }
@@ -313,10 +313,10 @@ TEST(AvoidCollisionsTest, FreeWayGoesStraight) {
 }
 
 TEST(AvoidCollisionsTest, TriesPlusBeforeMinus) {
-  // A thin danger strip covers the destinations of 0, +1 and -1 degrees (|y - 5| <= 0.0012)
-  // but not those of +-2 (|y - 5| ~ 0.0017): +2 comes first.
+  // A thin danger strip covers the destinations of 0, +1 and -1 degrees (|y - 5| <= 0.0026,
+  // 0.1 sin 1 = 0.00175) but not those of +-2 (0.1 sin 2 = 0.0035): +2 comes first.
   Perception in = At(5.0, 5.0, 0.0);
-  in.zones = {Zone{1, Shape::FromRect({5.1, 5.0}, {0.05, 0.0024}), false}};
+  in.zones = {Zone{1, Shape::FromRect({5.1, 5.0}, {0.05, 0.0052}), false}};
   const MoveDecision d = AvoidCollisions(in, Quiet(), Angle(0), kTick);
   EXPECT_EQ(d.outcome, MoveOutcome::kSwerved);
   EXPECT_EQ(d.heading, Angle(2));
@@ -362,7 +362,7 @@ TEST(AvoidCollisionsTest, SwervesAlongTheArenaBorder) {
   const MoveDecision d = AvoidCollisions(in, Quiet(), Angle(180), kTick);
   EXPECT_EQ(d.outcome, MoveOutcome::kSwerved);
   const Vec2 end =
-      Integrate(in.self, CommandFor(in.self, d.heading, d.distance_m, kTick), kTick).position;
+      TurnThenDrive(in.self, CommandFor(in.self, d.heading, d.distance_m, kTick), kTick).position;
   EXPECT_GE(end.x, 0.05);
 }
 
@@ -403,9 +403,34 @@ TEST(AvoidCollisionsTest, RobotPushedToTouchingCanMoveAway) {
   const MoveDecision d = AvoidCollisions(in, Quiet(), Angle(0.0), kTick);
   EXPECT_NE(d.outcome, MoveOutcome::kStand);
   EXPECT_GT(d.distance_m, 0.0);
-  const Vec2 to = Integrate(in.self, CommandFor(in.self, d.heading, d.distance_m, kTick), kTick)
-                      .position;
+  const Vec2 to =
+      TurnThenDrive(in.self, CommandFor(in.self, d.heading, d.distance_m, kTick), kTick).position;
   EXPECT_GT(Distance(to, {5.10000005, 5.0}), 0.10000005);
+}
+
+// A robot touching three others spaced 120 degrees apart (left as the simulator's push leaves
+// them): every direction brings it closer to one of them, yet the jam must dissolve, so a move
+// that lowers the summed overlap is valid.
+TEST(AvoidCollisionsTest, JammedRobotCanStillMove) {
+  Perception in = At(5.0, 5.0, 0.0);
+  in.others = {Robot(2, 4.9, 5.0), Robot(3, 5.05, 5.0 + 0.05 * std::sqrt(3.0)),
+               Robot(4, 5.05, 5.0 - 0.05 * std::sqrt(3.0))};
+  const MoveDecision d = AvoidCollisions(in, Quiet(), Angle(0.0), kTick);
+  EXPECT_NE(d.outcome, MoveOutcome::kStand);
+  const Vec2 to =
+      TurnThenDrive(in.self, CommandFor(in.self, d.heading, d.distance_m, kTick), kTick).position;
+  double after = 0.0;
+  for (const Neighbour& n : in.others) after += std::max(0.0, 0.11 - Distance(to, n.position));
+  EXPECT_LT(after, 3 * (0.11 - 0.10));
+}
+
+// ... but a move that comes too close to a robot that was at a safe distance stays invalid.
+TEST(AvoidCollisionsTest, EscapingAJamMayNotCloseInOnAThirdRobot) {
+  Perception in = At(5.0, 5.0, 0.0);
+  in.others = {Robot(2, 4.9, 5.0), Robot(3, 5.2, 5.0)};
+  // Straight ahead moves 0.1 m away from robot 2 but ends 0.1 m from robot 3.
+  EXPECT_FALSE(IsMoveValid(in, Quiet(), Angle(0.0), 0.1, kTick));
+  EXPECT_TRUE(IsMoveValid(in, Quiet(), Angle(90.0), 0.1, kTick));
 }
 
 }  // namespace

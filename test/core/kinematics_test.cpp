@@ -87,5 +87,15 @@ TEST(KinematicsTest, SampleArcNeedsTwoSamples) {
 }
 
 }  // namespace
+TEST(TurnThenDriveTest, TurnsFirstThenDrivesAlongTheNewHeading) {
+  const Pose2 start{{2.0, 3.0}, Angle(350.0)};
+  // +20 degrees of turn and 0.5 m within 0.1 s.
+  const Velocity v = CommandFor(start, Angle(10.0), 0.5, 0.1);
+  const Pose2 end = TurnThenDrive(start, v, 0.1);
+  EXPECT_EQ(end.heading, Angle(10.0));
+  EXPECT_NEAR(end.position.x, 2.0 + 0.5 * std::cos(10.0 * M_PI / 180.0), 1e-12);
+  EXPECT_NEAR(end.position.y, 3.0 + 0.5 * std::sin(10.0 * M_PI / 180.0), 1e-12);
+}
+
 }  // namespace core
 }  // namespace swarm_transport

@@ -61,24 +61,22 @@ TEST(World2DTest, StraightDriveForCommandDurationThenStop) {
   EXPECT_DOUBLE_EQ(Get(world, 0).command_remaining_s, 0.0);
 }
 
-TEST(World2DTest, ArcEndpointMatchesIntegrate) {
+TEST(World2DTest, CommandTurnsInPlaceThenDrivesStraight) {
   World2D world{WorldParams()};
   const core::Pose2 start = MakePose(5.0, 5.0, 30.0);
   ASSERT_TRUE(world.Spawn(7, start, nullptr));
-  // A quarter circle of radius 1: linear pi/2 m/s, angular pi/2 rad/s for 1 s.
-  const core::Velocity v{kPi / 2.0, kPi / 2.0};
+  // angular pi/2 rad/s for the 1 s command: a 90 degree turn at once, then 1 m straight.
+  const core::Velocity v{1.0, kPi / 2.0};
   ASSERT_TRUE(world.SetCommand(7, v, nullptr));
   world.Step(1.0);
-  const core::Pose2 expected = core::Integrate(start, v, 1.0);
+  const core::Pose2 expected = core::TurnThenDrive(start, v, 1.0);
   EXPECT_NEAR(Get(world, 7).pose.position.x, expected.position.x, kTol);
   EXPECT_NEAR(Get(world, 7).pose.position.y, expected.position.y, kTol);
   EXPECT_NEAR(Get(world, 7).pose.heading.degrees(), 120.0, 1e-7);
-  // Independent check of the geometry: the centre of the circle is 1 m to the left.
-  const double t0 = 30.0 * kPi / 180.0;
-  const core::Vec2 centre{5.0 - std::sin(t0), 5.0 + std::cos(t0)};
+  // Independent check of the geometry: 1 m along 120 degrees.
   const double t1 = 120.0 * kPi / 180.0;
-  EXPECT_NEAR(Get(world, 7).pose.position.x, centre.x + std::sin(t1), kTol);
-  EXPECT_NEAR(Get(world, 7).pose.position.y, centre.y - std::cos(t1), kTol);
+  EXPECT_NEAR(Get(world, 7).pose.position.x, 5.0 + std::cos(t1), kTol);
+  EXPECT_NEAR(Get(world, 7).pose.position.y, 5.0 + std::sin(t1), kTol);
 }
 
 TEST(World2DTest, CommandExpiresExactlyWithinAStep) {

@@ -24,10 +24,14 @@ struct Velocity {
 // seconds. Composes exactly: Integrate(Integrate(p, v, a), v, b) == Integrate(p, v, a + b).
 Pose2 Integrate(const Pose2& pose, Velocity velocity, double duration_s);
 
-// The command that turns a robot from `pose` to `heading` while driving `distance` (m) in
-// `duration_s`: angular = signed turn / duration, linear = distance / duration. The move is a
-// constant-curvature arc that ends at `heading` (Decision: one Twist expresses one tick; the
-// thesis turned in place then drove).
+// One tick's move as the thesis executed it [T6.2, SPEC 4]: turn in place by
+// angular * duration, then drive linear * duration straight ahead. This is what the simulator
+// does with a cmd_vel (World2D::SetCommand turns at once, then holds the linear part), so a
+// robot's prediction of its destination matches the simulation.
+Pose2 TurnThenDrive(const Pose2& pose, Velocity velocity, double duration_s);
+
+// The command that turns a robot from `pose` to `heading` and drives `distance` (m) within
+// `duration_s`: angular = signed turn / duration, linear = distance / duration.
 Velocity CommandFor(const Pose2& pose, Angle heading, double distance, double duration_s);
 
 // Points along the arc from `pose` under `velocity` for `duration_s`, `samples` >= 2 of them,

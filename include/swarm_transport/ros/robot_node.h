@@ -101,6 +101,8 @@ class RobotNode {
   std::optional<std::uint16_t> leader_memory_mission_;
   std::set<std::uint16_t> known_robots_;
   core::MissionPlan last_plan_;
+  core::MoveDecision last_move_;
+  std::size_t last_heard_ = 0;
   Neighbors::ConstPtr perception_;
   bool frozen_ = false;
   std::uint64_t ticks_ = 0;
