@@ -8,6 +8,7 @@ import unittest
 
 import rospy
 import rostest
+from std_srvs.srv import Trigger
 from swarm_transport.msg import Robot_Continue, Robot_Freeze, Robot_Position
 
 import swarm_testing as st
@@ -36,6 +37,16 @@ class FreezeContinue(unittest.TestCase):
         cls.swarm.shutdown()
         cls.log.close()
 
+    def frozen(self):
+        """Which robots say they are frozen (their ~describe service)."""
+        out = set()
+        for rid in range(self.robots):
+            srv = rospy.ServiceProxy('/robot_%d/robot/describe' % rid, Trigger)
+            srv.wait_for_service(self.timeout)
+            if 'frozen=1' in srv().message:
+                out.add(rid)
+        return out
+
     def window(self, ticks):
         """Positions at the start and the end of the next `ticks` ticks."""
         t0 = self.log.latest_tick()
@@ -49,7 +60,10 @@ class FreezeContinue(unittest.TestCase):
         settle = rospy.get_param('~settle_ticks')
         span = rospy.get_param('~window_ticks')
         self.freeze.publish(Robot_Freeze(frm, to))
-        self.window(settle)  # the message reaches every robot within a few ticks
+        # Lock-step runs hundreds of ticks per second: measure once every robot took it in.
+        self.assertTrue(st.wait_for(lambda: self.frozen() == set(range(frm, to)), self.timeout),
+                        'robots frozen: %s' % sorted(self.frozen()))
+        self.window(settle)
         a, b = self.window(span)
         for rid in range(self.robots):
             d = st.moved(a[rid], b[rid])
@@ -59,6 +73,8 @@ class FreezeContinue(unittest.TestCase):
         self.assertTrue(any(st.moved(a[r], b[r]) > min_move for r in others),
                         'no unfrozen robot moved')
         self.cont.publish(Robot_Continue(frm, to))
+        self.assertTrue(st.wait_for(lambda: not self.frozen(), self.timeout),
+                        'still frozen: %s' % sorted(self.frozen()))
         self.window(settle)
         a, b = self.window(span)
         for rid in range(frm, to):
@@ -68,8 +84,10 @@ class FreezeContinue(unittest.TestCase):
     def test_2_inverted_freeze_is_rejected(self):
         min_move = rospy.get_param('~min_move_m')
         span = rospy.get_param('~window_ticks')
+        self.assertEqual(self.frozen(), set())
         self.freeze.publish(Robot_Freeze(8, 3))  # from > to: rejected, nobody freezes
         self.window(rospy.get_param('~settle_ticks'))
+        self.assertEqual(self.frozen(), set(), 'an inverted Robot_Freeze froze robots')
         a, b = self.window(span)
         for rid in range(self.robots):
             self.assertGreater(st.moved(a[rid], b[rid]), min_move,

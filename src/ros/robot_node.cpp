@@ -1,6 +1,7 @@
 #include "swarm_transport/ros/robot_node.h"
 
 #include <geometry_msgs/Twist.h>
+#include <ros/master.h>
 
 #include <sstream>
 
@@ -153,6 +154,7 @@ void RobotNode::OnNewMission(const New_Mission::ConstPtr& msg) {
       update_pub_ = nh_.advertise<Update_Object>(names::kObjectUpdate, 20);
       delete_pub_ = nh_.advertise<Delete_Object>(names::kObjectDelete, 20);
       status_pub_ = nh_.advertise<Mission_Status>(names::kMissionStatus, 50);
+      LearnExpectedSubscribers();
     }
     return;
   }
@@ -197,12 +199,36 @@ void RobotNode::OnMissionStatus(const Mission_Status::ConstPtr& msg) {
   }
 }
 
+void RobotNode::LearnExpectedSubscribers() {
+  outlets_since_ = ros::WallTime::now();
+  outlets_ready_ = false;
+  expected_subscribers_.clear();
+  XmlRpc::XmlRpcValue request, response, payload;
+  request[0] = ros::this_node::getName();
+  if (!ros::master::execute("getSystemState", request, response, payload, true)) return;
+  XmlRpc::XmlRpcValue& subscribers = payload[1];
+  for (int i = 0; i < subscribers.size(); ++i) {
+    expected_subscribers_[static_cast<std::string>(subscribers[i][0])] =
+        static_cast<std::uint32_t>(subscribers[i][1].size());
+  }
+}
+
 bool RobotNode::MissionOutletsReady() {
-  if (!status_pub_) return true;
-  const std::size_t others = known_robots_.empty() ? 1 : known_robots_.size() - 1;
-  return freeze_pub_.getNumSubscribers() >= others && continue_pub_.getNumSubscribers() >= others &&
-         update_pub_.getNumSubscribers() >= others && delete_pub_.getNumSubscribers() >= others &&
-         status_pub_.getNumSubscribers() >= 1;
+  if (!status_pub_ || outlets_ready_) return true;
+  // A message published before a subscriber connected is lost for it: a first leader holds
+  // its phase machine until every node that subscribed when it got the mission is connected
+  // (the master told us how many), or 5 s of wall time passed.
+  const auto connected = [this](const ros::Publisher& pub, const char* topic) {
+    const auto it = expected_subscribers_.find(topic);
+    return pub.getNumSubscribers() >= (it == expected_subscribers_.end() ? 1u : it->second);
+  };
+  outlets_ready_ = (connected(freeze_pub_, names::kFreeze) &&
+                    connected(continue_pub_, names::kContinue) &&
+                    connected(update_pub_, names::kObjectUpdate) &&
+                    connected(delete_pub_, names::kObjectDelete) &&
+                    connected(status_pub_, names::kMissionStatus)) ||
+                   ros::WallTime::now() - outlets_since_ > ros::WallDuration(5.0);
+  return outlets_ready_;
 }
 
 void RobotNode::Publish(const core::MissionOutbox& outbox) {

@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include <map>
 #include <set>
 
 #include "swarm_transport/Delete_Object.h"
@@ -69,6 +70,8 @@ class RobotNode {
   // A first leader needs its own publishers; only those robots advertise them, so the swarm
   // does not become all-to-all. True when every robot can hear them.
   bool MissionOutletsReady();
+  // Asks the master how many nodes subscribe to each mission topic (once per new outlet).
+  void LearnExpectedSubscribers();
   bool InRange(std::uint16_t from, std::uint16_t to) const;
 
   ros::NodeHandle nh_;
@@ -94,6 +97,9 @@ class RobotNode {
   ros::Publisher update_pub_;
   ros::Publisher delete_pub_;
   ros::Publisher status_pub_;
+  std::map<std::string, std::uint32_t> expected_subscribers_;
+  ros::WallTime outlets_since_;
+  bool outlets_ready_ = false;
   ros::ServiceServer describe_srv_;
   ros::WallTimer timer_;
   core::MissionAgent agent_;
