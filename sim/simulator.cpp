@@ -11,6 +11,7 @@
 
 #include "swarm_transport/Pose.h"
 #include "swarm_transport/Robot_Positions.h"
+#include "swarm_transport/core/mission.h"
 #include "swarm_transport/ros/conversions.h"
 #include "swarm_transport/ros/names.h"
 
@@ -798,6 +799,18 @@ void Simulator::PublishMarkers() {
     target.scale.x = target.scale.y = target.scale.z = kTargetDiameterM;
     target.color = Rgba(0.1f, 0.8f, 0.2f, 0.8f);
     add(target);
+    // Leaders: a white disc under the robot's arrow.
+    for (std::uint16_t id : mission.leaders) {
+      const sim::Robot* robot = world_->Find(id);
+      if (robot == nullptr) continue;
+      Marker halo = MakeMarker("leaders", id, Marker::CYLINDER, stamp);
+      halo.pose.position.x = robot->pose.position.x;
+      halo.pose.position.y = robot->pose.position.y;
+      halo.scale.x = halo.scale.y = 4.0 * r;
+      halo.scale.z = kFlatM;
+      halo.color = Rgba(1.0f, 1.0f, 1.0f, 0.8f);
+      add(halo);
+    }
   }
 
   // Whatever was on screen and is gone now (killed robots, deleted objects) is deleted.
@@ -955,29 +968,24 @@ void Simulator::OnRobotDelete(const Delete_Robot::ConstPtr& msg) {
 }
 
 void Simulator::OnMissionNew(const New_Mission::ConstPtr& msg) {
+  // The same validation as the robots and the dispatcher, so the mission channel and the
+  // markers exist exactly for the missions the robots act on.
+  const core::MissionSpec spec = ToMissionSpec(*msg);
+  core::MissionContext context;
+  context.world_size_m = world_->params().world_size_m;
+  for (const auto& entry : world_->robots()) context.known_robots.insert(entry.first);
+  for (const auto& entry : missions_) context.live_missions.insert(entry.first);
+  const std::string why = core::ValidateMission(spec, context);
+  if (!why.empty()) {
+    ROS_DEBUG("simulator: ignored New_Mission %u: %s", msg->mission_id, why.c_str());
+    return;
+  }
   Mission mission;
-  mission.object_position = {msg->object_position_x, msg->object_position_y};
-  mission.object_size = {msg->object_size_x, msg->object_size_y};
-  mission.target = {msg->target_x, msg->target_y};
-  if (!IsFinite(mission.object_position) || !IsFinite(mission.object_size) ||
-      !IsFinite(mission.target)) {
-    ROS_WARN("simulator: ignored New_Mission %u with a non-finite value", msg->mission_id);
-    return;
-  }
-  if (!msg->robot_ids.empty()) {
-    mission.members = msg->robot_ids;
-    std::sort(mission.members.begin(), mission.members.end());
-    mission.members.erase(std::unique(mission.members.begin(), mission.members.end()),
-                          mission.members.end());
-  } else if (msg->robot_index_from < msg->robot_index_to) {
-    for (std::uint32_t id = msg->robot_index_from; id < msg->robot_index_to; ++id) {
-      mission.members.push_back(static_cast<std::uint16_t>(id));
-    }
-  } else {
-    ROS_WARN("simulator: ignored New_Mission %u: no robot_ids and an empty range [%u, %u)",
-             msg->mission_id, msg->robot_index_from, msg->robot_index_to);
-    return;
-  }
+  mission.members = spec.Assigned();
+  mission.leaders = spec.Leaders();
+  mission.object_position = spec.object_centre;
+  mission.object_size = spec.object_size;
+  mission.target = spec.target;
   missions_[msg->mission_id] = mission;
 }
 

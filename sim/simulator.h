@@ -101,6 +101,7 @@ class Simulator {
   // What the simulator knows of a live mission: who is in it and where its object is.
   struct Mission {
     std::vector<std::uint16_t> members;  // ascending
+    std::vector<std::uint16_t> leaders;  // highlighted in rviz
     core::Vec2 object_position;
     core::Vec2 object_size;
     core::Vec2 target;

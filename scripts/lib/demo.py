@@ -41,9 +41,10 @@ def parse_args(argv):
                    help='lock-step: ticks to run (default 600)')
     p.add_argument('--seconds', type=float, default=30.0,
                    help='real time: seconds to run (default 30); lock-step: wall time limit')
-    p.add_argument('--rviz', action='store_true', help='show the swarm in rviz')
+    p.add_argument('--rviz', action='store_true',
+                   help='show the swarm in rviz (runs the real-time clock, so it can be watched)')
     p.add_argument('--screenshot', default='',
-                   help='with --rviz: save a PNG of the rviz window at the end')
+                   help='with --rviz: save a PNG of the screen (mid-transport, or at the end)')
     p.add_argument('--config', default='', help='extra YAML merged over config/swarm.yaml')
     p.add_argument('--no-mission', action='store_true',
                    help='no transport mission: let the swarm flock for --ticks / --seconds')
@@ -59,6 +60,10 @@ def parse_args(argv):
         p.error('--ticks, --seconds and --timeout must be positive')
     if not a.no_mission and not 1 <= a.leaders <= a.group <= a.robots:
         p.error('need 1 <= --leaders <= --group <= --robots')
+    if a.screenshot and not a.rviz:
+        p.error('--screenshot needs --rviz')
+    if a.rviz:
+        a.realtime = True  # lock-step would finish before rviz drew a frame
     return a
 
 
@@ -109,7 +114,7 @@ def main(argv):
         rospy.Subscriber('/flock/positions', Robot_Positions, on_positions, queue_size=50)
         if not a.no_mission:
             ok = _run_mission(a, ros, state)
-            if a.rviz and a.screenshot:
+            if a.rviz and a.screenshot and not state.get('shot'):
                 _screenshot(ros, a.screenshot)
             rospy.signal_shutdown('demo done')
             _report(a, state, local_range, time.time() - started)
@@ -188,6 +193,10 @@ def _run_mission(a, ros, state):
     while time.time() < deadline:
         if phases and phases[-1][0] in (5, 6, 7):
             break
+        if (a.screenshot and not state.get('shot') and phases and phases[-1][0] == 3 and
+                time.time() - phases[-1][2] > 8.0):
+            _screenshot(ros, a.screenshot)  # the object on its way, leaders in front
+            state['shot'] = True
         if not ros.alive('roslaunch'):
             st_ros.log('[demo] FAILED: roslaunch ended early: see %s' % ros.log_dir)
             return False

@@ -1,0 +1,243 @@
+"""Experiment presets (config/experiments/*.yaml): loading, validation and expansion into the
+runs of an experiment. Pure python (no ROS): the runner, the report and the tests share it."""
+
+import copy
+import glob
+import math
+import os
+import random
+
+import yaml
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), '..', '..'))
+PRESET_DIR = os.path.join(ROOT, 'config', 'experiments')
+CONFIG_DIR = os.path.join(ROOT, 'config')
+
+KINDS = ('flocking', 'leader', 'transport')
+PLACEMENTS = ('random', 'corner', 'cluster')
+TRENDS = ('increasing', 'decreasing', 'flat')
+# The metrics of each kind, in the order of the tables (SPEC 8; docs/experiments.md).
+METRICS = {
+    'flocking': ['final_swarm_count', 'mean_swarm_count', 'swarm_count_slope_per_h',
+                 'initial_swarm_count', 'final_largest_swarm'],
+    'leader': ['path_fraction_attached', 'leader_swarm_at_arrival', 'leader_waits',
+               'leader_ticks', 'aborted'],
+    'transport': ['transport_ticks', 'slip_per_robot_m', 'distance_per_robot_m', 'leader_waits',
+                  'object_error_m', 'gathering_ticks', 'aborted'],
+}
+TOP_KEYS = {'description', 'kind', 'order', 'section', 'figures', 'runs', 'seed_base',
+            'base_config', 'config', 'robots', 'placement', 'cluster', 'max_ticks',
+            'trim_each_end', 'x_label', 'group_label', 'thesis', 'expect', 'mission',
+            'settings', 'jobs'}
+SETTING_KEYS = {'name', 'label', 'x', 'group', 'robots', 'config', 'mission', 'placement',
+                'max_ticks'}
+MISSION_KEYS = {'id', 'object', 'target', 'leaders', 'group', 'leader', 'mode'}
+CLUSTER_KEYS = {'origin', 'spacing_m', 'min_distance_m'}
+
+
+class PresetError(ValueError):
+    pass
+
+
+def preset_path(name):
+    return os.path.join(PRESET_DIR, name + '.yaml')
+
+
+def preset_names():
+    return sorted(os.path.splitext(os.path.basename(p))[0]
+                  for p in glob.glob(os.path.join(PRESET_DIR, '*.yaml')))
+
+
+def load_preset(name_or_path):
+    """The validated preset as a dict, with defaults filled in and 'name' set."""
+    path = name_or_path if name_or_path.endswith('.yaml') else preset_path(name_or_path)
+    if not os.path.isfile(path):
+        raise PresetError('no preset %r (have: %s)' % (name_or_path, ', '.join(preset_names())))
+    with open(path) as f:
+        preset = yaml.safe_load(f)
+    name = os.path.splitext(os.path.basename(path))[0]
+    return validate(preset, name)
+
+
+def validate(preset, name):
+    if not isinstance(preset, dict):
+        raise PresetError('%s: a preset is a mapping' % name)
+    p = copy.deepcopy(preset)
+    p['name'] = name
+
+    def fail(msg):
+        raise PresetError('preset %s: %s' % (name, msg))
+
+    unknown = set(preset) - TOP_KEYS
+    if unknown:
+        fail('unknown keys %s' % sorted(unknown))
+    for key in ('description', 'kind', 'runs', 'base_config', 'settings'):
+        if key not in p:
+            fail('missing %r' % key)
+    if p['kind'] not in KINDS:
+        fail('kind must be one of %s' % (KINDS,))
+    if not isinstance(p['runs'], int) or p['runs'] < 1:
+        fail('runs must be an integer >= 1')
+    p.setdefault('seed_base', 1)
+    p.setdefault('order', 1000)
+    p.setdefault('section', '')
+    p.setdefault('figures', [])
+    p.setdefault('config', {})
+    p.setdefault('robots', 25)
+    p.setdefault('placement', 'random')
+    p.setdefault('max_ticks', 0)
+    p.setdefault('x_label', 'setting')
+    p.setdefault('group_label', '')
+    p.setdefault('thesis', '')
+    p.setdefault('expect', [])
+    p.setdefault('trim_each_end', None)
+    base = os.path.join(CONFIG_DIR, p['base_config'])
+    if not os.path.isfile(base):
+        fail('base_config %s does not exist' % base)
+    if p['kind'] == 'flocking' and not p['max_ticks'] > 0:
+        fail('a flocking preset needs max_ticks > 0 (the run length)')
+    if p['kind'] != 'flocking':
+        if 'mission' not in p:
+            fail('a %s preset needs a mission block' % p['kind'])
+        if not p['max_ticks'] > 0:
+            fail('a mission preset needs max_ticks > 0 (the tick limit: ABORTED beyond it)')
+    if not isinstance(p['settings'], list) or not p['settings']:
+        fail('settings must be a non-empty list')
+    names = set()
+    for s in p['settings']:
+        if not isinstance(s, dict) or 'name' not in s:
+            fail('every setting needs a name')
+        bad = set(s) - SETTING_KEYS
+        if bad:
+            fail('setting %s: unknown keys %s' % (s['name'], sorted(bad)))
+        if s['name'] in names or not str(s['name']).replace('_', '').replace('-', '').isalnum():
+            fail('setting names must be unique and [A-Za-z0-9_-]: %r' % s['name'])
+        names.add(s['name'])
+        s.setdefault('label', str(s['name']))
+        s.setdefault('group', '')
+        s.setdefault('config', {})
+        s['label'] = str(s['label'])
+        s['group'] = str(s['group'])
+        st = setting_view(p, s)
+        if st['placement'] not in PLACEMENTS:
+            fail('placement must be one of %s' % (PLACEMENTS,))
+        if st['robots'] < 1:
+            fail('setting %s: robots must be >= 1' % s['name'])
+        if p['kind'] != 'flocking':
+            m = st['mission']
+            bad = set(m) - MISSION_KEYS
+            if bad:
+                fail('setting %s: unknown mission keys %s' % (s['name'], sorted(bad)))
+            if 'target' not in m:
+                fail('setting %s: the mission needs a target' % s['name'])
+            if p['kind'] == 'transport':
+                group = m.get('group', st['robots'])
+                if 'object' not in m or not 1 <= m.get('leaders', 0) <= group <= st['robots']:
+                    fail('setting %s: a transport needs an object and 1 <= leaders <= group '
+                         '<= robots' % s['name'])
+    for e in p['expect']:
+        if e.get('trend') not in TRENDS or e.get('metric') not in METRICS[p['kind']] + [
+                'swarm_count_slope_per_h']:
+            fail('expect entries need metric (one of the kind\'s) and trend %s' % (TRENDS,))
+    if p.get('cluster') is not None and set(p['cluster']) - CLUSTER_KEYS:
+        fail('unknown cluster keys %s' % sorted(set(p['cluster']) - CLUSTER_KEYS))
+    return p
+
+
+def setting_view(preset, setting):
+    """The effective parameters of one setting: preset values with the setting's overrides."""
+    mission = dict(preset.get('mission') or {})
+    mission.update(setting.get('mission') or {})
+    config = dict(preset.get('config') or {})
+    config.update(setting.get('config') or {})
+    return {
+        'name': setting['name'],
+        'label': setting.get('label', setting['name']),
+        'group': setting.get('group', ''),
+        'x': setting.get('x'),
+        'robots': int(setting.get('robots', preset['robots'])),
+        'placement': setting.get('placement', preset['placement']),
+        'max_ticks': int(setting.get('max_ticks', preset['max_ticks'])),
+        'config': config,
+        'mission': mission,
+    }
+
+
+def settings(preset):
+    return [setting_view(preset, s) for s in preset['settings']]
+
+
+def swarm_config(preset, view):
+    """The YAML dict handed to swarm.launch as extra_config: the preset's base config file with
+    the preset's and the setting's overrides."""
+    with open(os.path.join(CONFIG_DIR, preset['base_config'])) as f:
+        config = yaml.safe_load(f) or {}
+    config.update(view['config'])
+    return config
+
+
+def trim_each_end(n, override=None):
+    """Runs dropped at each end before averaging ('the middle runs', thesis 7.1): 10 runs ->
+    middle 6, 15 -> middle 11 (the thesis's numbers: two at each end), fewer than 5 runs ->
+    plain mean. min(2, n // 5) gives exactly these; a preset may override it."""
+    if override is not None:
+        return max(0, min(int(override), (n - 1) // 2))
+    return min(2, n // 5)
+
+
+def cluster_placement(robots, seed, local_range_m, radius_m, world_size_m, cluster=None):
+    """Random poses 'close enough to count as one swarm but otherwise random' in the arena's
+    bottom-left corner (thesis 7.3): uniform in a square that grows with the group, at least
+    min_distance_m apart, redrawn until the within-local-range graph is connected. Lines
+    'x y theta_deg' for placement:=file."""
+    cluster = cluster or {}
+    origin = cluster.get('origin', [0.3, 0.3])
+    spacing = float(cluster.get('spacing_m', 0.3))
+    min_d = float(cluster.get('min_distance_m', 2.0 * radius_m * 1.1 * 1.5))
+    side = max(spacing, spacing * math.sqrt(robots))
+    lo = (max(origin[0], radius_m), max(origin[1], radius_m))
+    hi = (min(lo[0] + side, world_size_m - radius_m), min(lo[1] + side, world_size_m - radius_m))
+    rng = random.Random(seed * 7919 + robots)
+    for _ in range(1000):
+        pts = []
+        for _ in range(robots):
+            for _ in range(1000):
+                p = (rng.uniform(lo[0], hi[0]), rng.uniform(lo[1], hi[1]))
+                if all(math.hypot(p[0] - q[0], p[1] - q[1]) >= min_d for q in pts):
+                    pts.append(p)
+                    break
+            else:
+                raise PresetError('cannot place %d robots %.3f m apart in a %.2f m square'
+                                  % (robots, min_d, side))
+        if components(pts, local_range_m)[0] == 1:
+            return [(x, y, rng.uniform(0.0, 360.0)) for x, y in pts]
+    raise PresetError('no connected cluster of %d robots found (local range %.2f)'
+                      % (robots, local_range_m))
+
+
+def components(points, local_range):
+    """(number of connected components, component label per point) of the graph linking
+    points within local_range (SPEC 8's swarm count)."""
+    parent = list(range(len(points)))
+
+    def find(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    r2 = local_range * local_range
+    for i in range(len(points)):
+        xi, yi = points[i][0], points[i][1]
+        for j in range(i + 1, len(points)):
+            dx, dy = xi - points[j][0], yi - points[j][1]
+            if dx * dx + dy * dy <= r2:
+                parent[find(i)] = find(j)
+    labels = [find(i) for i in range(len(points))]
+    return len(set(labels)), labels
+
+
+def leader_of(seed, robots):
+    """The robot that gets the leader-only mission in a run: random per run (thesis 7.3
+    'einem der Roboter wurde zufällig ... zugeteilt'), fixed by the run's seed."""
+    return random.Random(seed * 104729 + 17).randrange(robots)
