@@ -5,6 +5,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include <algorithm>
+#include <type_traits>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -282,6 +283,26 @@ bool Simulator::Initialize() {
       nh_.subscribe(names::kObjectUpdate, kMissionQueue, &Simulator::OnObjectUpdate, this);
   object_delete_sub_ =
       nh_.subscribe(names::kObjectDelete, kMissionQueue, &Simulator::OnObjectDelete, this);
+  if (lockstep_) {
+    // The lock-step barrier for mission messages: what arrives during tick k is relayed in
+    // every Neighbors of tick k + 1 (robots in lock-step do not subscribe to these topics).
+    // `counted`: the kinds robots publish, announced in their tick_done.
+    auto relay = [this](const char* topic, auto* list, bool counted) {
+      using M = typename std::remove_pointer_t<decltype(list)>::value_type::second_type;
+      relay_subs_.push_back(nh_.subscribe<M>(
+          topic, kMissionQueue,
+          [this, list, counted](const ros::MessageEvent<const M>& event) {
+            Relay(event, list, counted);
+          }));
+    };
+    relay(names::kMissionNew, &relay_missions_, false);
+    relay(names::kObjectUpdate, &relay_updates_, true);
+    relay(names::kObjectDelete, &relay_deletes_, true);
+    relay(names::kFreeze, &relay_freezes_, true);
+    relay(names::kContinue, &relay_continues_, true);
+    relay(names::kMissionEvent, &relay_events_, false);
+    relay(names::kMissionStatus, &relay_statuses_, true);
+  }
   for (const auto& entry : world_->robots()) AddRobotIo(entry.first);
   PublishRobotList();
 
@@ -324,6 +345,14 @@ void Simulator::AddRobotIo(std::uint16_t id) {
   // A tick's command is one small message: Nagle's algorithm would delay it by ~40 ms.
   ops.transport_hints = ros::TransportHints().tcpNoDelay();
   io.cmd_vel = robot_nh.subscribe(ops);
+  if (lockstep_) {
+    ros::SubscribeOptions done_ops = ros::SubscribeOptions::create<Tick_Done>(
+        names::kTickDone, kCmdVelQueue,
+        [this, id](const ros::MessageEvent<const Tick_Done>& event) { OnTickDone(id, event); },
+        ros::VoidConstPtr(), &cmd_queue_);
+    done_ops.transport_hints = ros::TransportHints().tcpNoDelay();
+    io.tick_done = robot_nh.subscribe(done_ops);
+  }
   io.teleport_absolute =
       robot_nh.advertiseService<TeleportAbsolute::Request, TeleportAbsolute::Response>(
           names::kTeleportAbsolute,
@@ -504,18 +533,18 @@ void Simulator::WaitForAnswers() {
     cmd_queue_.callAvailable(ros::WallDuration(kPollS));
     ros::spinOnce();
     PublishVisualsIfDue();
-  } while (awaiting_ > 0 && Running() && ros::WallTime::now() < deadline);
+  } while ((awaiting_ > 0 || !AllComplete()) && Running() && ros::WallTime::now() < deadline);
   // Whatever robots sent together with their answers (virtual copies) is in before the next
   // radio round.
   ros::spinOnce();
-  if (awaiting_ == 0 || !Running()) return;
+  if ((awaiting_ == 0 && AllComplete()) || !Running()) return;
   std::size_t late = 0;
   std::size_t live = 0;
   int first_late = -1;
   for (const auto& entry : io_) {
     if (!entry.second.live) continue;
     ++live;
-    if (!entry.second.answered) {
+    if (!Complete(entry.second)) {
       ++late;
       if (first_late < 0) first_late = entry.first;
     }
@@ -680,20 +709,99 @@ void Simulator::PublishRadio() {
     }
     for (std::size_t j : touched) heard[j] = 0;
     touched.clear();
+    if (lockstep_) FillRelay(&msg);
     io->second.neighbors.publish(msg);
     if (lockstep_) {
       ++io->second.neighbors_sent;
       io->second.answered = false;
+      io->second.done = false;
       io->second.stale = false;
       ++awaiting_;
     }
   }
 
+  ClearRelay();
   Robot_Positions all;
   all.tick = tick_;
   all.sim_time = sim_time;
   all.robots = std::move(truth);
   positions_pub_.publish(all);
+}
+
+template <typename M>
+void Simulator::Relay(const ros::MessageEvent<const M>& event, RelayList<M>* list, bool counted) {
+  const std::string& from = event.getPublisherName();
+  if (counted) ++events_received_[from];
+  list->emplace_back(from, *event.getConstMessage());
+}
+
+namespace {
+
+template <typename M>
+std::vector<M> Sorted(std::vector<std::pair<std::string, M>> list) {
+  std::stable_sort(list.begin(), list.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<M> out;
+  out.reserve(list.size());
+  for (auto& item : list) out.push_back(std::move(item.second));
+  return out;
+}
+
+}  // namespace
+
+void Simulator::FillRelay(Neighbors* msg) const {
+  msg->missions = Sorted(relay_missions_);
+  msg->object_updates = Sorted(relay_updates_);
+  msg->object_deletes = Sorted(relay_deletes_);
+  msg->freezes = Sorted(relay_freezes_);
+  msg->continues = Sorted(relay_continues_);
+  msg->mission_events = Sorted(relay_events_);
+  msg->statuses = Sorted(relay_statuses_);
+}
+
+void Simulator::ClearRelay() {
+  relay_missions_.clear();
+  relay_updates_.clear();
+  relay_deletes_.clear();
+  relay_freezes_.clear();
+  relay_continues_.clear();
+  relay_events_.clear();
+  relay_statuses_.clear();
+}
+
+void Simulator::OnTickDone(std::uint16_t id, const ros::MessageEvent<const Tick_Done>& event) {
+  auto it = io_.find(id);
+  if (it == io_.end()) return;
+  RobotIo& io = it->second;
+  const std::string& from = event.getPublisherName();
+  if (io.publisher != from) {  // first word, or the robot came back in another process
+    if (!io.publisher.empty()) events_announced_[io.publisher] -= io.events_announced;
+    io.publisher = from;
+    io.events_announced = 0;
+  }
+  const Tick_Done& msg = *event.getConstMessage();
+  events_announced_[from] += msg.events_published - io.events_announced;
+  io.events_announced = msg.events_published;
+  io.sends_tick_done = true;
+  if (io.live && msg.tick == tick_) io.done = true;
+}
+
+bool Simulator::Complete(const RobotIo& io) const {
+  if (!io.answered) return false;
+  if (!io.sends_tick_done) return true;
+  if (!io.done) return false;
+  const auto announced = events_announced_.find(io.publisher);
+  const auto received = events_received_.find(io.publisher);
+  const std::uint64_t want = announced == events_announced_.end() ? 0 : announced->second;
+  const std::uint64_t have = received == events_received_.end() ? 0 : received->second;
+  return have >= want;
+}
+
+bool Simulator::AllComplete() const {
+  for (const auto& entry : io_) {
+    if (entry.second.live && !Complete(entry.second)) return false;
+  }
+  return true;
 }
 
 void Simulator::PublishRobotList() {

@@ -20,12 +20,17 @@
 #include "swarm_transport/Delete_Object.h"
 #include "swarm_transport/Delete_Robot.h"
 #include "swarm_transport/Kill.h"
+#include "swarm_transport/Mission_Event.h"
+#include "swarm_transport/Mission_Status.h"
 #include "swarm_transport/Neighbors.h"
 #include "swarm_transport/New_Mission.h"
+#include "swarm_transport/Robot_Continue.h"
+#include "swarm_transport/Robot_Freeze.h"
 #include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/Spawn.h"
 #include "swarm_transport/TeleportAbsolute.h"
 #include "swarm_transport/TeleportRelative.h"
+#include "swarm_transport/Tick_Done.h"
 #include "swarm_transport/Update_Object.h"
 #include "swarm_transport/core/random.h"
 #include "swarm_transport/ros/params.h"
@@ -97,6 +102,12 @@ class Simulator {
     bool answered = false;             // the current tick's command arrived
     bool stale = false;                // an old tick's answer arrived during the current tick
     core::Velocity answer;
+    // Lock-step barrier for mission messages (see Tick_Done.msg).
+    ros::Subscriber tick_done;
+    bool sends_tick_done = false;      // once it sent one, every tick waits for it
+    bool done = false;                 // the current tick's tick_done arrived
+    std::string publisher;             // its node name (a host runs many robots in one node)
+    std::uint32_t events_announced = 0;
   };
   // What the simulator knows of a live mission: who is in it and where its object is.
   struct Mission {
@@ -107,6 +118,10 @@ class Simulator {
     core::Vec2 target;
   };
   using RelayKey = std::pair<std::uint16_t, std::uint8_t>;  // (robot_id, sub_id)
+  // Lock-step: mission messages received this tick, with their publisher, to relay in the
+  // next Neighbors (stable-sorted by publisher: per publisher and topic, arrival is FIFO).
+  template <typename M>
+  using RelayList = std::vector<std::pair<std::string, M>>;
 
   // ROS is up and no stop was requested.
   static bool Running();
@@ -134,6 +149,16 @@ class Simulator {
 
   // One radio round: Neighbors to every receiving robot, then /flock/positions.
   void PublishRadio();
+  // Lock-step relay of mission messages (Neighbors.msg): record one, fill a perception, clear.
+  template <typename M>
+  void Relay(const ros::MessageEvent<const M>& event, RelayList<M>* list, bool counted);
+  void FillRelay(Neighbors* msg) const;
+  void ClearRelay();
+  void OnTickDone(std::uint16_t id, const ros::MessageEvent<const Tick_Done>& event);
+  // A live robot's tick is complete: its cmd_vel, its tick_done, and every mission message it
+  // (or its process) announced have arrived.
+  bool Complete(const RobotIo& io) const;
+  bool AllComplete() const;
   // Latched /flock/robots: the robots that exist (robots check missions against it).
   void PublishRobotList();
   void PublishPoses();
@@ -180,6 +205,17 @@ class Simulator {
 
   ros::Publisher positions_pub_;
   ros::Publisher robots_pub_;
+  std::vector<ros::Subscriber> relay_subs_;
+  RelayList<New_Mission> relay_missions_;
+  RelayList<Update_Object> relay_updates_;
+  RelayList<Delete_Object> relay_deletes_;
+  RelayList<Robot_Freeze> relay_freezes_;
+  RelayList<Robot_Continue> relay_continues_;
+  RelayList<Mission_Event> relay_events_;
+  RelayList<Mission_Status> relay_statuses_;
+  // Per publisher: mission messages received / announced in its robots' tick_done.
+  std::map<std::string, std::uint64_t> events_received_;
+  std::map<std::string, std::uint64_t> events_announced_;
   ros::Publisher clock_pub_;
   ros::Publisher markers_pub_;
   std::unique_ptr<tf2_ros::TransformBroadcaster> tf_broadcaster_;

@@ -28,9 +28,9 @@ class FreezeContinue(unittest.TestCase):
                                     lockstep=True, max_ticks=0)
         assert cls.log.wait_tick(5, cls.timeout), 'the swarm never ticked'
         # Every robot must be connected before a command means anything.
-        assert st.wait_for(lambda: cls.freeze.get_num_connections() >= cls.robots and
-                           cls.cont.get_num_connections() >= cls.robots, cls.timeout)
-        assert st.wait_for(lambda: cls.position.get_num_connections() >= 1, cls.timeout)
+        assert st.wait_connected(cls.freeze, cls.timeout)
+        assert st.wait_connected(cls.cont, cls.timeout)
+        assert st.wait_connected(cls.position, cls.timeout)
 
     @classmethod
     def tearDownClass(cls):

@@ -79,8 +79,7 @@ class Missions(unittest.TestCase):
         self.start(robots=robots, seed=g('seed'))
         first = st.mission(31, 0, g('group'), 2, (7.0, 7.0, 2.0, 2.0), (5.0, 5.0))
         self.assertEqual(self.submit(first).code, 0)
-        self.assertTrue(st.wait_for(lambda: self.raw.get_num_connections() >= robots + 1,
-                                    self.timeout))
+        self.assertTrue(st.wait_connected(self.raw, self.timeout))
         # The second one goes out as a raw message, like `rostopic pub` would send it.
         self.raw.publish(st.mission(32, 0, g('group'), 2, (3.0, 8.0, 2.0, 2.0), (5.0, 8.0)))
         self.assertTrue(st.wait_for(lambda: self.status.final(31) and self.status.final(32),
@@ -112,8 +111,7 @@ class Missions(unittest.TestCase):
             self.assertNotEqual(answer.code, 0, 'mission %d was accepted' % mid)
             self.assertTrue(answer.message, 'mission %d rejected without a reason' % mid)
         # The same bad orders as raw messages: REJECTED statuses with reasons.
-        self.assertTrue(st.wait_for(lambda: self.raw.get_num_connections() >= robots + 1,
-                                    self.timeout))
+        self.assertTrue(st.wait_connected(self.raw, self.timeout))
         for mid, m in sorted(bad.items()):
             self.raw.publish(m)
             rospy.sleep(0.05)

@@ -72,6 +72,20 @@ def wait_for(predicate, timeout, period=0.02):
     return predicate()
 
 
+def wait_connected(pub, timeout):
+    """Waits until `pub` reaches every subscriber the master knows for its topic (in lock-step
+    that is the simulator, which relays mission messages, and the observers)."""
+    import rosgraph
+    master = rosgraph.Master(rospy.get_name())
+
+    def subscribers():
+        _, subs, _ = master.getSystemState()
+        return next((len(nodes) for topic, nodes in subs if topic == pub.resolved_name), 0)
+
+    return wait_for(lambda: subscribers() > 0 and pub.get_num_connections() >= subscribers(),
+                    timeout)
+
+
 def moved(a, b):
     return math.hypot(a[0] - b[0], a[1] - b[1])
 

@@ -26,7 +26,7 @@ class Transport(unittest.TestCase):
         try:
             self.assertTrue(log.wait_tick(3, timeout), 'the swarm never ticked')
             # Sent as a raw message, exactly as `rostopic pub` would.
-            self.assertTrue(st.wait_for(lambda: pub.get_num_connections() >= robots + 1, timeout))
+            self.assertTrue(st.wait_connected(pub, timeout))
             pub.publish(st.mission(7, frm, to, leaders, obj, target))
             self.assertTrue(st.wait_for(lambda: status.final(7), timeout),
                             'mission 7 did not finish; states so far %s' % status.states(7))

@@ -111,14 +111,17 @@ def main(argv):
                 pts = [(r.pos_x, r.pos_y) for r in msg.robots if r.type == 0]
                 state['counts'].append((msg.tick, msg.sim_time, swarm_count(pts, local_range)))
 
-        rospy.Subscriber('/flock/positions', Robot_Positions, on_positions, queue_size=50)
         if not a.no_mission:
-            ok = _run_mission(a, ros, state)
+            # Lock-step waits for this demo's subscription before its first tick: the mission
+            # goes out first, so it is relayed at tick 0 and a seed gives the same run.
+            ok = _run_mission(a, ros, state, lambda: rospy.Subscriber(
+                '/flock/positions', Robot_Positions, on_positions, queue_size=50))
             if a.rviz and a.screenshot and not state.get('shot'):
                 _screenshot(ros, a.screenshot)
             rospy.signal_shutdown('demo done')
             _report(a, state, local_range, time.time() - started)
             return 0 if ok else 1
+        rospy.Subscriber('/flock/positions', Robot_Positions, on_positions, queue_size=50)
         limit = a.seconds if a.realtime else max(a.seconds, 60.0 + a.ticks * a.robots * 0.002)
         deadline = time.time() + limit + 60.0
         ok = True
@@ -155,7 +158,7 @@ OBJECT = (7.0, 7.0, 2.0, 2.0)
 TARGET = (3.0, 3.0)
 
 
-def _run_mission(a, ros, state):
+def _run_mission(a, ros, state, observe):
     """Sends the thesis mission through the dispatcher and follows it to its end."""
     import rospy
     from swarm_transport.msg import Mission_Status, New_Mission
@@ -172,13 +175,10 @@ def _run_mission(a, ros, state):
     rospy.Subscriber('/flock/mission/status', Mission_Status, on_status, queue_size=100)
     submit = rospy.ServiceProxy('/mission_dispatcher/submit', Submit_Mission)
     try:
-        submit.wait_for_service(60)
+        submit.wait_for_service(180)
     except rospy.ROSException:
         st_ros.log('[demo] FAILED: the mission dispatcher did not come up (see %s)' % ros.log_dir)
         return False
-    deadline = time.time() + 60
-    while state['last'] is None and time.time() < deadline:
-        time.sleep(0.05)
     m = New_Mission(robot_index_from=0, robot_index_to=a.group, leader_number=a.leaders,
                     mission_id=MISSION_ID, object_position_x=OBJECT[0],
                     object_position_y=OBJECT[1], object_size_x=OBJECT[2],
@@ -189,6 +189,7 @@ def _run_mission(a, ros, state):
     if answer.code != 0:
         st_ros.log('[demo] FAILED: the dispatcher rejected the mission')
         return False
+    observe()
     deadline = sent + a.timeout
     while time.time() < deadline:
         if phases and phases[-1][0] in (5, 6, 7):

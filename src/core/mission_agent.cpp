@@ -41,7 +41,8 @@ bool MissionAgent::OnObjectDelete(std::uint16_t mission_id, std::string* why) {
   return true;
 }
 
-bool MissionAgent::OnEvent(std::uint16_t mission_id, MissionEventKind event, std::string* why) {
+bool MissionAgent::OnEvent(std::uint16_t mission_id, MissionEventKind event,
+                           std::uint64_t not_before_tick, std::string* why) {
   auto it = live_.find(mission_id);
   if (it == live_.end()) {
     *why = "Mission_Event for unknown mission " + std::to_string(mission_id);
@@ -63,6 +64,7 @@ bool MissionAgent::OnEvent(std::uint16_t mission_id, MissionEventKind event, std
   } else {
     live.unloaded = true;
   }
+  live.signal_tick = not_before_tick;
   return true;
 }
 
@@ -168,7 +170,7 @@ void MissionAgent::RunFirstLeader(Live* live, const Pose2& self,
       }
       break;
     case MissionPhase::kLoading:
-      if (live->loaded) {
+      if (live->loaded && tick >= live->signal_tick) {
         outbox->resume = spec.AssignedRuns();
         live->offset = live->centre - centroid;
         live->transport_ticks = 0;
@@ -191,7 +193,7 @@ void MissionAgent::RunFirstLeader(Live* live, const Pose2& self,
       break;
     }
     case MissionPhase::kUnloading:
-      if (live->unloaded) {
+      if (live->unloaded && tick >= live->signal_tick) {
         outbox->resume = spec.AssignedRuns();
         outbox->delete_object = spec.id;
         EnterPhase(live, MissionPhase::kDone, tick, inside, outbox);

@@ -336,7 +336,6 @@ bool MissionDispatcher::Initialize() {
 
 void MissionDispatcher::Shutdown() {
   start_timer_.stop();
-  for (auto& kv : missions_) kv.second.signal_timer.stop();
 }
 
 bool MissionDispatcher::FromSelf(const std::string& publisher) const {
@@ -516,6 +515,7 @@ void MissionDispatcher::OnStatus(const ros::MessageEvent<Mission_Status const>& 
   if (msg.robots_assigned > 0) m.robots_assigned = msg.robots_assigned;
   m.robots_inside = msg.robots_inside;
   m.distance_to_target_m = msg.distance_to_target;
+  if (msg.tick > 0) m.phase_tick = msg.tick;
   if (!msg.reason.empty()) m.reason = msg.reason;
   if (phase != m.phase || m.reached == 0) EnterPhase(msg.mission_id, &m, phase);
 }
@@ -534,7 +534,6 @@ void MissionDispatcher::EnterPhase(std::uint16_t id, TrackedMission* m, MissionP
     ScheduleSignal(id, m, core::MissionEventKind::kUnloaded);
   }
   if (!m->Live()) {
-    m->signal_timer.stop();
     finished_.emplace_back(id, m->generation);
     Forget();  // never the mission just finished: it is the newest
   }
@@ -556,37 +555,23 @@ void MissionDispatcher::ScheduleSignal(std::uint16_t id, TrackedMission* m,
   const bool loaded = kind == core::MissionEventKind::kLoaded;
   const double delay_s = loaded ? options_.loaded_delay_s : options_.unloaded_delay_s;
   if (delay_s < 0.0 || (loaded ? m->loaded_sent : m->unloaded_sent)) return;
-  if (delay_s == 0.0) {
-    SendEvent(id, kind, "at once");
-    (loaded ? m->loaded_sent : m->unloaded_sent) = true;
-    return;
-  }
-  const std::uint64_t generation = m->generation;
-  m->signal_timer = nh_.createTimer(
-      ros::Duration(delay_s),
-      [this, id, generation, kind](const ros::TimerEvent&) { OnSignalTimer(id, generation, kind); },
-      true);
+  // Sent at once, stamped with the first leader's tick at which it takes effect: the delay
+  // then lands on the same tick whatever the scheduling (lock-step runs reproduce).
+  const auto delay_ticks =
+      static_cast<std::uint64_t>(std::ceil(delay_s / config_.tick_period_s - 1e-9));
+  SendEvent(id, kind, m->phase_tick + delay_ticks, "with the configured delay");
+  (loaded ? m->loaded_sent : m->unloaded_sent) = true;
 }
 
-void MissionDispatcher::OnSignalTimer(std::uint16_t id, std::uint64_t generation,
-                                      core::MissionEventKind kind) {
-  auto it = missions_.find(id);
-  if (it == missions_.end() || it->second.generation != generation) return;
-  TrackedMission& m = it->second;
-  const bool loaded = kind == core::MissionEventKind::kLoaded;
-  const MissionPhase waiting = loaded ? MissionPhase::kLoading : MissionPhase::kUnloading;
-  // Sent already (by hand through ~signal) or the robots moved on: nothing to do.
-  if (m.phase != waiting || (loaded ? m.loaded_sent : m.unloaded_sent)) return;
-  SendEvent(id, kind, "after the configured delay");
-  (loaded ? m.loaded_sent : m.unloaded_sent) = true;
-}
-
-void MissionDispatcher::SendEvent(std::uint16_t id, core::MissionEventKind kind, const char* why) {
+void MissionDispatcher::SendEvent(std::uint16_t id, core::MissionEventKind kind,
+                                  std::uint64_t not_before_tick, const char* why) {
   Mission_Event msg;
   msg.mission_id = id;
   msg.event = static_cast<std::uint8_t>(kind);
+  msg.not_before_tick = not_before_tick;
   event_pub_.publish(msg);
-  ROS_INFO("%s: sent %s for mission %u (%s)", kNode, EventName(kind), id, why);
+  ROS_INFO("%s: sent %s for mission %u (%s; from tick %llu)", kNode, EventName(kind), id, why,
+           static_cast<unsigned long long>(not_before_tick));
 }
 
 bool MissionDispatcher::OnSubmit(Submit_Mission::Request& req, Submit_Mission::Response& res) {
@@ -614,7 +599,7 @@ bool MissionDispatcher::OnSignal(Mission_Signal::Request& req, Mission_Signal::R
   }
   TrackedMission& m = missions_[req.mission_id];
   const auto kind = static_cast<core::MissionEventKind>(req.event);
-  SendEvent(req.mission_id, kind, "requested through ~signal");
+  SendEvent(req.mission_id, kind, 0, "requested through ~signal");
   (kind == core::MissionEventKind::kLoaded ? m.loaded_sent : m.unloaded_sent) = true;
   res.code = Mission_Signal::Response::OK;
   res.message = std::string(EventName(kind)) + " sent for " + mission + " (now " +

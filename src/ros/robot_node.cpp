@@ -2,7 +2,9 @@
 
 #include <geometry_msgs/Twist.h>
 #include <ros/master.h>
+#include <std_msgs/String.h>
 
+#include <cmath>
 #include <sstream>
 
 #include "swarm_transport/Robot_Position.h"
@@ -12,6 +14,20 @@
 #include "swarm_transport/ros/names.h"
 
 namespace swarm_transport {
+namespace {
+
+// Diagnostics: one line per robot per this many wall seconds on this topic.
+constexpr char kStatsTopic[] = "/flock/robot_stats";
+constexpr double kStatsPeriodS = 1.0;
+constexpr std::uint32_t kStatsQueue = 10;
+// Broadcast comm: every robot publishes once per tick, so the queue must hold a whole swarm's
+// tick (as the simulator's); a robot not heard for this many radio rounds is forgotten.
+constexpr std::uint32_t kBroadcastQueue = 10000;
+constexpr std::uint64_t kForgetRounds = 10;
+// Lock-step diagnostics: a broadcast position this close to the radio's truth is current.
+constexpr double kCurrentPositionM = 0.01;
+
+}  // namespace
 
 std::string RobotNodeOptions::Validate() const {
   std::ostringstream os;
@@ -19,6 +35,8 @@ std::string RobotNodeOptions::Validate() const {
     os << "~id must be set to an integer in [0, 65535] but is " << id;
   } else if (clock != "realtime" && clock != "lockstep") {
     os << "~clock must be 'realtime' or 'lockstep' but is '" << clock << "'";
+  } else if (comm != "local" && comm != "broadcast") {
+    os << "~comm must be 'local' or 'broadcast' but is '" << comm << "'";
   }
   return os.str();
 }
@@ -27,8 +45,16 @@ RobotNode::RobotNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     : nh_(nh), private_nh_(private_nh), agent_(0, core::MissionAgentParams()) {}
 
 bool RobotNode::Initialize() {
-  private_nh_.param("id", options_.id, -1);
-  private_nh_.param<std::string>("clock", options_.clock, "realtime");
+  RobotNodeOptions options;
+  private_nh_.param("id", options.id, -1);
+  private_nh_.param<std::string>("clock", options.clock, "realtime");
+  private_nh_.param<std::string>("comm", options.comm, "local");
+  private_nh_.param("diagnostics", options.diagnostics, false);
+  return Initialize(options);
+}
+
+bool RobotNode::Initialize(const RobotNodeOptions& options) {
+  options_ = options;
   std::string error = options_.Validate();
   XmlRpc::XmlRpcValue swarm;
   if (error.empty() && nh_.getParam("/swarm", swarm)) {
@@ -51,22 +77,45 @@ bool RobotNode::Initialize() {
   // tcpNoDelay: a tick's perception is one small message; Nagle would add ~40 ms per tick.
   neighbors_sub_ = nh_.subscribe(names::kNeighbors, 2, &RobotNode::OnNeighbors, this,
                                  ros::TransportHints().tcpNoDelay());
-  freeze_sub_ = nh_.subscribe(names::kFreeze, 20, &RobotNode::OnFreeze, this);
-  continue_sub_ = nh_.subscribe(names::kContinue, 20, &RobotNode::OnContinue, this);
-  mission_sub_ = nh_.subscribe(names::kMissionNew, 20, &RobotNode::OnNewMission, this);
-  update_sub_ = nh_.subscribe(names::kObjectUpdate, 20, &RobotNode::OnObjectUpdate, this);
-  delete_sub_ = nh_.subscribe(names::kObjectDelete, 20, &RobotNode::OnObjectDelete, this);
-  event_sub_ = nh_.subscribe(names::kMissionEvent, 20, &RobotNode::OnMissionEvent, this);
-  status_sub_ = nh_.subscribe(names::kMissionStatus, 50, &RobotNode::OnMissionStatus, this);
+  if (options_.clock == "lockstep") {
+    // Lock-step: mission messages arrive relayed inside `neighbors`, each at the tick after it
+    // was sent, whatever the scheduling; the simulator waits for this robot's tick_done. Only
+    // the simulator and observers subscribe to mission topics here, so every robot can
+    // advertise its outlets now: connected long before any mission, they make no first leader
+    // wait a scheduling-dependent while.
+    tick_done_pub_ = nh_.advertise<Tick_Done>(names::kTickDone, 2);
+    AdvertiseMissionOutlets();
+  } else {
+    freeze_sub_ = nh_.subscribe(names::kFreeze, 20, &RobotNode::OnFreeze, this);
+    continue_sub_ = nh_.subscribe(names::kContinue, 20, &RobotNode::OnContinue, this);
+    mission_sub_ = nh_.subscribe(names::kMissionNew, 20, &RobotNode::OnNewMission, this);
+    update_sub_ = nh_.subscribe(names::kObjectUpdate, 20, &RobotNode::OnObjectUpdate, this);
+    delete_sub_ = nh_.subscribe(names::kObjectDelete, 20, &RobotNode::OnObjectDelete, this);
+    event_sub_ = nh_.subscribe(names::kMissionEvent, 20, &RobotNode::OnMissionEvent, this);
+    status_sub_ = nh_.subscribe(names::kMissionStatus, 50, &RobotNode::OnMissionStatus, this);
+  }
   robots_sub_ = nh_.subscribe(names::kRobots, 2, &RobotNode::OnRobots, this);
+  if (options_.comm == "broadcast") {
+    position_sub_ = nh_.subscribe(names::kPosition, kBroadcastQueue, &RobotNode::OnPosition, this,
+                                  ros::TransportHints().tcpNoDelay());
+  }
+  if (options_.diagnostics) {
+    stats_ = std::make_unique<core::TickStats>(config_.tick_period_s,
+                                               options_.clock == "realtime");
+    stats_pub_ = nh_.advertise<std_msgs::String>(kStatsTopic, kStatsQueue);
+  }
   describe_srv_ = private_nh_.advertiseService("describe", &RobotNode::OnDescribe, this);
-  if (options_.clock == "realtime") {
+  if (options_.clock == "realtime" && !options_.external_timer) {
     timer_ = nh_.createWallTimer(ros::WallDuration(config_.tick_period_s), &RobotNode::OnTimer,
                                  this);
   }
   ROS_INFO("robot %u: up (%s clock, tick %.3f s, range %.3f m, speed %.3f m/tick)", id_,
            options_.clock.c_str(), config_.tick_period_s, config_.flocking.local_range_m,
            config_.flocking.speed_m_per_tick);
+  if (options_.comm != "local" || options_.diagnostics) {
+    ROS_INFO("robot %u: %s comm, diagnostics %s", id_, options_.comm.c_str(),
+             options_.diagnostics ? "on" : "off");
+  }
   return true;
 }
 
@@ -82,11 +131,83 @@ void RobotNode::OnNeighbors(const Neighbors::ConstPtr& msg) {
     return;
   }
   perception_ = msg;
+  if (options_.clock == "lockstep") ApplyRelayed(*msg);
+  if (stats_) stats_->OnRound(msg->tick, msg->sim_time, ros::WallTime::now().toSec());
   if (options_.clock == "lockstep") Tick();
 }
 
-void RobotNode::OnTimer(const ros::WallTimerEvent& /*event*/) {
+template <typename Msg, typename Handler>
+static void ApplyAll(const std::vector<Msg>& list, RobotNode* node, Handler handler) {
+  for (const Msg& m : list) (node->*handler)(boost::make_shared<const Msg>(m));
+}
+
+void RobotNode::ApplyRelayed(const Neighbors& msg) {
+  // The order documented in Neighbors.msg: a mission before its object's moves, those before
+  // freeze / continue, signals and phases last.
+  ApplyAll(msg.missions, this, &RobotNode::OnNewMission);
+  ApplyAll(msg.object_updates, this, &RobotNode::OnObjectUpdate);
+  ApplyAll(msg.object_deletes, this, &RobotNode::OnObjectDelete);
+  ApplyAll(msg.freezes, this, &RobotNode::OnFreeze);
+  ApplyAll(msg.continues, this, &RobotNode::OnContinue);
+  ApplyAll(msg.mission_events, this, &RobotNode::OnMissionEvent);
+  ApplyAll(msg.statuses, this, &RobotNode::OnMissionStatus);
+}
+
+void RobotNode::OnTimer(const ros::WallTimerEvent& /*event*/) { TimerTick(); }
+
+void RobotNode::TimerTick() {
   if (perception_) Tick();
+}
+
+void RobotNode::OnPosition(const Robot_Position::ConstPtr& msg) {
+  // Its own echo and its own virtual copies are not news (the radio drops them too).
+  if (msg->robot_id == id_ || !IsFinite(*msg)) return;
+  Heard& heard = broadcast_[std::make_pair(msg->robot_id, msg->sub_id)];
+  heard.position = msg;
+  heard.wall_s = ros::WallTime::now().toSec();
+  heard.round = perception_ ? perception_->tick : 0;
+}
+
+void RobotNode::RecordTick() {
+  const ros::WallTime wall_now = ros::WallTime::now();
+  const double now = wall_now.toSec();
+  stats_->OnTick(now);
+  // Delivered within one tick: of the robots the radio says are in range this round, those
+  // whose latest position reached this robot in time (local: the round itself; broadcast:
+  // their own message, by arrival time in real time, by content in lock-step).
+  std::size_t expected = 0;
+  std::size_t delivered = 0;
+  const bool round_fresh = stats_->RoundFresh(now);
+  for (const Robot_Position& r : perception_->robots) {
+    if (r.type != Robot_Position::TYPE_PHYSICAL) continue;
+    ++expected;
+    if (options_.comm == "local") {
+      delivered += round_fresh ? 1 : 0;
+      continue;
+    }
+    const auto it = broadcast_.find(std::make_pair(r.robot_id, std::uint8_t{0}));
+    if (it == broadcast_.end()) continue;
+    const bool current =
+        options_.clock == "realtime"
+            ? now - it->second.wall_s <= core::kLateTickFactor * config_.tick_period_s
+            : std::hypot(it->second.position->pos_x - r.pos_x,
+                         it->second.position->pos_y - r.pos_y) <= kCurrentPositionM;
+    delivered += current ? 1 : 0;
+  }
+  stats_->CountUpdates(expected, delivered);
+  // The first tick is reported at once (its wall time is the robot's start-up figure).
+  if (!stats_published_.isZero() && (wall_now - stats_published_).toSec() < kStatsPeriodS) {
+    return;
+  }
+  stats_published_ = wall_now;
+  std::ostringstream os;
+  os.setf(std::ios::fixed);
+  os.precision(6);
+  os << "id=" << id_ << " clock=" << options_.clock << " comm=" << options_.comm
+     << " wall=" << now << " " << stats_->TakeLine();
+  std_msgs::String line;
+  line.data = os.str();
+  stats_pub_.publish(line);
 }
 
 bool RobotNode::InRange(std::uint16_t from, std::uint16_t to) const {
@@ -148,14 +269,8 @@ void RobotNode::OnNewMission(const New_Mission::ConstPtr& msg) {
   context.live_missions = agent_.LiveIds();
   std::string why = core::ValidateMission(spec, context);
   if (why.empty() && agent_.OnNewMission(spec, &why)) {
-    if (spec.FirstLeader() == id_ && !status_pub_) {
-      freeze_pub_ = nh_.advertise<Robot_Freeze>(names::kFreeze, 20);
-      continue_pub_ = nh_.advertise<Robot_Continue>(names::kContinue, 20);
-      update_pub_ = nh_.advertise<Update_Object>(names::kObjectUpdate, 20);
-      delete_pub_ = nh_.advertise<Delete_Object>(names::kObjectDelete, 20);
-      status_pub_ = nh_.advertise<Mission_Status>(names::kMissionStatus, 50);
-      LearnExpectedSubscribers();
-    }
+    if (spec.FirstLeader() == id_ && !status_pub_) AdvertiseMissionOutlets();
+    if (spec.FirstLeader() == id_ && expected_subscribers_.empty()) LearnExpectedSubscribers();
     return;
   }
   // Only the robots concerned say so, so that one bad message does not log N lines.
@@ -188,7 +303,8 @@ void RobotNode::OnMissionEvent(const Mission_Event::ConstPtr& msg) {
     return;
   }
   std::string why;
-  if (!agent_.OnEvent(msg->mission_id, static_cast<core::MissionEventKind>(msg->event), &why)) {
+  if (!agent_.OnEvent(msg->mission_id, static_cast<core::MissionEventKind>(msg->event),
+                     msg->not_before_tick, &why)) {
     ROS_WARN("robot %u: rejected %s", id_, why.c_str());
   }
 }
@@ -197,6 +313,14 @@ void RobotNode::OnMissionStatus(const Mission_Status::ConstPtr& msg) {
   if (msg->state <= Mission_Status::REJECTED) {
     agent_.OnStatus(msg->mission_id, static_cast<core::MissionPhase>(msg->state));
   }
+}
+
+void RobotNode::AdvertiseMissionOutlets() {
+  freeze_pub_ = nh_.advertise<Robot_Freeze>(names::kFreeze, 20);
+  continue_pub_ = nh_.advertise<Robot_Continue>(names::kContinue, 20);
+  update_pub_ = nh_.advertise<Update_Object>(names::kObjectUpdate, 20);
+  delete_pub_ = nh_.advertise<Delete_Object>(names::kObjectDelete, 20);
+  status_pub_ = nh_.advertise<Mission_Status>(names::kMissionStatus, 50);
 }
 
 void RobotNode::LearnExpectedSubscribers() {
@@ -243,23 +367,27 @@ void RobotNode::Publish(const core::MissionOutbox& outbox) {
     u.object_position_x = static_cast<float>(outbox.update_object->second.x);
     u.object_position_y = static_cast<float>(outbox.update_object->second.y);
     update_pub_.publish(u);
+    ++events_published_;
   }
   for (const auto& run : outbox.freeze) {
     Robot_Freeze f;
     f.robot_index_from = run.first;
     f.robot_index_to = run.second;
     freeze_pub_.publish(f);
+    ++events_published_;
   }
   for (const auto& run : outbox.resume) {
     Robot_Continue c;
     c.robot_index_from = run.first;
     c.robot_index_to = run.second;
     continue_pub_.publish(c);
+    ++events_published_;
   }
   if (outbox.delete_object) {
     Delete_Object d;
     d.mission_id = *outbox.delete_object;
     delete_pub_.publish(d);
+    ++events_published_;
   }
   for (const core::StatusReport& r : outbox.statuses) {
     Mission_Status m;
@@ -274,6 +402,7 @@ void RobotNode::Publish(const core::MissionOutbox& outbox) {
     m.object_position_y = static_cast<float>(r.object.y);
     m.distance_to_target = static_cast<float>(r.distance_to_target);
     status_pub_.publish(m);
+    ++events_published_;
     ROS_INFO("robot %u: mission %u %s", id_, r.mission_id, core::PhaseName(r.phase));
   }
 }
@@ -282,10 +411,23 @@ void RobotNode::Tick() {
   core::Perception in;
   in.self_id = id_;
   in.self = ToPose2(perception_->pose);
-  in.others.reserve(perception_->robots.size());
-  for (const Robot_Position& r : perception_->robots) {
-    if (!IsFinite(r)) continue;  // the radio relays what robots sent; never trust it blindly
-    in.others.push_back(ToNeighbour(r));
+  if (options_.comm == "broadcast") {
+    // The thesis's wiring: everything every robot sent (the step filters by range).
+    in.others.reserve(broadcast_.size());
+    for (auto it = broadcast_.begin(); it != broadcast_.end();) {
+      if (it->second.round + kForgetRounds < perception_->tick) {
+        it = broadcast_.erase(it);
+        continue;
+      }
+      in.others.push_back(ToNeighbour(*it->second.position));
+      ++it;
+    }
+  } else {
+    in.others.reserve(perception_->robots.size());
+    for (const Robot_Position& r : perception_->robots) {
+      if (!IsFinite(r)) continue;  // the radio relays what robots sent; never trust it blindly
+      in.others.push_back(ToNeighbour(r));
+    }
   }
   // Mission peers are heard over the mission's channel, not seen: they count for the mission
   // (who is inside the object) but not for flocking, which stays local.
@@ -329,9 +471,16 @@ void RobotNode::Tick() {
   Publish(outbox);
   // A frozen robot keeps computing (its random sequence stays aligned) but sends zero.
   cmd_pub_.publish(ToTwist(command));
+  if (tick_done_pub_) {
+    Tick_Done done;
+    done.tick = perception_->tick;
+    done.events_published = events_published_;
+    tick_done_pub_.publish(done);
+  }
   const core::Pose2 after = core::TurnThenDrive(in.self, command, config_.tick_period_s);
   position_pub_.publish(ToRobotPosition(id_, after));
   ++ticks_;
+  if (stats_) RecordTick();
 }
 
 }  // namespace swarm_transport

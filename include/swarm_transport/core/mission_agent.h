@@ -71,7 +71,9 @@ class MissionAgent {
   bool OnNewMission(const MissionSpec& mission, std::string* why);
   bool OnObjectUpdate(std::uint16_t mission_id, Vec2 centre, std::string* why);
   bool OnObjectDelete(std::uint16_t mission_id, std::string* why);
-  bool OnEvent(std::uint16_t mission_id, MissionEventKind event, std::string* why);
+  // The first leader acts on it at tick `not_before_tick` at the earliest (0: at once).
+  bool OnEvent(std::uint16_t mission_id, MissionEventKind event, std::uint64_t not_before_tick,
+               std::string* why);
   // A status published by a mission's first leader (how other members learn the phase).
   void OnStatus(std::uint16_t mission_id, MissionPhase phase);
 
@@ -102,6 +104,7 @@ class MissionAgent {
     std::uint64_t transport_ticks = 0;
     bool loaded = false;       // first-leader: LOADED arrived during LOADING
     bool unloaded = false;     // first-leader: UNLOADED arrived during UNLOADING
+    std::uint64_t signal_tick = 0;  // ... and takes effect at this tick
     bool self_arrived = false; // this leader reached its leader-only goal
   };
   void Drop(std::uint16_t mission_id);

@@ -60,7 +60,7 @@ struct TrackedMission {
   bool loaded_sent = false;
   bool unloaded_sent = false;
   std::uint64_t generation = 0;  // tells a reused id's new entry from the forgotten one
-  ros::Timer signal_timer;       // the pending automatic LOADED / UNLOADED, one at a time
+  std::uint64_t phase_tick = 0;  // the first leader's tick of its latest report
 
   bool Live() const;
 };
@@ -103,8 +103,8 @@ class MissionDispatcher {
                      const std::string& reason);
   void EnterPhase(std::uint16_t id, TrackedMission* mission, core::MissionPhase phase);
   void ScheduleSignal(std::uint16_t id, TrackedMission* mission, core::MissionEventKind kind);
-  void OnSignalTimer(std::uint16_t id, std::uint64_t generation, core::MissionEventKind kind);
-  void SendEvent(std::uint16_t id, core::MissionEventKind kind, const char* why);
+  void SendEvent(std::uint16_t id, core::MissionEventKind kind, std::uint64_t not_before_tick,
+                 const char* why);
   void Forget();
   std::string StatusTable() const;
   bool FromSelf(const std::string& publisher) const;

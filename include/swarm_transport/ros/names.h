@@ -23,11 +23,13 @@ constexpr char kObjectDelete[] = "/flock/object/delete";
 constexpr char kRobotNew[] = "/flock/robot/new";
 constexpr char kRobotDelete[] = "/flock/robot/delete";
 constexpr char kMarkers[] = "/flock/markers";
+constexpr char kStats[] = "/flock/stats";  // the recorder's Swarm_Stats
 
 // Per robot, relative to the robot's namespace.
 constexpr char kCmdVel[] = "cmd_vel";
 constexpr char kPose[] = "pose";
 constexpr char kNeighbors[] = "neighbors";
+constexpr char kTickDone[] = "tick_done";  // lock-step only
 constexpr char kTeleportAbsolute[] = "teleport_absolute";
 constexpr char kTeleportRelative[] = "teleport_relative";
 

@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include <map>
 #include <set>
@@ -20,11 +21,14 @@
 #include "swarm_transport/New_Mission.h"
 #include "swarm_transport/Robot_Continue.h"
 #include "swarm_transport/Robot_Freeze.h"
+#include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/Robot_Positions.h"
+#include "swarm_transport/Tick_Done.h"
 #include "swarm_transport/Update_Object.h"
 #include "swarm_transport/core/leader.h"
 #include "swarm_transport/core/mission_agent.h"
 #include "swarm_transport/core/random.h"
+#include "swarm_transport/core/tick_stats.h"
 #include "swarm_transport/ros/params.h"
 
 namespace swarm_transport {
@@ -34,6 +38,15 @@ struct RobotNodeOptions {
   int id = -1;                   // ~id, required, [0, 65535]
   std::string clock = "realtime";  // ~clock: realtime (own wall timer) or lockstep (tick per
                                    // Neighbors message from the simulator)
+  // ~comm: local (flock on the radio's in-range list, SPEC 7) or broadcast (the thesis's
+  // all-to-all wiring: flock on every robot's /flock/position; for comparison benchmarks).
+  std::string comm = "local";
+  // ~diagnostics: publish tick timing and delivery figures on /flock/robot_stats once per
+  // wall second (benchmarks; off by default).
+  bool diagnostics = false;
+  // Not a parameter: a host of many robots calls TimerTick() itself instead of giving every
+  // robot a wall timer (roscpp re-sorts all of a process's timers at every expiry).
+  bool external_timer = false;
   std::string Validate() const;
 };
 
@@ -45,10 +58,15 @@ class RobotNode {
   RobotNode(ros::NodeHandle nh, ros::NodeHandle private_nh);
   // Loads and validates parameters, connects topics. False (after one ROS_FATAL) on bad input.
   bool Initialize();
+  // The same with the private options given (a host of many robots reads them once).
+  bool Initialize(const RobotNodeOptions& options);
+  // Real time: one tick on the latest perception (the wall timer's work).
+  void TimerTick();
   // Sends a last zero velocity (a stopping robot always stands still).
   void Shutdown();
 
   std::uint64_t ticks() const { return ticks_; }
+  double tick_period_s() const { return config_.tick_period_s; }
 
  private:
   void OnNeighbors(const Neighbors::ConstPtr& msg);
@@ -61,6 +79,12 @@ class RobotNode {
   void OnMissionEvent(const Mission_Event::ConstPtr& msg);
   void OnMissionStatus(const Mission_Status::ConstPtr& msg);
   void OnRobots(const Robot_Positions::ConstPtr& msg);
+  // Lock-step: applies the mission messages the simulator relayed with this perception.
+  void ApplyRelayed(const Neighbors& msg);
+  // Broadcast comm: remembers the latest position of every other robot and copy.
+  void OnPosition(const Robot_Position::ConstPtr& msg);
+  // Diagnostics: this tick's timing and delivered updates; publishes once per wall second.
+  void RecordTick();
   // ~describe: one line of state (role, frozen, missions, zones) for users and tests.
   bool OnDescribe(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   // Computes and executes one tick on `perception_`.
@@ -70,6 +94,8 @@ class RobotNode {
   // A first leader needs its own publishers; only those robots advertise them, so the swarm
   // does not become all-to-all. True when every robot can hear them.
   bool MissionOutletsReady();
+  // The publishers a first leader needs (lazily in real time, at start in lock-step).
+  void AdvertiseMissionOutlets();
   // Asks the master how many nodes subscribe to each mission topic (once per new outlet).
   void LearnExpectedSubscribers();
   bool InRange(std::uint16_t from, std::uint16_t to) const;
@@ -101,6 +127,8 @@ class RobotNode {
   ros::WallTime outlets_since_;
   bool outlets_ready_ = false;
   ros::ServiceServer describe_srv_;
+  ros::Publisher tick_done_pub_;
+  std::uint32_t events_published_ = 0;  // mission messages sent so far (tick_done)
   ros::WallTimer timer_;
   core::MissionAgent agent_;
   core::LeaderMemory leader_memory_;
@@ -112,6 +140,18 @@ class RobotNode {
   Neighbors::ConstPtr perception_;
   bool frozen_ = false;
   std::uint64_t ticks_ = 0;
+  // Broadcast comm: what each (robot_id, sub_id) last sent, and when (wall s, radio round).
+  struct Heard {
+    Robot_Position::ConstPtr position;
+    double wall_s = 0.0;
+    std::uint64_t round = 0;
+  };
+  ros::Subscriber position_sub_;
+  std::map<std::pair<std::uint16_t, std::uint8_t>, Heard> broadcast_;
+  // Diagnostics (null when off).
+  std::unique_ptr<core::TickStats> stats_;
+  ros::Publisher stats_pub_;
+  ros::WallTime stats_published_;
 };
 
 }  // namespace swarm_transport

@@ -1,0 +1,73 @@
+// Many robots in one process: RobotNode instances that behave as with a process per robot.
+#ifndef SWARM_TRANSPORT_ROS_ROBOT_HOST_H_
+#define SWARM_TRANSPORT_ROS_ROBOT_HOST_H_
+
+#include <ros/callback_queue.h>
+#include <ros/ros.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "swarm_transport/ros/robot_node.h"
+
+namespace swarm_transport {
+
+// Private parameters of the host (the robots' behaviour comes from /swarm as usual).
+struct RobotHostOptions {
+  int from = 0;                    // ~from: first robot id, [0, 65535]
+  int to = 0;                      // ~to: one past the last id, (from, 65536]
+  std::string clock = "realtime";  // ~clock: realtime | lockstep, for every robot
+  std::string comm = "local";      // ~comm: local | broadcast, for every robot
+  bool diagnostics = false;        // ~diagnostics: every robot publishes /flock/robot_stats
+  // ~threads: callback threads, [1, 64]. Robot k is served by thread k % threads only, so one
+  // robot's callbacks never run concurrently; 1 (default) also keeps the order of callbacks
+  // across robots fixed, which lock-step determinism does not need but debugging likes.
+  int threads = 1;
+  // ~simulator: also run the simulator in this process (its private parameters under
+  // ~simulator/, as /simulator/ for the simulator node): lock-step then needs no TCP round
+  // trip per robot and tick.
+  bool simulator = false;
+  std::string Validate() const;
+};
+
+class Simulator;
+class TickScheduler;
+
+// The in-process twin of robots.launch [issue 5]: robot <id> gets the handles
+// NodeHandle("robot_<id>") and NodeHandle("robot_<id>/robot"), so its topics, its ~describe
+// service and its parameters resolve exactly as for the node /robot_<id>/robot; global topics
+// are shared, and roscpp delivers messages between the hosted robots without serialising.
+// Real-time ticks come from one scheduler (one heap, one thread) instead of a wall timer per
+// robot: roscpp's timer manager re-sorts all of a process's timers, with a linear search per
+// comparison, at every expiry.
+class RobotHost {
+ public:
+  RobotHost(ros::NodeHandle nh, ros::NodeHandle private_nh);
+  ~RobotHost();
+  // Loads and validates parameters, starts every robot. False (after one ROS_FATAL) on bad
+  // parameters or when a robot fails to start.
+  bool Initialize();
+  // Runs the robots until ROS shuts down.
+  void Spin();
+  // Stops ticking; every robot sends a last zero velocity.
+  void Shutdown();
+
+ private:
+  // No tick or callback runs after this returns.
+  void StopCallbacks();
+
+  ros::NodeHandle nh_;
+  ros::NodeHandle private_nh_;
+  RobotHostOptions options_;
+  std::unique_ptr<Simulator> simulator_;
+  // Declared before the robots: their subscriptions refer to these queues.
+  std::vector<std::unique_ptr<ros::CallbackQueue>> queues_;
+  std::vector<std::unique_ptr<RobotNode>> robots_;
+  std::vector<std::unique_ptr<ros::AsyncSpinner>> spinners_;
+  std::unique_ptr<TickScheduler> scheduler_;
+};
+
+}  // namespace swarm_transport
+
+#endif  // SWARM_TRANSPORT_ROS_ROBOT_HOST_H_

@@ -1,0 +1,21 @@
+// The recorder: swarm counts and mission metrics of a run, as CSV files and /flock/stats.
+#include <ros/ros.h>
+
+#include <csignal>
+
+#include "swarm_transport/ros/recorder.h"
+
+int main(int argc, char** argv) {
+  // Our own SIGINT / SIGTERM handler: roscpp's would shut down before the files are closed.
+  ros::init(argc, argv, "recorder", ros::init_options::NoSigintHandler);
+  std::signal(SIGINT, [](int) { swarm_transport::Recorder::RequestStop(); });
+  std::signal(SIGTERM, [](int) { swarm_transport::Recorder::RequestStop(); });
+  ros::NodeHandle nh;
+  ros::NodeHandle private_nh("~");
+  swarm_transport::Recorder recorder(nh, private_nh);
+  if (!recorder.Initialize()) return 1;
+  recorder.Run();
+  recorder.Shutdown();
+  ros::shutdown();
+  return 0;
+}

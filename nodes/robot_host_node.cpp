@@ -1,0 +1,15 @@
+// Many robots in one process (ids [~from, ~to)), each as if it were its own robot node.
+#include <ros/ros.h>
+
+#include "swarm_transport/ros/robot_host.h"
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "robot_host");
+  ros::NodeHandle nh;
+  ros::NodeHandle private_nh("~");
+  swarm_transport::RobotHost host(nh, private_nh);
+  if (!host.Initialize()) return 1;
+  host.Spin();
+  host.Shutdown();
+  return 0;
+}

@@ -1,0 +1,208 @@
+#include "swarm_transport/core/metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <unordered_map>
+#include <utility>
+
+namespace swarm_transport {
+namespace core {
+namespace {
+
+// Grid cells beyond this index are clamped into the border cell: far-away (bad) positions
+// only cost time, never a wrong link, since every candidate pair is checked by distance.
+constexpr std::int64_t kMaxCell = std::int64_t{1} << 30;
+
+// Disjoint sets with path halving and union by size.
+class UnionFind {
+ public:
+  explicit UnionFind(std::size_t n) : parent_(n), size_(n, 1) {
+    std::iota(parent_.begin(), parent_.end(), std::size_t{0});
+  }
+  std::size_t Find(std::size_t i) {
+    while (parent_[i] != i) {
+      parent_[i] = parent_[parent_[i]];
+      i = parent_[i];
+    }
+    return i;
+  }
+  void Union(std::size_t a, std::size_t b) {
+    a = Find(a);
+    b = Find(b);
+    if (a == b) return;
+    if (size_[a] < size_[b]) std::swap(a, b);
+    parent_[b] = a;
+    size_[a] += size_[b];
+  }
+
+ private:
+  std::vector<std::size_t> parent_;
+  std::vector<std::size_t> size_;
+};
+
+std::int64_t CellIndex(double coordinate, double cell) {
+  const double c = std::floor(coordinate / cell);
+  return static_cast<std::int64_t>(
+      std::clamp(c, static_cast<double>(-kMaxCell), static_cast<double>(kMaxCell)));
+}
+
+std::uint64_t CellKey(std::int64_t cx, std::int64_t cy) {
+  // Both indices fit in 32 bits after clamping.
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(cx)) << 32) |
+         static_cast<std::uint32_t>(cy);
+}
+
+bool Finite(Vec2 p) { return std::isfinite(p.x) && std::isfinite(p.y); }
+
+double MeanOfRange(std::vector<double>::const_iterator begin,
+                   std::vector<double>::const_iterator end) {
+  if (begin == end) return std::numeric_limits<double>::quiet_NaN();
+  return std::accumulate(begin, end, 0.0) / static_cast<double>(end - begin);
+}
+
+}  // namespace
+
+SwarmComponents::SwarmComponents(const std::vector<Vec2>& positions, double local_range_m) {
+  const std::size_t n = positions.size();
+  UnionFind sets(n);
+  if (std::isfinite(local_range_m) && local_range_m > 0.0) {
+    const double range2 = local_range_m * local_range_m;
+    std::unordered_map<std::uint64_t, std::vector<std::size_t>> grid;
+    grid.reserve(n);
+    std::vector<std::pair<std::int64_t, std::int64_t>> cells(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!Finite(positions[i])) continue;
+      cells[i] = {CellIndex(positions[i].x, local_range_m),
+                  CellIndex(positions[i].y, local_range_m)};
+      grid[CellKey(cells[i].first, cells[i].second)].push_back(i);
+    }
+    // Robots within range are in the same or an adjacent cell; each pair is checked from its
+    // higher index only.
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!Finite(positions[i])) continue;
+      for (std::int64_t dx = -1; dx <= 1; ++dx) {
+        for (std::int64_t dy = -1; dy <= 1; ++dy) {
+          const auto it = grid.find(CellKey(cells[i].first + dx, cells[i].second + dy));
+          if (it == grid.end()) continue;
+          for (std::size_t j : it->second) {
+            if (j >= i) continue;
+            const double ex = positions[i].x - positions[j].x;
+            const double ey = positions[i].y - positions[j].y;
+            if (ex * ex + ey * ey <= range2) sets.Union(i, j);
+          }
+        }
+      }
+    }
+  }
+  labels_.assign(n, 0);
+  std::unordered_map<std::size_t, std::size_t> label_of_root;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t root = sets.Find(i);
+    const auto inserted = label_of_root.emplace(root, sizes_.size());
+    if (inserted.second) sizes_.push_back(0);
+    labels_[i] = inserted.first->second;
+    ++sizes_[labels_[i]];
+  }
+}
+
+std::size_t SwarmComponents::LargestSwarm() const {
+  return sizes_.empty() ? 0 : *std::max_element(sizes_.begin(), sizes_.end());
+}
+
+double Mean(const std::vector<double>& values) { return MeanOfRange(values.begin(), values.end()); }
+
+double Median(std::vector<double> values) {
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 == 1 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2.0;
+}
+
+double TrimmedMean(std::vector<double> values, std::size_t middle) {
+  const std::size_t n = values.size();
+  if (middle == 0 || middle >= n) return Mean(values);
+  std::sort(values.begin(), values.end());
+  const std::size_t drop = (n - middle) / 2;
+  return MeanOfRange(values.begin() + static_cast<std::ptrdiff_t>(drop),
+                     values.end() - static_cast<std::ptrdiff_t>(drop));
+}
+
+double TrimmedMean(std::vector<double> values) {
+  const std::size_t n = values.size();
+  return TrimmedMean(std::move(values), n - 2 * (n / 5));
+}
+
+bool TransportTracker::Feed(std::uint64_t tick, const std::vector<Vec2>& positions,
+                            const std::vector<bool>& is_leader) {
+  if (positions.empty() || is_leader.size() != positions.size() ||
+      !std::all_of(positions.begin(), positions.end(), Finite)) {
+    return false;
+  }
+  if (!started_) {
+    started_ = true;
+    first_tick_ = last_tick_ = tick;
+    previous_ = positions;
+    return true;
+  }
+  if (positions.size() != previous_.size() || tick <= last_tick_) return false;
+  const std::size_t n = positions.size();
+  Vec2 centroid_delta;
+  for (std::size_t i = 0; i < n; ++i) {
+    centroid_delta = centroid_delta + (positions[i] - previous_[i]);
+  }
+  centroid_delta = centroid_delta * (1.0 / static_cast<double>(n));
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 delta = positions[i] - previous_[i];
+    slip_sum_ += Norm(delta - centroid_delta);
+    const double moved = Norm(delta);
+    distance_sum_ += moved;
+    if (is_leader[i] && moved < kLeaderWaitM) ++leader_waits_;
+  }
+  previous_ = positions;
+  last_tick_ = tick;
+  return true;
+}
+
+double TransportTracker::SlipPerRobot() const {
+  return previous_.empty() ? 0.0 : slip_sum_ / static_cast<double>(previous_.size());
+}
+
+double TransportTracker::DistancePerRobot() const {
+  return previous_.empty() ? 0.0 : distance_sum_ / static_cast<double>(previous_.size());
+}
+
+LeaderTracker::LeaderTracker(Vec2 target, double local_range_m)
+    : target_(target), local_range_m_(local_range_m) {}
+
+bool LeaderTracker::Feed(std::uint64_t tick, const std::vector<Vec2>& positions,
+                         std::size_t leader) {
+  if (leader >= positions.size() || !Finite(positions[leader])) return false;
+  if (started_ && tick <= last_tick_) return false;
+  const Vec2 self = positions[leader];
+  if (!started_) {
+    started_ = true;
+    first_tick_ = tick;
+    start_ = self;
+  } else if (Norm(self - previous_) < kLeaderWaitM) {
+    ++waits_;
+  }
+  last_tick_ = tick;
+  previous_ = self;
+  distance_to_target_ = Distance(self, target_);
+  const SwarmComponents swarms(positions, local_range_m_);
+  const std::size_t attached = swarms.SizeOfSwarmOf(leader);
+  swarm_at_last_ = attached - 1;
+  if (!lost_ && attached < positions.size()) {
+    lost_ = true;
+    const double start_distance = Distance(start_, target_);
+    path_fraction_ = start_distance > 0.0
+                         ? std::clamp(1.0 - distance_to_target_ / start_distance, 0.0, 1.0)
+                         : 1.0;
+  }
+  return true;
+}
+
+}  // namespace core
+}  // namespace swarm_transport
