@@ -131,7 +131,7 @@ double TrimmedMean(std::vector<double> values, std::size_t middle) {
 
 double TrimmedMean(std::vector<double> values) {
   const std::size_t n = values.size();
-  return TrimmedMean(std::move(values), n - 2 * (n / 5));
+  return TrimmedMean(std::move(values), n < 5 ? 0 : n - 4);
 }
 
 bool TransportTracker::Feed(std::uint64_t tick, const std::vector<Vec2>& positions,

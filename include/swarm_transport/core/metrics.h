@@ -50,8 +50,9 @@ double Median(std::vector<double> values);
 // from each end and averages the rest (middle + 1 values remain when n - middle is odd).
 // middle >= n or middle == 0: the plain mean. 10 runs, middle 6; 15 runs, middle 11 or 9.
 double TrimmedMean(std::vector<double> values, std::size_t middle);
-// TrimmedMean dropping floor(n / 5) values from each end (n < 5: the plain mean): 10 runs ->
-// middle 6 [T7.2], 15 runs -> middle 9 [T7.3].
+// The default of the project: drop the 2 lowest and the 2 highest runs (n < 5: the plain
+// mean), which is what the thesis did with its runs: 10 -> middle 6 [T7.2], 15 -> middle 11
+// [T7.3, T7.4].
 double TrimmedMean(std::vector<double> values);
 
 // Transport metrics of one mission [T7.4], fed once per tick while it is in TRANSPORT with the
