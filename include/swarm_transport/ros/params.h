@@ -23,7 +23,7 @@ struct SwarmConfig {
   std::vector<core::Zone> danger_zones;  // static danger zones
   double loaded_delay_s = 2.0;        // dispatcher: LOADED this long after LOADING (<0: wait)
   double unloaded_delay_s = 2.0;      // dispatcher: UNLOADED this long after UNLOADING
-  int object_update_ticks = 5;        // first leader publishes Update_Object every N ticks
+  int object_update_ticks = 1;        // first leader publishes Update_Object every N ticks
 
   // Empty when valid, else one sentence naming the bad key.
   std::string Validate() const;
