@@ -5,10 +5,10 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include <algorithm>
-#include <type_traits>
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <type_traits>
 
 #include "swarm_transport/Pose.h"
 #include "swarm_transport/Robot_Positions.h"
@@ -111,16 +111,6 @@ visualization_msgs::Marker MakeMarker(const std::string& ns, int id, int type, r
 }
 
 // Reads an optional private parameter; a present value of the wrong type is an error.
-template <typename T>
-bool ReadParam(const ros::NodeHandle& nh, const std::string& name, const char* type, T* value,
-               std::string* error) {
-  if (!nh.hasParam(name)) return true;
-  if (!nh.getParam(name, *value)) {
-    *error = "~" + name + " must be " + type;
-    return false;
-  }
-  return true;
-}
 
 bool IsFinite(const core::Vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
 
@@ -182,22 +172,21 @@ bool Simulator::LoadParams(std::string* error) {
   }
   params_.radio_range_m = params_.swarm.flocking.local_range_m;
   const ros::NodeHandle& p = private_nh_;
-  if (!ReadParam(p, "placement", "a string", &params_.placement, error)) return false;
+  if (!ReadPrivate(p, "placement", &params_.placement, error)) return false;
   // With a placement file, robots defaults to every line of it.
   if (params_.placement == "file") params_.robots = -1;
-  if (!ReadParam(p, "robots", "an integer", &params_.robots, error) ||
-      !ReadParam(p, "placement_file", "a string", &params_.placement_file, error) ||
-      !ReadParam(p, "clock", "a string", &params_.clock, error) ||
-      !ReadParam(p, "lockstep_timeout_s", "a number", &params_.lockstep_timeout_s, error) ||
-      !ReadParam(p, "lockstep_max_ticks", "an integer", &params_.lockstep_max_ticks, error) ||
-      !ReadParam(p, "lockstep_start_timeout_s", "a number", &params_.lockstep_start_timeout_s,
-                 error) ||
-      !ReadParam(p, "lockstep_observers", "an integer", &params_.lockstep_observers, error) ||
-      !ReadParam(p, "integration_step_s", "a number", &params_.integration_step_s, error) ||
-      !ReadParam(p, "markers_rate_hz", "a number", &params_.markers_rate_hz, error) ||
-      !ReadParam(p, "tf", "true or false", &params_.tf, error) ||
-      !ReadParam(p, "range_circles", "true or false", &params_.range_circles, error) ||
-      !ReadParam(p, "radio_range_m", "a number", &params_.radio_range_m, error)) {
+  if (!ReadPrivate(p, "robots", &params_.robots, error) ||
+      !ReadPrivate(p, "placement_file", &params_.placement_file, error) ||
+      !ReadPrivate(p, "clock", &params_.clock, error) ||
+      !ReadPrivate(p, "lockstep_timeout_s", &params_.lockstep_timeout_s, error) ||
+      !ReadPrivate(p, "lockstep_max_ticks", &params_.lockstep_max_ticks, error) ||
+      !ReadPrivate(p, "lockstep_start_timeout_s", &params_.lockstep_start_timeout_s, error) ||
+      !ReadPrivate(p, "lockstep_observers", &params_.lockstep_observers, error) ||
+      !ReadPrivate(p, "integration_step_s", &params_.integration_step_s, error) ||
+      !ReadPrivate(p, "markers_rate_hz", &params_.markers_rate_hz, error) ||
+      !ReadPrivate(p, "tf", &params_.tf, error) ||
+      !ReadPrivate(p, "range_circles", &params_.range_circles, error) ||
+      !ReadPrivate(p, "radio_range_m", &params_.radio_range_m, error)) {
     return false;
   }
   *error = params_.Validate();
@@ -290,8 +279,7 @@ bool Simulator::Initialize() {
     auto relay = [this](const char* topic, auto* list, bool counted) {
       using M = typename std::remove_pointer_t<decltype(list)>::value_type::second_type;
       relay_subs_.push_back(nh_.subscribe<M>(
-          topic, kMissionQueue,
-          [this, list, counted](const ros::MessageEvent<const M>& event) {
+          topic, kMissionQueue, [this, list, counted](const ros::MessageEvent<const M>& event) {
             Relay(event, list, counted);
           }));
     };

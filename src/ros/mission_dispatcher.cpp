@@ -141,39 +141,6 @@ bool MissionFromXmlRpc(XmlRpcValue& e, core::MissionSpec* spec, std::string* err
   return true;
 }
 
-// Optional private parameters: missing keeps the default, a wrong type is an error.
-bool ReadDouble(const ros::NodeHandle& nh, const char* key, double* out, std::string* error) {
-  XmlRpcValue v;
-  if (!nh.getParam(key, v)) return true;
-  if (!AsDouble(v, out)) {
-    *error = std::string("~") + key + " must be a finite number";
-    return false;
-  }
-  return true;
-}
-
-bool ReadInt(const ros::NodeHandle& nh, const char* key, int* out, std::string* error) {
-  XmlRpcValue v;
-  if (!nh.getParam(key, v)) return true;
-  if (v.getType() != XmlRpcValue::TypeInt) {
-    *error = std::string("~") + key + " must be an integer";
-    return false;
-  }
-  *out = static_cast<int>(v);
-  return true;
-}
-
-bool ReadString(const ros::NodeHandle& nh, const char* key, std::string* out, std::string* error) {
-  XmlRpcValue v;
-  if (!nh.getParam(key, v)) return true;
-  if (v.getType() != XmlRpcValue::TypeString) {
-    *error = std::string("~") + key + " must be a string";
-    return false;
-  }
-  *out = static_cast<std::string>(v);
-  return true;
-}
-
 const char* EventName(core::MissionEventKind kind) {
   return kind == core::MissionEventKind::kLoaded ? "LOADED" : "UNLOADED";
 }
@@ -256,11 +223,11 @@ bool MissionDispatcher::LoadOptions(std::string* error) {
   }
   options_.loaded_delay_s = config_.loaded_delay_s;
   options_.unloaded_delay_s = config_.unloaded_delay_s;
-  if (!ReadDouble(private_nh_, "loaded_delay_s", &options_.loaded_delay_s, error) ||
-      !ReadDouble(private_nh_, "unloaded_delay_s", &options_.unloaded_delay_s, error) ||
-      !ReadString(private_nh_, "missions_file", &options_.missions_file, error) ||
-      !ReadDouble(private_nh_, "start_delay_s", &options_.start_delay_s, error) ||
-      !ReadInt(private_nh_, "max_live_missions", &options_.max_live_missions, error)) {
+  if (!ReadPrivate(private_nh_, "loaded_delay_s", &options_.loaded_delay_s, error) ||
+      !ReadPrivate(private_nh_, "unloaded_delay_s", &options_.unloaded_delay_s, error) ||
+      !ReadPrivate(private_nh_, "missions_file", &options_.missions_file, error) ||
+      !ReadPrivate(private_nh_, "start_delay_s", &options_.start_delay_s, error) ||
+      !ReadPrivate(private_nh_, "max_live_missions", &options_.max_live_missions, error)) {
     return false;
   }
   *error = options_.Validate();
@@ -334,9 +301,7 @@ bool MissionDispatcher::Initialize() {
   return true;
 }
 
-void MissionDispatcher::Shutdown() {
-  start_timer_.stop();
-}
+void MissionDispatcher::Shutdown() { start_timer_.stop(); }
 
 bool MissionDispatcher::FromSelf(const std::string& publisher) const {
   return publisher == ros::this_node::getName();

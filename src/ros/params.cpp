@@ -208,4 +208,59 @@ bool XmlRpcFromYamlFile(const std::string& path, XmlRpc::XmlRpcValue* out, std::
   return true;
 }
 
+namespace {
+
+// Reads `key` when present; `convert` takes the XmlRpc value and says whether it fits.
+template <typename T, typename Convert>
+bool ReadPrivateAs(const ros::NodeHandle& nh, const std::string& key, const char* what, T* value,
+                   std::string* error, Convert convert) {
+  XmlRpc::XmlRpcValue v;
+  if (!nh.getParam(key, v)) return true;
+  T converted;
+  if (!convert(v, &converted)) {
+    *error = "~" + key + " must be " + what;
+    return false;
+  }
+  *value = converted;
+  return true;
+}
+
+}  // namespace
+
+bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, double* value,
+                 std::string* error) {
+  return ReadPrivateAs(
+      nh, key, "a finite number", value, error,
+      [](XmlRpc::XmlRpcValue& v, double* out) { return AsDouble(v, out) && std::isfinite(*out); });
+}
+
+bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, int* value,
+                 std::string* error) {
+  return ReadPrivateAs(nh, key, "an integer", value, error, [](XmlRpc::XmlRpcValue& v, int* out) {
+    if (v.getType() != XmlRpc::XmlRpcValue::TypeInt) return false;
+    *out = static_cast<int>(v);
+    return true;
+  });
+}
+
+bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, bool* value,
+                 std::string* error) {
+  return ReadPrivateAs(nh, key, "true or false", value, error,
+                       [](XmlRpc::XmlRpcValue& v, bool* out) {
+                         if (v.getType() != XmlRpc::XmlRpcValue::TypeBoolean) return false;
+                         *out = static_cast<bool>(v);
+                         return true;
+                       });
+}
+
+bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, std::string* value,
+                 std::string* error) {
+  return ReadPrivateAs(nh, key, "a string", value, error,
+                       [](XmlRpc::XmlRpcValue& v, std::string* out) {
+                         if (v.getType() != XmlRpc::XmlRpcValue::TypeString) return false;
+                         *out = static_cast<std::string>(v);
+                         return true;
+                       });
+}
+
 }  // namespace swarm_transport

@@ -66,32 +66,6 @@ std::uint16_t Clamp16(std::size_t value) {
   return static_cast<std::uint16_t>(std::min<std::size_t>(value, 65535));
 }
 
-// Optional private parameters: missing keeps the default, a wrong type is an error.
-bool ReadDouble(const ros::NodeHandle& nh, const char* key, double* out, std::string* error) {
-  XmlRpcValue v;
-  if (!nh.getParam(key, v)) return true;
-  if (v.getType() == XmlRpcValue::TypeDouble) {
-    *out = static_cast<double>(v);
-  } else if (v.getType() == XmlRpcValue::TypeInt) {
-    *out = static_cast<int>(v);
-  } else {
-    *error = std::string("~") + key + " must be a number";
-    return false;
-  }
-  return true;
-}
-
-bool ReadString(const ros::NodeHandle& nh, const char* key, std::string* out, std::string* error) {
-  XmlRpcValue v;
-  if (!nh.getParam(key, v)) return true;
-  if (v.getType() != XmlRpcValue::TypeString) {
-    *error = std::string("~") + key + " must be a string";
-    return false;
-  }
-  *out = static_cast<std::string>(v);
-  return true;
-}
-
 }  // namespace
 
 volatile std::sig_atomic_t Recorder::stop_requested_ = 0;
@@ -154,9 +128,9 @@ bool Recorder::LoadParams(std::string* error) {
     return false;
   }
   params_.seed = static_cast<std::int64_t>(params_.swarm.seed);
-  if (!ReadString(private_nh_, "output_dir", &params_.output_dir, error) ||
-      !ReadString(private_nh_, "run_name", &params_.run_name, error) ||
-      !ReadDouble(private_nh_, "sample_period_s", &params_.sample_period_s, error)) {
+  if (!ReadPrivate(private_nh_, "output_dir", &params_.output_dir, error) ||
+      !ReadPrivate(private_nh_, "run_name", &params_.run_name, error) ||
+      !ReadPrivate(private_nh_, "sample_period_s", &params_.sample_period_s, error)) {
     return false;
   }
   XmlRpcValue seed;

@@ -3,6 +3,7 @@
 #ifndef SWARM_TRANSPORT_ROS_PARAMS_H_
 #define SWARM_TRANSPORT_ROS_PARAMS_H_
 
+#include <ros/node_handle.h>
 #include <xmlrpcpp/XmlRpcValue.h>
 
 #include <cstdint>
@@ -18,12 +19,12 @@ namespace swarm_transport {
 struct SwarmConfig {
   core::FlockingParams flocking;
   core::LeaderParams leader;
-  double tick_period_s = 0.1;         // one tick (lock-step: simulated; real time: wall)
-  std::uint64_t seed = 1;             // base seed of every robot's generator
+  double tick_period_s = 0.1;            // one tick (lock-step: simulated; real time: wall)
+  std::uint64_t seed = 1;                // base seed of every robot's generator
   std::vector<core::Zone> danger_zones;  // static danger zones
-  double loaded_delay_s = 2.0;        // dispatcher: LOADED this long after LOADING (<0: wait)
-  double unloaded_delay_s = 2.0;      // dispatcher: UNLOADED this long after UNLOADING
-  int object_update_ticks = 1;        // first leader publishes Update_Object every N ticks
+  double loaded_delay_s = 2.0;           // dispatcher: LOADED this long after LOADING (<0: wait)
+  double unloaded_delay_s = 2.0;         // dispatcher: UNLOADED this long after UNLOADING
+  int object_update_ticks = 1;           // first leader publishes Update_Object every N ticks
 
   // Empty when valid, else one sentence naming the bad key.
   std::string Validate() const;
@@ -35,6 +36,17 @@ bool ConfigFromXmlRpc(XmlRpc::XmlRpcValue& dict, SwarmConfig* config, std::strin
 
 // Reads a whole YAML file into the XmlRpc dictionary ROS would make of it with rosparam load.
 bool XmlRpcFromYamlFile(const std::string& path, XmlRpc::XmlRpcValue* out, std::string* error);
+
+// Optional private parameters of a node: a missing key keeps `value`; a value of the wrong
+// type (or a non-finite number) is an error naming the key, e.g. "~sample_period_s must be a
+// number". Integers are accepted where a number is expected.
+bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, double* value,
+                 std::string* error);
+bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, int* value, std::string* error);
+bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, bool* value,
+                 std::string* error);
+bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, std::string* value,
+                 std::string* error);
 
 // Parses one zone dictionary {shape: rect|circle, x, y, size_x, size_y | radius}.
 bool ZoneFromXmlRpc(XmlRpc::XmlRpcValue& value, int id, core::Zone* zone, std::string* error);
