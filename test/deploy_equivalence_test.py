@@ -1,14 +1,18 @@
 #!/usr/bin/env python3
 """deploy:=host (all robots in one robot_host process) behaves exactly like deploy:=process (a
-robot process each): in lock-step with the same seed both give identical poses at tick N."""
+robot process each), and so does a robot_host that runs the simulator too (~run_simulator): in
+lock-step with the same seed all give identical poses at tick N."""
 
 import os
+import signal
 import subprocess
 import sys
 import unittest
 
+import rospkg
 import rospy
 import rostest
+import yaml
 
 import swarm_testing as st
 
@@ -27,6 +31,37 @@ def poses(deploy, seed, robots, ticks, timeout):
         log.close()
 
 
+def poses_one_process(seed, robots, ticks, timeout):
+    """The same swarm with robots and simulator in one robot_host process (no swarm.launch):
+    the parameters swarm.launch would set, the simulator's under ~simulator/."""
+    pkg = rospkg.RosPack().get_path('swarm_transport')
+    with open(os.path.join(pkg, 'config', 'swarm.yaml')) as f:
+        swarm = yaml.safe_load(f)
+    swarm['seed'] = seed
+    rospy.set_param('/use_sim_time', True)
+    rospy.set_param('/swarm', swarm)
+    name = 'robot_host_sim'
+    rospy.set_param('/' + name, {
+        'from': 0, 'to': robots, 'clock': 'lockstep', 'run_simulator': True,
+        'simulator': {'robots': robots, 'clock': 'lockstep', 'lockstep_max_ticks': ticks,
+                      'lockstep_observers': 1}})
+    log = st.PositionLog()
+    host = subprocess.Popen(['rosrun', 'swarm_transport', 'robot_host', '__name:=' + name],
+                            env=os.environ.copy(), start_new_session=True)
+    try:
+        if not log.wait_tick(ticks, timeout):
+            raise AssertionError('one process: the run stopped at tick %d' % log.latest_tick())
+        return log.at(0), log.at(ticks)
+    finally:
+        os.killpg(host.pid, signal.SIGINT)
+        try:
+            host.wait(timeout=20)
+        except subprocess.TimeoutExpired:
+            os.killpg(host.pid, signal.SIGKILL)
+            host.wait()
+        log.close()
+
+
 class DeployEquivalence(unittest.TestCase):
 
     def test_host_and_processes_end_identical(self):
@@ -38,16 +73,19 @@ class DeployEquivalence(unittest.TestCase):
         tol_deg = rospy.get_param('~identical_tolerance_deg')
         start, by_process = poses('process', seed, robots, ticks, timeout)
         _, by_host = poses('host', seed, robots, ticks, timeout)
+        start_one, by_one = poses_one_process(seed, robots, ticks, timeout)
         self.assertEqual(sorted(by_process), list(range(robots)))
-        self.assertEqual(sorted(by_host), list(range(robots)))
-        for rid in range(robots):
-            self.assertLessEqual(st.moved(by_process[rid], by_host[rid]), tol_m,
-                                 'robot %d ended at %s as a process but %s in the host'
-                                 % (rid, by_process[rid], by_host[rid]))
-            turn = abs(by_process[rid][2] - by_host[rid][2]) % 360.0
-            self.assertLessEqual(min(turn, 360.0 - turn), tol_deg,
-                                 'robot %d heading %s vs %s' % (rid, by_process[rid],
-                                                                by_host[rid]))
+        self.assertEqual(start_one, start, 'the one-process run started elsewhere')
+        for name, other in (('the host', by_host), ('one process', by_one)):
+            self.assertEqual(sorted(other), list(range(robots)), name)
+            for rid in range(robots):
+                self.assertLessEqual(st.moved(by_process[rid], other[rid]), tol_m,
+                                     'robot %d ended at %s as a process but %s in %s'
+                                     % (rid, by_process[rid], other[rid], name))
+                turn = abs(by_process[rid][2] - other[rid][2]) % 360.0
+                self.assertLessEqual(min(turn, 360.0 - turn), tol_deg,
+                                     'robot %d heading %s vs %s in %s'
+                                     % (rid, by_process[rid], other[rid], name))
         self.assertGreater(max(st.moved(start[r], by_host[r]) for r in range(robots)),
                            rospy.get_param('~min_move_m'), 'nobody moved: a trivial run')
 

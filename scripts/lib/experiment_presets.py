@@ -28,7 +28,7 @@ METRICS = {
 TOP_KEYS = {'description', 'kind', 'order', 'section', 'figures', 'runs', 'seed_base',
             'base_config', 'config', 'robots', 'placement', 'cluster', 'max_ticks',
             'trim_each_end', 'x_label', 'group_label', 'thesis', 'expect', 'mission',
-            'settings', 'jobs'}
+            'settings', 'jobs', 'name'}
 SETTING_KEYS = {'name', 'label', 'x', 'group', 'robots', 'config', 'mission', 'placement',
                 'max_ticks'}
 MISSION_KEYS = {'id', 'object', 'target', 'leaders', 'group', 'leader', 'mode'}
@@ -177,12 +177,12 @@ def swarm_config(preset, view):
 
 
 def trim_each_end(n, override=None):
-    """Runs dropped at each end before averaging ('the middle runs', thesis 7.1): 10 runs ->
-    middle 6, 15 -> middle 11 (the thesis's numbers: two at each end), fewer than 5 runs ->
-    plain mean. min(2, n // 5) gives exactly these; a preset may override it."""
+    """Runs dropped at each end before averaging ('the middle runs', thesis 7.1): the 2 lowest
+    and the 2 highest, as the thesis did (10 runs -> middle 6, 15 -> middle 11) and as the
+    core's TrimmedMean does; fewer than 5 runs -> plain mean. A preset may override it."""
     if override is not None:
         return max(0, min(int(override), (n - 1) // 2))
-    return min(2, n // 5)
+    return 2 if n >= 5 else 0
 
 
 def cluster_placement(robots, seed, local_range_m, radius_m, world_size_m, cluster=None):

@@ -69,8 +69,10 @@ class PrivateRos(object):
 
     def start(self, args, name):
         log = open(os.path.join(self.log_dir, name + '.log'), 'w')
+        # Under nohup or CI, SIGINT may arrive ignored and would stay ignored in the children:
+        # then rosmaster and roslaunch ignore the stop request and every stop waits 15 s.
         p = subprocess.Popen(args, env=self.env, stdout=log, stderr=subprocess.STDOUT,
-                             start_new_session=True)
+                             start_new_session=True, preexec_fn=_default_sigint)
         self.procs.append((p, name, log))
         return p
 
@@ -110,6 +112,10 @@ class PrivateRos(object):
                     p.wait()
             log.close()
         self.procs = []
+
+
+def _default_sigint():
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
 
 
 def _terminate(signum, _frame):

@@ -27,8 +27,7 @@ void TickStats::OnRound(std::uint64_t round, double sim_time_s, double now_s) {
 bool TickStats::RoundFresh(double now_s) const {
   if (!have_round_) return false;
   if (!realtime_) return true;
-  return now_s - last_round_s_ <= kLateTickFactor * period_s_ &&
-         last_round_latency_s_ <= period_s_;
+  return now_s - last_round_s_ <= kLateTickFactor * period_s_ && last_round_latency_s_ <= period_s_;
 }
 
 void TickStats::OnTick(double now_s) {
@@ -49,16 +48,14 @@ void TickStats::CountUpdates(std::size_t expected, std::size_t delivered) {
 
 std::string TickStats::TakeLine() {
   char line[320];
-  std::snprintf(line, sizeof(line),
-                "ticks=%llu late=%llu max_period_ms=%.3f rounds=%llu missed_rounds=%llu "
-                "updates=%llu delivered=%llu max_latency_ms=%.3f first_tick_wall=%.6f",
-                static_cast<unsigned long long>(ticks_),
-                static_cast<unsigned long long>(late_ticks_),
-                max_period_s_ * 1e3, static_cast<unsigned long long>(rounds_),
-                static_cast<unsigned long long>(missed_rounds_),
-                static_cast<unsigned long long>(updates_),
-                static_cast<unsigned long long>(delivered_), max_latency_s_ * 1e3,
-                first_tick_s_);
+  std::snprintf(
+      line, sizeof(line),
+      "ticks=%llu late=%llu max_period_ms=%.3f rounds=%llu missed_rounds=%llu "
+      "updates=%llu delivered=%llu max_latency_ms=%.3f first_tick_wall=%.6f",
+      static_cast<unsigned long long>(ticks_), static_cast<unsigned long long>(late_ticks_),
+      max_period_s_ * 1e3, static_cast<unsigned long long>(rounds_),
+      static_cast<unsigned long long>(missed_rounds_), static_cast<unsigned long long>(updates_),
+      static_cast<unsigned long long>(delivered_), max_latency_s_ * 1e3, first_tick_s_);
   max_period_s_ = 0.0;
   max_latency_s_ = 0.0;
   return line;

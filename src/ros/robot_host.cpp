@@ -49,8 +49,8 @@ class TickScheduler {
   using Clock = std::chrono::steady_clock;
 
   explicit TickScheduler(double period_s)
-      : period_(std::chrono::duration_cast<Clock::duration>(
-            std::chrono::duration<double>(period_s))) {}
+      : period_(
+            std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(period_s))) {}
   ~TickScheduler() { Stop(); }
 
   // Before Start(): robot `robot`, served by `queue`, first ticks at `first_due`.
@@ -153,13 +153,13 @@ bool RobotHost::Initialize() {
   private_nh_.param<std::string>("comm", options_.comm, "local");
   private_nh_.param("diagnostics", options_.diagnostics, false);
   private_nh_.param("threads", options_.threads, 1);
-  private_nh_.param("simulator", options_.simulator, false);
+  private_nh_.param("run_simulator", options_.run_simulator, false);
   const std::string error = options_.Validate();
   if (!error.empty()) {
     ROS_FATAL("robot_host: invalid parameters: %s", error.c_str());
     return false;
   }
-  if (options_.simulator) {
+  if (options_.run_simulator) {
     simulator_ = std::make_unique<Simulator>(nh_, ros::NodeHandle(private_nh_, "simulator"));
     if (!simulator_->Initialize()) return false;
   }

@@ -100,8 +100,7 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
                                   ros::TransportHints().tcpNoDelay());
   }
   if (options_.diagnostics) {
-    stats_ = std::make_unique<core::TickStats>(config_.tick_period_s,
-                                               options_.clock == "realtime");
+    stats_ = std::make_unique<core::TickStats>(config_.tick_period_s, options_.clock == "realtime");
     stats_pub_ = nh_.advertise<std_msgs::String>(kStatsTopic, kStatsQueue);
   }
   describe_srv_ = private_nh_.advertiseService("describe", &RobotNode::OnDescribe, this);
@@ -203,8 +202,8 @@ void RobotNode::RecordTick() {
   std::ostringstream os;
   os.setf(std::ios::fixed);
   os.precision(6);
-  os << "id=" << id_ << " clock=" << options_.clock << " comm=" << options_.comm
-     << " wall=" << now << " " << stats_->TakeLine();
+  os << "id=" << id_ << " clock=" << options_.clock << " comm=" << options_.comm << " wall=" << now
+     << " " << stats_->TakeLine();
   std_msgs::String line;
   line.data = os.str();
   stats_pub_.publish(line);

@@ -36,7 +36,7 @@ TEST(TickStatsTest, RealtimeRoundIsFreshWithinOneTickOfArrivalAndLatency) {
   s.OnRound(0, 0.0, 50.001);  // the fastest delivery so far: latency 0 by definition
   EXPECT_TRUE(s.RoundFresh(50.101));
   EXPECT_FALSE(s.RoundFresh(50.112));  // more than 1.1 periods after it arrived
-  s.OnRound(1, 0.1, 50.251);  // 150 ms after it was sampled (relative to the fastest)
+  s.OnRound(1, 0.1, 50.251);           // 150 ms after it was sampled (relative to the fastest)
   EXPECT_NEAR(s.max_latency_s(), 0.15, 1e-9);
   EXPECT_FALSE(s.RoundFresh(50.252));
   s.OnRound(2, 0.2, 50.202);  // on time again
@@ -52,9 +52,9 @@ TEST(TickStatsTest, DeliveredNeverExceedsExpectedAndLineHasEveryField) {
   EXPECT_EQ(s.updates(), 7u);
   EXPECT_EQ(s.delivered(), 6u);
   const std::string line = s.TakeLine();
-  for (const char* key : {"ticks=2 ", "late=1 ", "max_period_ms=300.000 ", "rounds=0 ",
-                          "missed_rounds=0 ", "updates=7 ", "delivered=6 ", "max_latency_ms=",
-                          "first_tick_wall=1.000000"}) {
+  for (const char* key :
+       {"ticks=2 ", "late=1 ", "max_period_ms=300.000 ", "rounds=0 ", "missed_rounds=0 ",
+        "updates=7 ", "delivered=6 ", "max_latency_ms=", "first_tick_wall=1.000000"}) {
     EXPECT_NE(line.find(key), std::string::npos) << key << " in " << line;
   }
   // Maxima cover the time since the last line.

@@ -60,10 +60,10 @@ class TickStats {
   std::uint64_t delivered_ = 0;
   bool have_round_ = false;
   std::uint64_t last_round_ = 0;
-  double last_round_s_ = 0.0;        // wall time the latest round arrived
+  double last_round_s_ = 0.0;  // wall time the latest round arrived
   double last_round_latency_s_ = 0.0;
-  double min_offset_s_ = 0.0;        // smallest (arrival wall - sim time) so far
-  double last_tick_s_ = -1.0;        // wall time of the previous tick (< 0: none yet)
+  double min_offset_s_ = 0.0;  // smallest (arrival wall - sim time) so far
+  double last_tick_s_ = -1.0;  // wall time of the previous tick (< 0: none yet)
   double first_tick_s_ = -1.0;
   double max_period_s_ = 0.0;
   double max_latency_s_ = 0.0;

@@ -24,10 +24,10 @@ struct RobotHostOptions {
   // robot's callbacks never run concurrently; 1 (default) also keeps the order of callbacks
   // across robots fixed, which lock-step determinism does not need but debugging likes.
   int threads = 1;
-  // ~simulator: also run the simulator in this process (its private parameters under
-  // ~simulator/, as /simulator/ for the simulator node): lock-step then needs no TCP round
-  // trip per robot and tick.
-  bool simulator = false;
+  // ~run_simulator: also run the simulator in this process (its private parameters under
+  // ~simulator/, as under /simulator/ for the simulator node): lock-step then needs no TCP
+  // round trip per robot and tick.
+  bool run_simulator = false;
   std::string Validate() const;
 };
 
