@@ -182,6 +182,7 @@ bool Simulator::LoadParams(std::string* error) {
       !ReadPrivate(p, "lockstep_max_ticks", &params_.lockstep_max_ticks, error) ||
       !ReadPrivate(p, "lockstep_start_timeout_s", &params_.lockstep_start_timeout_s, error) ||
       !ReadPrivate(p, "lockstep_observers", &params_.lockstep_observers, error) ||
+      !ReadPrivate(p, "lockstep_dispatcher", &params_.lockstep_dispatcher, error) ||
       !ReadPrivate(p, "integration_step_s", &params_.integration_step_s, error) ||
       !ReadPrivate(p, "markers_rate_hz", &params_.markers_rate_hz, error) ||
       !ReadPrivate(p, "tf", &params_.tf, error) ||
@@ -276,12 +277,18 @@ bool Simulator::Initialize() {
     // The lock-step barrier for mission messages: what arrives during tick k is relayed in
     // every Neighbors of tick k + 1 (robots in lock-step do not subscribe to these topics).
     // `counted`: the kinds robots publish, announced in their tick_done.
+    // The barrier counts messages per publisher node, so the callbacks must get the
+    // connection header: a lambda given to subscribe<M>() would be wrapped as a
+    // `const M::ConstPtr&` callback, whose MessageEvent names every sender "unknown_publisher"
+    // (the dispatcher's statuses then counted as a robot's, and a tick could close early).
     auto relay = [this](const char* topic, auto* list, bool counted) {
       using M = typename std::remove_pointer_t<decltype(list)>::value_type::second_type;
-      relay_subs_.push_back(nh_.subscribe<M>(
+      ros::SubscribeOptions ops;
+      ops.initByFullCallbackType<const ros::MessageEvent<const M>&>(
           topic, kMissionQueue, [this, list, counted](const ros::MessageEvent<const M>& event) {
             Relay(event, list, counted);
-          }));
+          });
+      relay_subs_.push_back(nh_.subscribe(ops));
     };
     relay(names::kMissionNew, &relay_missions_, false);
     relay(names::kObjectUpdate, &relay_updates_, true);
@@ -290,6 +297,11 @@ bool Simulator::Initialize() {
     relay(names::kContinue, &relay_continues_, true);
     relay(names::kMissionEvent, &relay_events_, false);
     relay(names::kMissionStatus, &relay_statuses_, true);
+    if (params_.lockstep_dispatcher) {
+      ROS_INFO("lockstep: a dispatcher sends LOADED %s, UNLOADED %s; ticks wait for them",
+               params_.swarm.loaded_delay_s >= 0.0 ? "on its own" : "never (waits for you)",
+               params_.swarm.unloaded_delay_s >= 0.0 ? "on its own" : "never (waits for you)");
+    }
   }
   for (const auto& entry : world_->robots()) AddRobotIo(entry.first);
   PublishRobotList();
@@ -334,10 +346,11 @@ void Simulator::AddRobotIo(std::uint16_t id) {
   ops.transport_hints = ros::TransportHints().tcpNoDelay();
   io.cmd_vel = robot_nh.subscribe(ops);
   if (lockstep_) {
-    ros::SubscribeOptions done_ops = ros::SubscribeOptions::create<Tick_Done>(
+    ros::SubscribeOptions done_ops;
+    done_ops.initByFullCallbackType<const ros::MessageEvent<const Tick_Done>&>(
         names::kTickDone, kCmdVelQueue,
-        [this, id](const ros::MessageEvent<const Tick_Done>& event) { OnTickDone(id, event); },
-        ros::VoidConstPtr(), &cmd_queue_);
+        [this, id](const ros::MessageEvent<const Tick_Done>& event) { OnTickDone(id, event); });
+    done_ops.callback_queue = &cmd_queue_;
     done_ops.transport_hints = ros::TransportHints().tcpNoDelay();
     io.tick_done = robot_nh.subscribe(done_ops);
   }
@@ -366,6 +379,11 @@ void Simulator::CountSubscriber(std::uint16_t id, std::uint64_t generation, int 
 bool Simulator::Ready(RobotIo* io) {
   // Only checked until the robot is live: getNumPublishers() scans every subscription.
   const bool connected = io->neighbors_subscribers > 0 && io->cmd_vel.getNumPublishers() > 0;
+  // A robot that publishes tick_done is waited for from its first tick on, not only from its
+  // first tick_done (which may arrive after its first command).
+  if (connected && io->tick_done && io->tick_done.getNumPublishers() > 0) {
+    io->sends_tick_done = true;
+  }
   const ros::WallTime now = ros::WallTime::now();
   if (!connected) {
     io->connected_since = ros::WallTime();
@@ -472,7 +490,10 @@ void Simulator::WaitForRobots() {
     const bool observed = params_.lockstep_observers == 0 ||
                           positions_pub_.getNumSubscribers() >=
                               static_cast<std::uint32_t>(params_.lockstep_observers);
-    if (connected == io_.size() && observed) break;
+    if (connected == io_.size() && observed) {
+      SpinOnce();  // what arrived before the last observer (a mission) is relayed at tick 0
+      break;
+    }
     if (ros::WallTime::now() >= deadline) {
       ROS_WARN(
           "lockstep: only %zu of %zu robots connected after %.1f s; starting anyway "
@@ -559,6 +580,8 @@ void Simulator::RunLockstep() {
   const std::uint64_t max_ticks = static_cast<std::uint64_t>(params_.lockstep_max_ticks);
   while (Running() && (max_ticks == 0 || tick_ < max_ticks)) {
     UpdateLiveness();
+    // A phase status relayed now makes its dispatcher event due in this tick's relay.
+    WaitForEvents();
     PublishClock();
     PublishRadio();
     PublishPoses();
@@ -721,6 +744,63 @@ void Simulator::Relay(const ros::MessageEvent<const M>& event, RelayList<M>* lis
   const std::string& from = event.getPublisherName();
   if (counted) ++events_received_[from];
   list->emplace_back(from, *event.getConstMessage());
+  if constexpr (std::is_same_v<M, Mission_Status>) NoteStatus(*event.getConstMessage());
+  if constexpr (std::is_same_v<M, Mission_Event>) NoteEvent(*event.getConstMessage());
+}
+
+void Simulator::NoteStatus(const Mission_Status& status) {
+  if (!params_.lockstep_dispatcher) return;
+  const std::uint16_t id = status.mission_id;
+  const auto awaits = [this, id](std::uint8_t kind, double delay_s) {
+    const auto key = std::make_pair(id, kind);
+    if (delay_s >= 0.0 && events_seen_.count(key) == 0) events_awaited_.insert(key);
+  };
+  switch (status.state) {
+    case Mission_Status::LOADING:
+      awaits(Mission_Event::LOADED, params_.swarm.loaded_delay_s);
+      break;
+    case Mission_Status::UNLOADING:
+      awaits(Mission_Event::UNLOADED, params_.swarm.unloaded_delay_s);
+      break;
+    case Mission_Status::DONE:
+    case Mission_Status::ABORTED:
+    case Mission_Status::REJECTED:
+      // The id may be used again by a later mission.
+      for (std::uint8_t kind : {Mission_Event::LOADED, Mission_Event::UNLOADED}) {
+        events_awaited_.erase({id, kind});
+        events_seen_.erase({id, kind});
+      }
+      break;
+    default:
+      break;
+  }
+}
+
+void Simulator::NoteEvent(const Mission_Event& event) {
+  if (!params_.lockstep_dispatcher) return;
+  const auto key = std::make_pair(event.mission_id, event.event);
+  events_seen_.insert(key);
+  events_awaited_.erase(key);
+}
+
+void Simulator::WaitForEvents() {
+  if (events_awaited_.empty()) return;
+  const ros::WallTime deadline =
+      ros::WallTime::now() + ros::WallDuration(params_.lockstep_timeout_s);
+  while (!events_awaited_.empty() && Running() && ros::WallTime::now() < deadline) {
+    cmd_queue_.callAvailable(ros::WallDuration(kPollS));
+    ros::spinOnce();
+  }
+  if (events_awaited_.empty() || !Running()) return;
+  for (const auto& key : events_awaited_) {
+    ROS_WARN("lockstep tick %llu: no %s for mission %u from the dispatcher within %.2f s; "
+             "not waiting for it any longer",
+             static_cast<unsigned long long>(tick_),
+             key.second == Mission_Event::LOADED ? "LOADED" : "UNLOADED", key.first,
+             params_.lockstep_timeout_s);
+    events_seen_.insert(key);
+  }
+  events_awaited_.clear();
 }
 
 namespace {

@@ -53,6 +53,11 @@ struct SimulatorParams {
   // recorder, a test, the demo) so that nobody misses the first ticks.
   int lockstep_observers = 0;
   double lockstep_start_timeout_s = 60.0;  // ~lockstep_start_timeout_s: wait for robots to connect
+  // ~lockstep_dispatcher: a mission dispatcher answers LOADING / UNLOADING with a stamped
+  // LOADED / UNLOADED (/swarm/loaded_delay_s, unloaded_delay_s >= 0); hold the next tick until
+  // it arrived (at most lockstep_timeout_s), so that it applies at its stamped tick however
+  // loaded the machine is.
+  bool lockstep_dispatcher = false;
   double integration_step_s = 0.01;  // ~integration_step_s: world sub-step (real time: loop period)
   double markers_rate_hz = 10.0;     // ~markers_rate_hz: markers and tf, wall clock (0: off)
   bool tf = true;                    // ~tf: broadcast world -> robot_<id>/base_link
@@ -104,7 +109,7 @@ class Simulator {
     core::Velocity answer;
     // Lock-step barrier for mission messages (see Tick_Done.msg).
     ros::Subscriber tick_done;
-    bool sends_tick_done = false;      // once it sent one, every tick waits for it
+    bool sends_tick_done = false;      // it publishes tick_done: every tick waits for it
     bool done = false;                 // the current tick's tick_done arrived
     std::string publisher;             // its node name (a host runs many robots in one node)
     std::uint32_t events_announced = 0;
@@ -142,6 +147,11 @@ class Simulator {
   void UpdateLiveness();
   // Lock-step: spins until every live robot answered the current tick or the timeout passed.
   void WaitForAnswers();
+  // Lock-step: holds until every awaited dispatcher event arrived or lockstep_timeout_s passed.
+  void WaitForEvents();
+  // Lock-step bookkeeping of awaited dispatcher events, from relayed statuses and events.
+  void NoteStatus(const Mission_Status& status);
+  void NoteEvent(const Mission_Event& event);
   // Lock-step: the current tick's answers (zero for late robots) become the world's commands.
   void ApplyAnswers();
   // Idles after the last lock-step tick: services, markers and tf stay up.
@@ -215,6 +225,9 @@ class Simulator {
   RelayList<Mission_Status> relay_statuses_;
   // Per publisher: mission messages received / announced in its robots' tick_done.
   std::map<std::string, std::uint64_t> events_received_;
+  // (mission id, Mission_Event kind): awaited since its phase's status was relayed; received.
+  std::set<std::pair<std::uint16_t, std::uint8_t>> events_awaited_;
+  std::set<std::pair<std::uint16_t, std::uint8_t>> events_seen_;
   std::map<std::string, std::uint64_t> events_announced_;
   ros::Publisher clock_pub_;
   ros::Publisher markers_pub_;

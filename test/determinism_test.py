@@ -7,6 +7,7 @@ import unittest
 
 import rospy
 import rostest
+from swarm_transport.msg import New_Mission
 
 import swarm_testing as st
 
@@ -23,7 +24,50 @@ def final_poses(seed, robots, ticks, timeout):
         log.close()
 
 
+def mission_run(seed, robots, ticks, timeout):
+    """Every tick's poses and the mission's phases of the thesis's transport mission, sent
+    before the first tick, in a lock-step run of `ticks` ticks."""
+    status = st.StatusLog()
+    pub = rospy.Publisher('/flock/mission/new', New_Mission, queue_size=10)
+    swarm = st.launch_swarm(robots=robots, seed=seed, lockstep=True, max_ticks=ticks)
+    log = None
+    try:
+        why = st.submit_before_first_tick(
+            pub, status, st.mission(9, 0, 12, 3, (7.0, 7.0, 2.0, 2.0), (3.0, 3.0)), timeout)
+        if why:
+            raise AssertionError(why)
+        log = st.PositionLog()
+        if not log.wait_tick(ticks, timeout):
+            raise AssertionError('seed %d: the run stopped at tick %d' % (seed, log.latest_tick()))
+        phases = [(m.state, m.tick) for m in status.of(9) if m.state != 0]
+        return {t: log.at(t) for t in range(ticks + 1)}, phases
+    finally:
+        swarm.shutdown()
+        pub.unregister()
+        status.sub.unregister()
+        if log:
+            log.close()
+
+
 class Determinism(unittest.TestCase):
+
+    def test_same_seed_same_transport_mission(self):
+        """The lock-step barrier relays every mission message (object updates, freezes,
+        statuses, the dispatcher's stamped LOADED / UNLOADED) at the same tick in every run."""
+        robots = rospy.get_param('~mission_robots')
+        ticks = rospy.get_param('~mission_ticks')
+        timeout = rospy.get_param('~timeout_s')
+        tol = rospy.get_param('~identical_tolerance_m')
+        a, phases_a = mission_run(2, robots, ticks, timeout)
+        b, phases_b = mission_run(2, robots, ticks, timeout)
+        self.assertIn(3, [s for s, _ in phases_a], 'the mission never reached TRANSPORT: %s'
+                      % phases_a)
+        self.assertEqual(phases_a, phases_b)
+        for t in range(ticks + 1):
+            for rid in range(robots):
+                self.assertLessEqual(st.moved(a[t][rid], b[t][rid]), tol,
+                                     'tick %d: robot %d at %s vs %s' % (t, rid, a[t][rid],
+                                                                       b[t][rid]))
 
     def test_same_seed_same_run_other_seed_other_run(self):
         robots = rospy.get_param('~robots')

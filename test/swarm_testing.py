@@ -72,9 +72,10 @@ def wait_for(predicate, timeout, period=0.02):
     return predicate()
 
 
-def wait_connected(pub, timeout):
-    """Waits until `pub` reaches every subscriber the master knows for its topic (in lock-step
-    that is the simulator, which relays mission messages, and the observers)."""
+def wait_connected(pub, timeout, at_least=1):
+    """Waits until `pub` reaches every subscriber the master knows for its topic, and at least
+    `at_least` of them (in lock-step: the simulator, which relays mission messages, the
+    dispatcher and the observers)."""
     import rosgraph
     master = rosgraph.Master(rospy.get_name())
 
@@ -82,8 +83,24 @@ def wait_connected(pub, timeout):
         _, subs, _ = master.getSystemState()
         return next((len(nodes) for topic, nodes in subs if topic == pub.resolved_name), 0)
 
-    return wait_for(lambda: subscribers() > 0 and pub.get_num_connections() >= subscribers(),
-                    timeout)
+    def connected():
+        n = subscribers()
+        return n >= at_least and pub.get_num_connections() >= n
+
+    return wait_for(connected, timeout)
+
+
+def submit_before_first_tick(pub, status, msg, timeout):
+    """Publishes a raw New_Mission (as `rostopic pub` would) while a lock-step swarm waits for
+    its observers, and waits until the dispatcher reported it: create the PositionLog only
+    then, and the simulator relays the mission at tick 0, so a seed gives the same run on any
+    machine. Returns a reason on failure, else ''."""
+    if not wait_connected(pub, timeout, at_least=2):
+        return 'the simulator and the dispatcher never subscribed to %s' % pub.resolved_name
+    pub.publish(msg)
+    if not wait_for(lambda: status.states(msg.mission_id), timeout):
+        return 'the dispatcher never reported mission %d' % msg.mission_id
+    return ''
 
 
 def moved(a, b):
