@@ -44,7 +44,7 @@ RESULT_KEYS = ('robots', 'clock', 'deploy', 'comm', 'tick_hz', 'late_pct', 'deli
                'cpu_pct', 'swarm_cpu_pct', 'background_cpu_pct', 'rss_mb_per_robot',
                'pss_mb_per_robot',
                'lockstep_ticks_per_s', 'startup_s', 'robots_ticking', 'max_period_ms',
-               'cpu_us_per_robot_tick')
+               'cpu_us_per_robot_tick', 'max_latency_ms', 'missed_rounds_pct')
 COLUMNS = (('clock', '%-8s'), ('comm', '%-9s'), ('deploy', '%-8s'), ('robots', '%6d'),
            ('robots_ticking', '%7d'), ('tick_hz', '%8.2f'), ('late_pct', '%7.2f'),
            ('max_period_ms', '%8.1f'), ('delivered_pct', '%9.2f'),
@@ -294,8 +294,8 @@ def measure(a, ros, launch_pid, stats, t0, result):
     result['pss_mb_per_robot'] = sum(pss) / 1024.0 / per
 
     # Per robot: cumulative counters at the last report before the window and the last in it.
-    ticks = late = updates = delivered = 0
-    rates, max_period = [], 0.0
+    ticks = late = updates = delivered = rounds = missed = 0
+    rates, max_period, max_latency = [], 0.0, 0.0
     for rid, msgs in list(stats.items()):
         before = [m for m in msgs if m[0] <= w0]
         inside = [m for m in msgs if w0 < m[0] <= w1]
@@ -306,14 +306,18 @@ def measure(a, ros, launch_pid, stats, t0, result):
         span = float(end['wall']) - float(base['wall'])
         if span <= 0:
             continue
-        d = {k: int(end[k]) - int(base[k]) for k in ('ticks', 'late', 'updates', 'delivered')}
+        d = {k: int(end[k]) - int(base[k])
+             for k in ('ticks', 'late', 'updates', 'delivered', 'rounds', 'missed_rounds')}
         ticks += d['ticks']
         late += d['late']
         updates += d['updates']
         delivered += d['delivered']
+        rounds += d['rounds']
+        missed += d['missed_rounds']
         rates.append(d['ticks'] / span)
-        max_period = max([max_period] + [float(m[1]['max_period_ms']) for m in inside
-                                         if m[1] is not base])
+        later = [m[1] for m in inside if m[1] is not base]
+        max_period = max([max_period] + [float(f['max_period_ms']) for f in later])
+        max_latency = max([max_latency] + [float(f['max_latency_ms']) for f in later])
     used_s = sum(cpu - tree0.get(pid, (None, 0))[1] for pid, (_, cpu) in tree1.items()) / hz
     # Ticks counted over each robot's own reporting span, scaled to the window.
     result['cpu_us_per_robot_tick'] = (1e6 * used_s / (sum(rates) * (w1 - w0))
@@ -324,8 +328,12 @@ def measure(a, ros, launch_pid, stats, t0, result):
     result['late_pct'] = 100.0 * late / denominator if denominator else float('nan')
     result['delivered_pct'] = 100.0 * delivered / updates if updates else 100.0
     result['updates'] = updates
-    result['neighbours'] = updates / ticks if ticks else 0.0
+    # Local comm counts updates per radio round, broadcast per tick.
+    per = rounds + missed if a.comm == 'local' else ticks
+    result['neighbours'] = updates / per if per else 0.0
     result['max_period_ms'] = max_period
+    result['max_latency_ms'] = max_latency if a.clock == 'realtime' else float('nan')
+    result['missed_rounds_pct'] = 100.0 * missed / (rounds + missed) if rounds + missed else 0.0
     result['lockstep_ticks_per_s'] = result['tick_hz'] if a.clock == 'lockstep' else float('nan')
     return True
 
@@ -504,7 +512,8 @@ def main(argv):
     if a.csv:
         keys = ['clock', 'comm', 'deploy', 'robots', 'threads', 'seconds'] + [
             k for k, _ in COLUMNS if k not in ('clock', 'comm', 'deploy', 'robots')] + [
-            'updates', 'sim_rss_mb', 'robot_processes', 'ok']
+            'updates', 'max_latency_ms', 'missed_rounds_pct', 'sim_rss_mb', 'robot_processes',
+            'ok']
         with open(a.csv, 'w', newline='') as f:
             w = csv.DictWriter(f, fieldnames=keys, extrasaction='ignore')
             w.writeheader()

@@ -8,26 +8,19 @@ namespace core {
 
 TickStats::TickStats(double period_s, bool realtime) : period_s_(period_s), realtime_(realtime) {}
 
-void TickStats::OnRound(std::uint64_t round, double sim_time_s, double now_s) {
-  if (have_round_ && round > last_round_ + 1) {
-    missed_rounds_ += round - last_round_ - 1;
-    // Lock-step: a round that never arrived is a tick this robot did not answer in time.
-    if (!realtime_) late_ticks_ += round - last_round_ - 1;
-  }
+double TickStats::OnRound(std::uint64_t round, double sim_time_s, double now_s) {
+  last_gap_ = have_round_ && round > last_round_ + 1 ? round - last_round_ - 1 : 0;
+  missed_rounds_ += last_gap_;
+  // Lock-step: a round that never arrived is a tick this robot did not answer in time.
+  if (!realtime_) late_ticks_ += last_gap_;
   const double offset = now_s - sim_time_s;
   if (!have_round_ || offset < min_offset_s_) min_offset_s_ = offset;
   have_round_ = true;
   last_round_ = round;
-  last_round_s_ = now_s;
-  last_round_latency_s_ = realtime_ ? offset - min_offset_s_ : 0.0;
-  max_latency_s_ = std::max(max_latency_s_, last_round_latency_s_);
+  const double latency = realtime_ ? offset - min_offset_s_ : 0.0;
+  max_latency_s_ = std::max(max_latency_s_, latency);
   ++rounds_;
-}
-
-bool TickStats::RoundFresh(double now_s) const {
-  if (!have_round_) return false;
-  if (!realtime_) return true;
-  return now_s - last_round_s_ <= kLateTickFactor * period_s_ && last_round_latency_s_ <= period_s_;
+  return latency;
 }
 
 void TickStats::OnTick(double now_s) {

@@ -131,7 +131,7 @@ void RobotNode::OnNeighbors(const Neighbors::ConstPtr& msg) {
   }
   perception_ = msg;
   if (options_.clock == "lockstep") ApplyRelayed(*msg);
-  if (stats_) stats_->OnRound(msg->tick, msg->sim_time, ros::WallTime::now().toSec());
+  if (stats_) RecordRound(*msg);
   if (options_.clock == "lockstep") Tick();
 }
 
@@ -167,33 +167,44 @@ void RobotNode::OnPosition(const Robot_Position::ConstPtr& msg) {
   heard.round = perception_ ? perception_->tick : 0;
 }
 
+void RobotNode::RecordRound(const Neighbors& msg) {
+  const double latency = stats_->OnRound(msg.tick, msg.sim_time, ros::WallTime::now().toSec());
+  if (options_.comm != "local") return;
+  // Local comm: the round carries the in-range robots' updates, delivered within one tick
+  // when it arrived within one period of being sampled; a round that never arrived lost as
+  // many as this one carries.
+  std::size_t in_range = 0;
+  for (const Robot_Position& r : msg.robots) {
+    if (r.type == Robot_Position::TYPE_PHYSICAL) ++in_range;
+  }
+  stats_->CountUpdates(in_range * (1 + stats_->last_gap()),
+                       latency <= config_.tick_period_s ? in_range : 0);
+}
+
 void RobotNode::RecordTick() {
   const ros::WallTime wall_now = ros::WallTime::now();
   const double now = wall_now.toSec();
   stats_->OnTick(now);
-  // Delivered within one tick: of the robots the radio says are in range this round, those
-  // whose latest position reached this robot in time (local: the round itself; broadcast:
-  // their own message, by arrival time in real time, by content in lock-step).
-  std::size_t expected = 0;
-  std::size_t delivered = 0;
-  const bool round_fresh = stats_->RoundFresh(now);
-  for (const Robot_Position& r : perception_->robots) {
-    if (r.type != Robot_Position::TYPE_PHYSICAL) continue;
-    ++expected;
-    if (options_.comm == "local") {
-      delivered += round_fresh ? 1 : 0;
-      continue;
+  // Broadcast comm: of the robots the radio says are in range this round, those whose own
+  // latest position reached this robot in time (real time: it arrived within the last
+  // kLateTickFactor periods, as they send one per tick; lock-step: it is their current one).
+  if (options_.comm == "broadcast") {
+    std::size_t expected = 0;
+    std::size_t delivered = 0;
+    for (const Robot_Position& r : perception_->robots) {
+      if (r.type != Robot_Position::TYPE_PHYSICAL) continue;
+      ++expected;
+      const auto it = broadcast_.find(std::make_pair(r.robot_id, std::uint8_t{0}));
+      if (it == broadcast_.end()) continue;
+      const bool current =
+          options_.clock == "realtime"
+              ? now - it->second.wall_s <= core::kLateTickFactor * config_.tick_period_s
+              : std::hypot(it->second.position->pos_x - r.pos_x,
+                           it->second.position->pos_y - r.pos_y) <= kCurrentPositionM;
+      delivered += current ? 1 : 0;
     }
-    const auto it = broadcast_.find(std::make_pair(r.robot_id, std::uint8_t{0}));
-    if (it == broadcast_.end()) continue;
-    const bool current =
-        options_.clock == "realtime"
-            ? now - it->second.wall_s <= core::kLateTickFactor * config_.tick_period_s
-            : std::hypot(it->second.position->pos_x - r.pos_x,
-                         it->second.position->pos_y - r.pos_y) <= kCurrentPositionM;
-    delivered += current ? 1 : 0;
+    stats_->CountUpdates(expected, delivered);
   }
-  stats_->CountUpdates(expected, delivered);
   // The first tick is reported at once (its wall time is the robot's start-up figure).
   if (!stats_published_.isZero() && (wall_now - stats_published_).toSec() < kStatsPeriodS) {
     return;

@@ -22,25 +22,23 @@ TEST(TickStatsTest, LockstepMissedRoundsAreLateTicks) {
   TickStats s(0.1, false);
   s.OnRound(0, 0.0, 100.0);
   s.OnRound(1, 0.1, 100.001);
-  s.OnRound(4, 0.4, 100.002);  // rounds 2 and 3 never arrived
+  // Lock-step time is simulated: the wall gap says nothing, a round comes with its tick.
+  EXPECT_EQ(s.OnRound(4, 0.4, 500.0), 0.0);  // rounds 2 and 3 never arrived
+  EXPECT_EQ(s.last_gap(), 2u);
   EXPECT_EQ(s.rounds(), 3u);
   EXPECT_EQ(s.missed_rounds(), 2u);
   EXPECT_EQ(s.late_ticks(), 2u);
-  // Lock-step time is simulated: the wall gap says nothing, a received round is fresh.
-  EXPECT_TRUE(s.RoundFresh(500.0));
 }
 
-TEST(TickStatsTest, RealtimeRoundIsFreshWithinOneTickOfArrivalAndLatency) {
+TEST(TickStatsTest, RealtimeLatencyIsTheExcessOverTheFastestDelivery) {
   TickStats s(0.1, true);
-  EXPECT_FALSE(s.RoundFresh(0.0));
-  s.OnRound(0, 0.0, 50.001);  // the fastest delivery so far: latency 0 by definition
-  EXPECT_TRUE(s.RoundFresh(50.101));
-  EXPECT_FALSE(s.RoundFresh(50.112));  // more than 1.1 periods after it arrived
-  s.OnRound(1, 0.1, 50.251);           // 150 ms after it was sampled (relative to the fastest)
+  EXPECT_EQ(s.OnRound(0, 0.0, 50.002), 0.0);  // the only delivery yet: latency 0 by definition
+  EXPECT_NEAR(s.OnRound(1, 0.1, 50.252), 0.15, 1e-9);  // 150 ms slower than the first
   EXPECT_NEAR(s.max_latency_s(), 0.15, 1e-9);
-  EXPECT_FALSE(s.RoundFresh(50.252));
-  s.OnRound(2, 0.2, 50.202);  // on time again
-  EXPECT_TRUE(s.RoundFresh(50.210));
+  EXPECT_EQ(s.last_gap(), 0u);
+  EXPECT_EQ(s.OnRound(2, 0.2, 50.201), 0.0);  // faster than all before: the new reference
+  EXPECT_NEAR(s.OnRound(3, 0.3, 50.303), 0.002, 1e-9);
+  EXPECT_EQ(s.late_ticks(), 0u);  // real time: lateness is measured at the ticks
 }
 
 TEST(TickStatsTest, DeliveredNeverExceedsExpectedAndLineHasEveryField) {

@@ -15,22 +15,21 @@ constexpr double kLateTickFactor = 1.1;
 // Counts what a benchmark asks of a robot [issue 5]: ticks, late ticks and the longest period
 // (real time), radio rounds received and missed, and how many of the in-range robots' updates
 // were delivered within one tick. Times are wall seconds from any fixed origin; the counters
-// are cumulative, the maxima cover the time since the last TakeMaxima().
+// are cumulative, the maxima cover the time since the last TakeLine().
 class TickStats {
  public:
   // `realtime`: ticks follow a wall timer (lateness is measured); otherwise lock-step, where
   // every radio round is a tick and a missed round is a late tick.
   TickStats(double period_s, bool realtime);
 
-  // A radio round `round` sampled at sim time `sim_time_s` arrived at wall time `now_s`.
-  // Real time: the simulator's sim time is wall time since its start, so the smallest
-  // (now - sim_time) seen estimates that start and the excess over it is the delivery latency
-  // (a lower bound: it is exact for the fastest delivery seen).
-  void OnRound(std::uint64_t round, double sim_time_s, double now_s);
-  // True when the latest round is recent enough to count as delivered within one tick at
-  // `now_s`: lock-step always (the round is the tick); real time when it arrived at most
-  // kLateTickFactor periods ago and its latency was at most one period.
-  bool RoundFresh(double now_s) const;
+  // A radio round `round` sampled at sim time `sim_time_s` arrived at wall time `now_s`;
+  // returns its delivery latency (s). Real time: the simulator's sim time is wall time since
+  // its start, so the smallest (now - sim_time) seen estimates that start and the latency is
+  // the excess over it (a lower bound, exact for the fastest delivery seen). Lock-step: 0 (a
+  // round is the tick it starts).
+  double OnRound(std::uint64_t round, double sim_time_s, double now_s);
+  // Rounds that never arrived just before the latest one.
+  std::uint64_t last_gap() const { return last_gap_; }
   // A tick started at wall time `now_s`.
   void OnTick(double now_s);
   // At a tick: `expected` in-range robots, `delivered` of them with a fresh update.
@@ -60,8 +59,7 @@ class TickStats {
   std::uint64_t delivered_ = 0;
   bool have_round_ = false;
   std::uint64_t last_round_ = 0;
-  double last_round_s_ = 0.0;  // wall time the latest round arrived
-  double last_round_latency_s_ = 0.0;
+  std::uint64_t last_gap_ = 0;
   double min_offset_s_ = 0.0;  // smallest (arrival wall - sim time) so far
   double last_tick_s_ = -1.0;  // wall time of the previous tick (< 0: none yet)
   double first_tick_s_ = -1.0;

@@ -83,7 +83,10 @@ class RobotNode {
   void ApplyRelayed(const Neighbors& msg);
   // Broadcast comm: remembers the latest position of every other robot and copy.
   void OnPosition(const Robot_Position::ConstPtr& msg);
-  // Diagnostics: this tick's timing and delivered updates; publishes once per wall second.
+  // Diagnostics: a round's arrival (and, local comm, its updates' delivery).
+  void RecordRound(const Neighbors& msg);
+  // Diagnostics: this tick's timing (and, broadcast comm, the updates' delivery); publishes
+  // the figures once per wall second.
   void RecordTick();
   // ~describe: one line of state (role, frozen, missions, zones) for users and tests.
   bool OnDescribe(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
