@@ -44,7 +44,7 @@ RESULT_KEYS = ('robots', 'clock', 'deploy', 'comm', 'tick_hz', 'late_pct', 'deli
                'cpu_pct', 'swarm_cpu_pct', 'background_cpu_pct', 'rss_mb_per_robot',
                'pss_mb_per_robot',
                'lockstep_ticks_per_s', 'startup_s', 'robots_ticking', 'max_period_ms',
-               'cpu_us_per_robot_tick', 'max_latency_ms', 'missed_rounds_pct')
+               'cpu_us_per_robot_tick', 'max_latency_ms', 'missed_rounds_pct', 'arena_m')
 COLUMNS = (('clock', '%-8s'), ('comm', '%-9s'), ('deploy', '%-8s'), ('robots', '%6d'),
            ('robots_ticking', '%7d'), ('tick_hz', '%8.2f'), ('late_pct', '%7.2f'),
            ('max_period_ms', '%8.1f'), ('delivered_pct', '%9.2f'),
@@ -83,6 +83,10 @@ def parse_args(argv):
     p.add_argument('--warmup', type=float, default=3.0,
                    help='s after every robot ticks before the window opens (default 3)')
     p.add_argument('--seed', type=int, default=1, help='seed (default 1)')
+    p.add_argument('--arena', default='room',
+                   help="room: the thesis's 11.09 m room for any N (crowded at large N); "
+                        "density: the side grows with sqrt(N / 25), so every N has the "
+                        "thesis's 25 robots per room area; or a side in m (default room)")
     p.add_argument('--threads', type=int, default=1, help='host: callback threads (default 1)')
     p.add_argument('--startup-timeout', type=float, default=0.0,
                    help='s to wait for every robot to tick (default 60 + 0.5 s per robot)')
@@ -96,7 +100,30 @@ def parse_args(argv):
         p.error('--seconds must be > 0, --warmup >= 0, --threads in [1, 64]')
     if a.startup_timeout <= 0:
         a.startup_timeout = 60.0 + 0.5 * a.robots
+    try:
+        a.arena_m = arena_side(a.arena, a.robots)
+    except ValueError as e:
+        p.error(str(e))
     return a
+
+
+THESIS_ROOM_M = 11.088889  # config/swarm.yaml world_size_m
+THESIS_ROBOTS = 25
+
+
+def arena_side(arena, robots):
+    """The arena side (m) for --arena: room, density or a number."""
+    if arena == 'room':
+        return THESIS_ROOM_M
+    if arena == 'density':
+        return THESIS_ROOM_M * math.sqrt(max(1, robots) / float(THESIS_ROBOTS))
+    try:
+        side = float(arena)
+    except ValueError:
+        raise ValueError("--arena must be room, density or a side in m, not %r" % arena)
+    if not (side > 0 and math.isfinite(side)):
+        raise ValueError('--arena must be a finite side > 0 m, not %r' % arena)
+    return side
 
 
 # ---------------------------------------------------------------- /proc
@@ -172,7 +199,8 @@ def run_one(a):
     """One run on its own master; returns a dict of figures."""
     log_dir = tempfile.mkdtemp(prefix='st_bench_')
     result = {'robots': a.robots, 'clock': a.clock, 'deploy': a.deploy, 'comm': a.comm,
-              'threads': a.threads, 'seconds': a.seconds, 'log_dir': log_dir}
+              'threads': a.threads, 'seconds': a.seconds, 'log_dir': log_dir,
+              'arena_m': a.arena_m}
     ok = False
     with st_ros.PrivateRos(log_dir=log_dir) as ros:
         import rosgraph.masterapi
@@ -209,10 +237,14 @@ def run_one(a):
             launch = ros.start(['rosrun', 'swarm_transport', 'robot_host', '__name:=robot_host'],
                                'roslaunch')
         else:
+            arena_yaml = os.path.join(log_dir, 'arena.yaml')
+            with open(arena_yaml, 'w') as f:
+                f.write('world_size_m: %.6f\n' % a.arena_m)
             launch = ros.launch('swarm.launch', {
                 'robots': a.robots, 'seed': a.seed, 'deploy': a.deploy,
                 'lockstep': 'true' if a.clock == 'lockstep' else 'false',
-                'dispatcher': 'false', 'observers': 0, 'robot_output': 'log'})
+                'dispatcher': 'false', 'observers': 0, 'robot_output': 'log',
+                'extra_config': arena_yaml})
         try:
             ok = measure(a, ros, launch.pid, stats, t0, result)
         finally:
@@ -229,6 +261,7 @@ def set_host_sim_params(master, a):
     with open(os.path.join(st_ros.ROOT, 'config', 'swarm.yaml')) as f:
         swarm = yaml.safe_load(f)
     swarm['seed'] = a.seed
+    swarm['world_size_m'] = a.arena_m
     master.setParam('/use_sim_time', a.clock == 'lockstep')
     master.setParam('/swarm', swarm)
     master.setParam('/robot_host', {
@@ -391,10 +424,11 @@ def child_run(a, clock, comm):
     args = [PYTHON, os.path.abspath(__file__), '--robots', str(a.robots), '--clock', clock,
             '--deploy', a.deploy, '--comm', comm, '--seconds', str(a.seconds),
             '--warmup', str(a.warmup), '--seed', str(a.seed), '--threads', str(a.threads),
-            '--startup-timeout', str(a.startup_timeout), '--child', out]
+            '--startup-timeout', str(a.startup_timeout), '--arena', a.arena, '--child', out]
     if a.keep_logs:
         args.append('--keep-logs')
-    log('run: %d robots, %s clock, %s comm, deploy %s' % (a.robots, clock, comm, a.deploy))
+    log('run: %d robots, %s clock, %s comm, deploy %s, arena %.2f m'
+        % (a.robots, clock, comm, a.deploy, a.arena_m))
     p = subprocess.Popen(args)
     try:
         p.wait()
@@ -512,7 +546,8 @@ def main(argv):
     if a.csv:
         keys = ['clock', 'comm', 'deploy', 'robots', 'threads', 'seconds'] + [
             k for k, _ in COLUMNS if k not in ('clock', 'comm', 'deploy', 'robots')] + [
-            'updates', 'max_latency_ms', 'missed_rounds_pct', 'sim_rss_mb', 'robot_processes',
+            'updates', 'max_latency_ms', 'missed_rounds_pct', 'arena_m', 'sim_rss_mb',
+            'robot_processes',
             'ok']
         with open(a.csv, 'w', newline='') as f:
             w = csv.DictWriter(f, fieldnames=keys, extrasaction='ignore')
