@@ -118,6 +118,46 @@ void MissionAgent::EnterPhase(Live* live, MissionPhase phase, std::uint64_t tick
   outbox->statuses.push_back(Report(*live, inside));
 }
 
+std::vector<std::pair<std::uint16_t, std::uint16_t>> MissionAgent::OthersRuns(
+    const MissionSpec& spec) const {
+  std::vector<std::pair<std::uint16_t, std::uint16_t>> runs;
+  for (const auto& run : spec.AssignedRuns()) {
+    if (self_id_ < run.first || self_id_ >= run.second) {
+      runs.push_back(run);
+      continue;
+    }
+    if (run.first < self_id_) runs.emplace_back(run.first, self_id_);
+    if (self_id_ + 1 < run.second) runs.emplace_back(static_cast<std::uint16_t>(self_id_ + 1), run.second);
+  }
+  return runs;
+}
+
+void MissionAgent::UpdateDocking(Live* live, double to_target, std::uint64_t tick,
+                                 MissionOutbox* outbox) {
+  // The swarm brings the object near the target fast, but its passive robots cannot stop on a
+  // 5 cm tolerance: their alignment carries the centroid past it, back and forth for hundreds
+  // of ticks. So the last few centimetres are the first leader's alone.
+  if (params_.docking_radius_m <= 0.0) return;
+  if (!live->docking) {
+    if (to_target <= params_.docking_radius_m && tick >= live->docking_retry_tick) {
+      live->docking = true;
+      live->docking_best_m = to_target;
+      live->docking_best_tick = tick;
+      outbox->freeze = OthersRuns(live->spec);
+    }
+    return;
+  }
+  if (to_target < live->docking_best_m - 1e-6) {
+    live->docking_best_m = to_target;
+    live->docking_best_tick = tick;
+  } else if (tick - live->docking_best_tick > params_.docking_patience_ticks) {
+    // Blocked (a frozen robot in its way): let the swarm move again and retry later.
+    live->docking = false;
+    live->docking_retry_tick = tick + params_.docking_patience_ticks;
+    outbox->resume = OthersRuns(live->spec);
+  }
+}
+
 void MissionAgent::RunFirstLeader(Live* live, const Pose2& self,
                                   const std::vector<Neighbour>& heard, std::uint64_t tick,
                                   MissionOutbox* outbox) {
@@ -180,11 +220,14 @@ void MissionAgent::RunFirstLeader(Live* live, const Pose2& self,
     case MissionPhase::kTransport: {
       live->centre = live->offset + centroid;
       ++live->transport_ticks;
-      if (Distance(live->centre, spec.target) <= params_.goal_tolerance_m) {
+      const double to_target = Distance(live->centre, spec.target);
+      if (to_target <= params_.goal_tolerance_m) {
+        live->docking = false;
         outbox->update_object = std::make_pair(spec.id, live->centre);
         outbox->freeze = spec.AssignedRuns();
         EnterPhase(live, MissionPhase::kUnloading, tick, inside, outbox);
       } else {
+        UpdateDocking(live, to_target, tick, outbox);
         if (live->transport_ticks % static_cast<std::uint64_t>(params_.object_update_ticks) == 0) {
           outbox->update_object = std::make_pair(spec.id, live->centre);
         }
@@ -214,16 +257,6 @@ MissionPlan MissionAgent::Tick(const Pose2& self, const std::vector<Neighbour>& 
       RunFirstLeader(&live, self, heard, tick, outbox);
     }
   }
-  for (const auto& kv : live_) {
-    const Live& live = kv.second;
-    if (live.spec.LeaderOnly()) continue;  // a leader-only mission has no object
-    Zone zone;
-    zone.id = live.spec.id;
-    zone.shape = live.spec.ObjectAt(live.centre);
-    // Its own active object is safety (all else is danger); any other object is danger.
-    zone.inverted = plan.active && *plan.active == kv.first;
-    plan.zones.push_back(zone);
-  }
   if (plan.active) {
     const Live& live = live_.at(*plan.active);
     const MissionSpec& spec = live.spec;
@@ -239,8 +272,31 @@ MissionPlan MissionAgent::Tick(const Pose2& self, const std::vector<Neighbour>& 
         plan.keep_flock = false;
         plan.steer = Bearing(live.centre, spec.target);
         plan.goal = spec.target + (self.position - live.centre);
+        if (live.docking) {
+          // The others stand: moving d moves the object d / n, so it aims n times as far (a
+          // leader drives at most its speed and never farther than its goal).
+          const double n = static_cast<double>(spec.Assigned().size());
+          plan.goal = self.position + (spec.target - live.centre) * n;
+        }
       }
     }
+  }
+  for (const auto& kv : live_) {
+    const Live& live = kv.second;
+    if (live.spec.LeaderOnly()) continue;  // a leader-only mission has no object
+    const bool active = plan.active && *plan.active == kv.first;
+    // A leader carrying its object is not kept inside it: the object rides on the robots and
+    // follows their centroid, so a leader held at its border would hold the object too. It
+    // heads for the target, slows or waits only for robots in its way (the thesis counts a
+    // leader wait only "when another robot blocked its way" [T7.4]); the passive robots flee
+    // into the object as it moves. Once arrived it is passive and the object is safety again.
+    if (active && plan.lead) continue;
+    Zone zone;
+    zone.id = live.spec.id;
+    zone.shape = live.spec.ObjectAt(live.centre);
+    // Its own active object is safety (all else is danger); any other object is danger.
+    zone.inverted = active;
+    plan.zones.push_back(zone);
   }
   return plan;
 }

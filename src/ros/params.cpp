@@ -96,6 +96,8 @@ std::string SwarmConfig::Validate() const {
     os << "loaded_delay_s and unloaded_delay_s must be finite";
   } else if (object_update_ticks < 1) {
     os << "object_update_ticks must be >= 1 but is " << object_update_ticks;
+  } else if (!(docking_radius_m >= 0.0) || !std::isfinite(docking_radius_m)) {
+    os << "docking_radius_m must be a finite number >= 0 but is " << docking_radius_m;
   }
   return os.str();
 }
@@ -166,7 +168,8 @@ bool ConfigFromXmlRpc(XmlRpc::XmlRpcValue& dict, SwarmConfig* config, std::strin
             ReadInt(dict, "seed", &seed, error) &&
             ReadDouble(dict, "loaded_delay_s", &c.loaded_delay_s, error) &&
             ReadDouble(dict, "unloaded_delay_s", &c.unloaded_delay_s, error) &&
-            ReadInt(dict, "object_update_ticks", &c.object_update_ticks, error);
+            ReadInt(dict, "object_update_ticks", &c.object_update_ticks, error) &&
+            ReadDouble(dict, "docking_radius_m", &c.docking_radius_m, error);
   if (!ok) return false;
   if (seed < 0) {
     *error = "parameter 'seed' must be >= 0";

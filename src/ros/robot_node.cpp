@@ -70,6 +70,7 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
   core::MissionAgentParams mission_params;
   mission_params.goal_tolerance_m = config_.leader.goal_tolerance_m;
   mission_params.object_update_ticks = config_.object_update_ticks;
+  mission_params.docking_radius_m = config_.docking_radius_m;
   agent_ = core::MissionAgent(id_, mission_params);
 
   cmd_pub_ = nh_.advertise<geometry_msgs::Twist>(names::kCmdVel, 2);

@@ -107,6 +107,93 @@ TEST(MissionAgentTest, FirstLeaderRunsTheWholeMission) {
   EXPECT_TRUE(leader.LiveIds().empty());
 }
 
+// Brings a fresh first leader of the thesis mission (robots [0, 3)) into TRANSPORT at tick 10,
+// the centroid (7, 7) being the object's centre.
+void IntoTransport(MissionAgent* leader) {
+  std::string why;
+  ASSERT_TRUE(leader->OnNewMission(Thesis(), &why));
+  MissionOutbox out;
+  leader->Tick(PoseAt(7.0, 7.0), {At(1, 7.5, 7.5), At(2, 6.5, 6.5)}, 1, &out);
+  ASSERT_TRUE(leader->OnEvent(7, MissionEventKind::kLoaded, 10, &why)) << why;
+  out = MissionOutbox();
+  leader->Tick(PoseAt(7.0, 7.0), {At(1, 7.5, 7.5), At(2, 6.5, 6.5)}, 10, &out);
+  ASSERT_EQ(Phases(out), std::vector<std::string>{"TRANSPORT"});
+}
+
+TEST(MissionAgentTest, ALeaderCarryingItsObjectIsNotKeptInsideIt) {
+  MissionAgent leader(0, MissionAgentParams());
+  IntoTransport(&leader);
+  MissionOutbox out;
+  // Far ahead of the centroid: no safety zone holds it back, it steers centre -> target.
+  const MissionPlan plan =
+      leader.Tick(PoseAt(4.0, 4.0), {At(1, 6.0, 6.0), At(2, 5.0, 5.0)}, 11, &out);
+  EXPECT_TRUE(plan.lead);
+  EXPECT_TRUE(plan.zones.empty());
+  // A passive robot of the mission keeps the object as its safety zone.
+  MissionAgent passive(1, MissionAgentParams());
+  std::string why;
+  ASSERT_TRUE(passive.OnNewMission(Thesis(), &why));
+  const MissionPlan p = passive.Tick(PoseAt(7.0, 7.0), {}, 11, nullptr);
+  ASSERT_EQ(p.zones.size(), 1u);
+  EXPECT_TRUE(p.zones[0].inverted);
+}
+
+TEST(MissionAgentTest, FirstLeaderDocksTheObjectAloneNearTheTarget) {
+  MissionAgentParams params;
+  params.docking_radius_m = 0.2;
+  params.docking_patience_ticks = 5;
+  MissionAgent leader(1, params);  // first leader in the middle of robots [1, 4)
+  std::string why;
+  MissionSpec spec = Thesis();
+  spec.range_from = 1;
+  spec.range_to = 4;
+  ASSERT_TRUE(leader.OnNewMission(spec, &why));
+  MissionOutbox out;
+  leader.Tick(PoseAt(7.0, 7.0), {At(2, 7.5, 7.5), At(3, 6.5, 6.5)}, 1, &out);
+  ASSERT_TRUE(leader.OnEvent(7, MissionEventKind::kLoaded, 0, &why)) << why;
+  out = MissionOutbox();
+  leader.Tick(PoseAt(7.0, 7.0), {At(2, 7.5, 7.5), At(3, 6.5, 6.5)}, 2, &out);
+  ASSERT_EQ(Phases(out), std::vector<std::string>{"TRANSPORT"});
+  // 0.3 m away: the swarm carries on.
+  out = MissionOutbox();
+  leader.Tick(PoseAt(3.3, 3.0), {At(2, 3.8, 3.5), At(3, 2.8, 2.5)}, 3, &out);
+  EXPECT_TRUE(out.freeze.empty());
+  // 0.15 m away (centroid (3.15, 3.0)): the others [2, 4) stand, the leader aims three times
+  // as far as the object must go.
+  out = MissionOutbox();
+  MissionPlan plan = leader.Tick(PoseAt(3.15, 3.0), {At(2, 3.65, 3.5), At(3, 2.65, 2.5)}, 4, &out);
+  ASSERT_EQ(out.freeze.size(), 1u);
+  EXPECT_EQ(out.freeze[0], std::make_pair(std::uint16_t{2}, std::uint16_t{4}));
+  EXPECT_TRUE(plan.lead);
+  EXPECT_NEAR(plan.goal.x, 3.15 - 3 * 0.15, 1e-9);
+  EXPECT_NEAR(plan.goal.y, 3.0, 1e-9);
+  EXPECT_NEAR(plan.steer.degrees(), 180.0, 1e-9);
+  // No progress for more than 5 ticks (since tick 4): the others continue at tick 10, no
+  // docking again before tick 15.
+  for (std::uint64_t t = 5; t <= 9; ++t) {
+    out = MissionOutbox();
+    leader.Tick(PoseAt(3.15, 3.0), {At(2, 3.65, 3.5), At(3, 2.65, 2.5)}, t, &out);
+    EXPECT_TRUE(out.resume.empty()) << t;
+  }
+  out = MissionOutbox();
+  plan = leader.Tick(PoseAt(3.15, 3.0), {At(2, 3.65, 3.5), At(3, 2.65, 2.5)}, 10, &out);
+  ASSERT_EQ(out.resume.size(), 1u);
+  EXPECT_EQ(out.resume[0], std::make_pair(std::uint16_t{2}, std::uint16_t{4}));
+  EXPECT_NEAR(plan.goal.x, 3.0 + (3.15 - 3.15), 1e-9);  // plain goal again: target + offset
+  out = MissionOutbox();
+  leader.Tick(PoseAt(3.14, 3.0), {At(2, 3.64, 3.5), At(3, 2.64, 2.5)}, 14, &out);
+  EXPECT_TRUE(out.freeze.empty());
+  out = MissionOutbox();
+  leader.Tick(PoseAt(3.14, 3.0), {At(2, 3.64, 3.5), At(3, 2.64, 2.5)}, 16, &out);
+  EXPECT_EQ(out.freeze.size(), 1u);
+  // Arrival: every robot freezes for unloading.
+  out = MissionOutbox();
+  leader.Tick(PoseAt(3.01, 3.0), {At(2, 3.51, 3.5), At(3, 2.51, 2.5)}, 17, &out);
+  EXPECT_EQ(Phases(out), std::vector<std::string>{"UNLOADING"});
+  ASSERT_EQ(out.freeze.size(), 1u);
+  EXPECT_EQ(out.freeze[0], std::make_pair(std::uint16_t{1}, std::uint16_t{4}));
+}
+
 TEST(MissionAgentTest, SignalsOutOfPhaseAreRejected) {
   MissionAgent leader(0, MissionAgentParams());
   std::string why;

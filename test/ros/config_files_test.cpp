@@ -87,6 +87,7 @@ TEST(ConfigValidation, RejectsBadValuesAndKeepsTheOldConfig) {
       {"robot_radius_m", XmlRpc::XmlRpcValue(0.0)},
       {"tick_period_s", XmlRpc::XmlRpcValue(0.0)},
       {"seed", XmlRpc::XmlRpcValue(-3)},
+      {"docking_radius_m", XmlRpc::XmlRpcValue(-0.1)},
       {"local_range_m", XmlRpc::XmlRpcValue(std::string("far"))},
   };
   for (Case c : cases) {

@@ -25,6 +25,12 @@ struct MissionAgentParams {
   int object_update_ticks = 1;       // first leader publishes Update_Object every N ticks
   int progress_every_ticks = 50;     // first leader repeats its status with progress every N
   std::uint64_t phase_timeout_ticks = 20000;  // a phase that lasts longer aborts the mission
+  // Docking (ext): once the object centre is this close to the target (m; 0: never), the first
+  // leader freezes the other assigned robots and alone moves the object the rest of the way,
+  // n times its distance to go per tick (the object follows the centroid of n robots).
+  double docking_radius_m = 0.2;
+  // Docking gives up (the others continue) after this many ticks without getting closer.
+  std::uint64_t docking_patience_ticks = 20;
 };
 
 // A status report the first leader publishes.
@@ -106,8 +112,16 @@ class MissionAgent {
     bool unloaded = false;     // first-leader: UNLOADED arrived during UNLOADING
     std::uint64_t signal_tick = 0;  // ... and takes effect at this tick
     bool self_arrived = false; // this leader reached its leader-only goal
+    bool docking = false;      // first-leader: the others stand, it places the object alone
+    double docking_best_m = 0.0;          // ... the closest the centre came while docking
+    std::uint64_t docking_best_tick = 0;  // ... and when
+    std::uint64_t docking_retry_tick = 0; // after giving up: not before this tick again
   };
   void Drop(std::uint16_t mission_id);
+  // The mission's assigned ids except this robot, as half-open runs.
+  std::vector<std::pair<std::uint16_t, std::uint16_t>> OthersRuns(const MissionSpec& spec) const;
+  // First leader in TRANSPORT, not arrived: starts, keeps or gives up docking.
+  void UpdateDocking(Live* live, double to_target, std::uint64_t tick, MissionOutbox* outbox);
   void RunFirstLeader(Live* live, const Pose2& self, const std::vector<Neighbour>& heard,
                       std::uint64_t tick, MissionOutbox* outbox);
   StatusReport Report(const Live& live, std::uint16_t inside) const;

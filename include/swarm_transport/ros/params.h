@@ -25,6 +25,7 @@ struct SwarmConfig {
   double loaded_delay_s = 2.0;           // dispatcher: LOADED this long after LOADING (<0: wait)
   double unloaded_delay_s = 2.0;         // dispatcher: UNLOADED this long after UNLOADING
   int object_update_ticks = 1;           // first leader publishes Update_Object every N ticks
+  double docking_radius_m = 0.2;         // (ext) first leader docks the object alone this close
 
   // Empty when valid, else one sentence naming the bad key.
   std::string Validate() const;
