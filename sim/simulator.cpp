@@ -661,8 +661,10 @@ bool Simulator::Lost() {
 }
 
 void Simulator::PublishClock() {
-  rosgraph_msgs::Clock msg;
-  msg.clock = ros::Time(SimTime());
+  // By shared pointer: this process's own /clock subscription (roscpp's, under sim time) gets it
+  // without serialisation (see RobotNode::Tick).
+  auto msg = boost::make_shared<rosgraph_msgs::Clock>();
+  msg->clock = ros::Time(SimTime());
   clock_pub_.publish(msg);
 }
 

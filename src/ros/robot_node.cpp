@@ -503,7 +503,10 @@ void RobotNode::Tick() {
     if (tick_done_pub_) tick_done_pub_.publish(TickDone());
   }
   const core::Pose2 after = core::TurnThenDrive(in.self, command, config_.tick_period_s);
-  position_pub_.publish(ToRobotPosition(id_, after));
+  // By shared pointer: roscpp hands it to subscribers in this process (the simulator of a
+  // robot_host) without serialising it and without waking its poll thread; a message
+  // published by reference is serialised, and signals that thread, even for them.
+  position_pub_.publish(boost::make_shared<Robot_Position>(ToRobotPosition(id_, after)));
   ++ticks_;
   if (stats_) RecordTick();
 }
