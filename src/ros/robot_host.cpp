@@ -195,6 +195,7 @@ bool RobotHost::Initialize() {
     robots_.push_back(std::make_unique<RobotNode>(nh, private_nh));
     if (!robots_.back()->Initialize(robot)) return false;
   }
+  if (simulator_) inboxes_ = std::make_unique<Inbox[]>(robots_.size());
   ROS_INFO("robot_host: robots [%d, %d) up in %.1f s (%s clock, %s comm, %d threads)",
            options_.from, options_.to, (ros::WallTime::now() - started).toSec(),
            options_.clock.c_str(), options_.comm.c_str(), options_.threads);
@@ -232,11 +233,36 @@ void RobotHost::Deliver(std::uint16_t id, const Neighbors::ConstPtr& round) {
   const std::size_t index = static_cast<std::size_t>(id - options_.from);
   if (index >= robots_.size()) return;  // not set up (yet)
   RobotNode* robot = robots_[index].get();
+  ros::CallbackQueue* queue = queues_[index % queues_.size()].get();
   // On the robot's queue, like a neighbors message: never concurrently with its other
   // callbacks, and in real time on its own thread, not the simulator's.
-  queues_[index % queues_.size()]->addCallback(
-      boost::make_shared<QueuedCall>([robot, round]() { robot->OnNeighbors(round); }),
-      reinterpret_cast<std::uint64_t>(robot));
+  if (options_.clock == "lockstep") {
+    // Every round is a tick and is answered (the simulator sends the next one only then).
+    queue->addCallback(
+        boost::make_shared<QueuedCall>([robot, round]() { robot->OnNeighbors(round); }),
+        reinterpret_cast<std::uint64_t>(robot));
+    return;
+  }
+  // Real time: a robot that fell behind gets the latest round only, as a neighbors
+  // subscription with a short queue drops old rounds (its diagnostics count them as missed);
+  // an unbounded queue would grow while the robot can not keep up.
+  Inbox& inbox = inboxes_[index];
+  bool pending = false;
+  {
+    std::lock_guard<std::mutex> lock(inbox.mutex);
+    pending = inbox.round != nullptr;
+    inbox.round = round;
+  }
+  if (pending) return;  // the queued callback will take this one
+  queue->addCallback(boost::make_shared<QueuedCall>([robot, &inbox]() {
+                       Neighbors::ConstPtr latest;
+                       {
+                         std::lock_guard<std::mutex> lock(inbox.mutex);
+                         latest.swap(inbox.round);
+                       }
+                       if (latest) robot->OnNeighbors(latest);
+                     }),
+                     reinterpret_cast<std::uint64_t>(robot));
 }
 
 void RobotHost::SpinRobots() {

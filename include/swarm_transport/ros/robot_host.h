@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -76,6 +77,12 @@ class RobotHost : public DirectRobots {
   // Declared before the robots: their subscriptions refer to these queues.
   std::vector<std::unique_ptr<ros::CallbackQueue>> queues_;
   std::vector<std::unique_ptr<RobotNode>> robots_;
+  // Real time with the simulator here: each robot's latest round not yet taken (Deliver).
+  struct Inbox {
+    std::mutex mutex;
+    Neighbors::ConstPtr round;
+  };
+  std::unique_ptr<Inbox[]> inboxes_;
   std::vector<std::unique_ptr<ros::AsyncSpinner>> spinners_;
   std::unique_ptr<TickScheduler> scheduler_;
 };
