@@ -113,6 +113,29 @@ class DeployEquivalence(unittest.TestCase):
         self.assertGreater(max(st.moved(start[r], by_host[r]) for r in range(robots)),
                            rospy.get_param('~min_move_m'), 'nobody moved: a trivial run')
 
+    def test_host_sim_realtime_runs(self):
+        """Real time has no equivalence to check, but its direct links must carry rounds to the
+        robots (on their own threads) and commands back: the robots move, without per-robot
+        topics."""
+        robots = 5
+        log = st.PositionLog()
+        swarm = st.launch_swarm(robots=robots, seed=rospy.get_param('~seed'), lockstep=False,
+                                deploy='host_sim')
+        try:
+            self.assertTrue(log.wait_tick(30, rospy.get_param('~timeout_s')),
+                            'real time host_sim stopped at radio round %d' % log.latest_tick())
+            topics = per_robot_topics()
+            ticks = log.ticks()
+            first, last = log.at(ticks[0]), log.at(ticks[-1])
+        finally:
+            swarm.shutdown()
+            log.close()
+        self.assertEqual(topics, [], 'deploy:=host_sim still uses per-robot topics')
+        self.assertEqual(sorted(last), list(range(robots)))
+        self.assertGreater(max(st.moved(first[r], last[r]) for r in range(robots)),
+                           rospy.get_param('~min_move_m'),
+                           'nobody moved in %d radio rounds' % (ticks[-1] - ticks[0]))
+
     def test_host_rejects_bad_parameters(self):
         cases = ((['_from:=5', '_to:=5'], '~to must be in'),
                  (['_to:=3', '_threads:=0'], '~threads must be in'),
