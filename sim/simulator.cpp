@@ -171,6 +171,9 @@ bool Simulator::LoadParams(std::string* error) {
     return false;
   }
   params_.radio_range_m = params_.swarm.flocking.local_range_m;
+  // Directly linked robots (a robot_host that runs the simulator) go without pose topics
+  // unless asked for.
+  params_.pose_topics = direct_ == nullptr;
   const ros::NodeHandle& p = private_nh_;
   if (!ReadPrivate(p, "placement", &params_.placement, error)) return false;
   // With a placement file, robots defaults to every line of it.
@@ -187,7 +190,8 @@ bool Simulator::LoadParams(std::string* error) {
       !ReadPrivate(p, "markers_rate_hz", &params_.markers_rate_hz, error) ||
       !ReadPrivate(p, "tf", &params_.tf, error) ||
       !ReadPrivate(p, "range_circles", &params_.range_circles, error) ||
-      !ReadPrivate(p, "radio_range_m", &params_.radio_range_m, error)) {
+      !ReadPrivate(p, "radio_range_m", &params_.radio_range_m, error) ||
+      !ReadPrivate(p, "pose_topics", &params_.pose_topics, error)) {
     return false;
   }
   *error = params_.Validate();
@@ -245,6 +249,7 @@ bool Simulator::PlaceInitialRobots(std::string* error) {
 }
 
 bool Simulator::Initialize() {
+  thread_ = std::this_thread::get_id();
   std::string error;
   if (!LoadParams(&error) || !PlaceInitialRobots(&error)) {
     ROS_FATAL("simulator: invalid parameters: %s", error.c_str());
@@ -332,24 +337,32 @@ void Simulator::AddRobotIo(std::uint16_t id) {
       CountSubscriber(id, generation, field, delta);
     };
   };
-  io.neighbors = robot_nh.advertise<Neighbors>(names::kNeighbors, kNeighborsQueue,
-                                               counter(&RobotIo::neighbors_subscribers, 1),
-                                               counter(&RobotIo::neighbors_subscribers, -1));
-  io.pose =
-      robot_nh.advertise<Pose>(names::kPose, kPoseQueue, counter(&RobotIo::pose_subscribers, 1),
-                               counter(&RobotIo::pose_subscribers, -1));
-  ros::SubscribeOptions ops = ros::SubscribeOptions::create<geometry_msgs::Twist>(
-      names::kCmdVel, kCmdVelQueue,
-      [this, id](const geometry_msgs::Twist::ConstPtr& msg) { OnCmdVel(id, msg); },
-      ros::VoidConstPtr(), &cmd_queue_);
-  // A tick's command is one small message: Nagle's algorithm would delay it by ~40 ms.
-  ops.transport_hints = ros::TransportHints().tcpNoDelay();
-  io.cmd_vel = robot_nh.subscribe(ops);
-  if (lockstep_) {
+  if (params_.pose_topics) {
+    io.pose =
+        robot_nh.advertise<Pose>(names::kPose, kPoseQueue, counter(&RobotIo::pose_subscribers, 1),
+                                 counter(&RobotIo::pose_subscribers, -1));
+  }
+  // A robot of this process linked directly: its round, command and tick_done bypass roscpp.
+  io.direct = direct_ != nullptr && direct_->Hosts(id);
+  if (!io.direct) {
+    io.neighbors = robot_nh.advertise<Neighbors>(names::kNeighbors, kNeighborsQueue,
+                                                 counter(&RobotIo::neighbors_subscribers, 1),
+                                                 counter(&RobotIo::neighbors_subscribers, -1));
+    ros::SubscribeOptions ops = ros::SubscribeOptions::create<geometry_msgs::Twist>(
+        names::kCmdVel, kCmdVelQueue,
+        [this, id](const geometry_msgs::Twist::ConstPtr& msg) { OnCmdVel(id, *msg); },
+        ros::VoidConstPtr(), &cmd_queue_);
+    // A tick's command is one small message: Nagle's algorithm would delay it by ~40 ms.
+    ops.transport_hints = ros::TransportHints().tcpNoDelay();
+    io.cmd_vel = robot_nh.subscribe(ops);
+  }
+  if (lockstep_ && !io.direct) {
     ros::SubscribeOptions done_ops;
     done_ops.initByFullCallbackType<const ros::MessageEvent<const Tick_Done>&>(
         names::kTickDone, kCmdVelQueue,
-        [this, id](const ros::MessageEvent<const Tick_Done>& event) { OnTickDone(id, event); });
+        [this, id](const ros::MessageEvent<const Tick_Done>& event) {
+          OnTickDone(id, event.getPublisherName(), *event.getConstMessage());
+        });
     done_ops.callback_queue = &cmd_queue_;
     done_ops.transport_hints = ros::TransportHints().tcpNoDelay();
     io.tick_done = robot_nh.subscribe(done_ops);
@@ -377,6 +390,12 @@ void Simulator::CountSubscriber(std::uint16_t id, std::uint64_t generation, int 
 }
 
 bool Simulator::Ready(RobotIo* io) {
+  if (io->direct) {
+    // Nothing to connect: a direct robot hears its first round and answers it for sure, and
+    // in lock-step (the host runs its robots on the simulator's clock) it sends tick_done.
+    io->sends_tick_done = true;
+    return true;
+  }
   // Only checked until the robot is live: getNumPublishers() scans every subscription.
   const bool connected = io->neighbors_subscribers > 0 && io->cmd_vel.getNumPublishers() > 0;
   // A robot that publishes tick_done is waited for from its first tick on, not only from its
@@ -452,8 +471,13 @@ void Simulator::Shutdown() {
 }
 
 void Simulator::SpinOnce() {
+  SpinRobots();
   cmd_queue_.callAvailable();
   ros::spinOnce();
+}
+
+void Simulator::SpinRobots() {
+  if (direct_ != nullptr && lockstep_) direct_->SpinRobots();
 }
 
 void Simulator::RunRealtime() {
@@ -520,7 +544,7 @@ void Simulator::UpdateLiveness() {
         ROS_INFO("lockstep: robot %u connected at tick %llu", entry.first,
                  static_cast<unsigned long long>(tick_));
       }
-    } else if (io.live && io.neighbors_subscribers == 0) {
+    } else if (io.live && !io.direct && io.neighbors_subscribers == 0) {
       io.live = false;
       io.connected_since = ros::WallTime();
       ROS_WARN("lockstep: robot %u disconnected at tick %llu", entry.first,
@@ -538,11 +562,18 @@ void Simulator::UpdateLiveness() {
 void Simulator::WaitForAnswers() {
   const ros::WallTime deadline =
       ros::WallTime::now() + ros::WallDuration(params_.lockstep_timeout_s);
+  bool complete = false;
   do {
-    cmd_queue_.callAvailable(ros::WallDuration(kPollS));
+    // Directly linked robots tick here; their commands and tick_dones are in when this
+    // returns, their mission messages (ROS topics) on the global queue.
+    SpinRobots();
     ros::spinOnce();
+    complete = awaiting_ == 0 && AllComplete();
+    // Block for answers only while some are missing (with direct robots only: none are).
+    cmd_queue_.callAvailable(ros::WallDuration(complete ? 0.0 : kPollS));
+    complete = awaiting_ == 0 && AllComplete();
     PublishVisualsIfDue();
-  } while ((awaiting_ > 0 || !AllComplete()) && Running() && ros::WallTime::now() < deadline);
+  } while (!complete && Running() && ros::WallTime::now() < deadline);
   // Whatever robots sent together with their answers (virtual copies) is in before the next
   // radio round.
   ros::spinOnce();
@@ -611,6 +642,7 @@ void Simulator::RunLockstep() {
 
 void Simulator::Idle() {
   while (Running()) {
+    SpinRobots();  // their ~describe services stay up
     cmd_queue_.callAvailable(ros::WallDuration(kIdleS));
     ros::spinOnce();
     PublishVisualsIfDue();
@@ -629,8 +661,10 @@ bool Simulator::Lost() {
 }
 
 void Simulator::PublishClock() {
-  rosgraph_msgs::Clock msg;
-  msg.clock = ros::Time(SimTime());
+  // By shared pointer: this process's own /clock subscription (roscpp's, under sim time) gets it
+  // without serialisation (see RobotNode::Tick).
+  auto msg = boost::make_shared<rosgraph_msgs::Clock>();
+  msg->clock = ros::Time(SimTime());
   clock_pub_.publish(msg);
 }
 
@@ -680,7 +714,8 @@ void Simulator::PublishRadio() {
     const std::uint16_t id = robot->first;
     auto io = io_.find(id);
     if (io == io_.end()) continue;
-    const bool deliver = lockstep_ ? io->second.live : io->second.neighbors_subscribers > 0;
+    const bool deliver =
+        lockstep_ ? io->second.live : io->second.direct || io->second.neighbors_subscribers > 0;
     if (!deliver) continue;
     Neighbors msg;
     msg.tick = tick_;
@@ -721,7 +756,11 @@ void Simulator::PublishRadio() {
     for (std::size_t j : touched) heard[j] = 0;
     touched.clear();
     if (lockstep_) FillRelay(&msg);
-    io->second.neighbors.publish(msg);
+    if (io->second.direct) {
+      direct_->Deliver(id, boost::make_shared<const Neighbors>(std::move(msg)));
+    } else {
+      io->second.neighbors.publish(msg);
+    }
     if (lockstep_) {
       ++io->second.neighbors_sent;
       io->second.answered = false;
@@ -788,6 +827,7 @@ void Simulator::WaitForEvents() {
   const ros::WallTime deadline =
       ros::WallTime::now() + ros::WallDuration(params_.lockstep_timeout_s);
   while (!events_awaited_.empty() && Running() && ros::WallTime::now() < deadline) {
+    SpinRobots();
     cmd_queue_.callAvailable(ros::WallDuration(kPollS));
     ros::spinOnce();
   }
@@ -837,17 +877,15 @@ void Simulator::ClearRelay() {
   relay_statuses_.clear();
 }
 
-void Simulator::OnTickDone(std::uint16_t id, const ros::MessageEvent<const Tick_Done>& event) {
+void Simulator::OnTickDone(std::uint16_t id, const std::string& from, const Tick_Done& msg) {
   auto it = io_.find(id);
   if (it == io_.end()) return;
   RobotIo& io = it->second;
-  const std::string& from = event.getPublisherName();
   if (io.publisher != from) {  // first word, or the robot came back in another process
     if (!io.publisher.empty()) events_announced_[io.publisher] -= io.events_announced;
     io.publisher = from;
     io.events_announced = 0;
   }
-  const Tick_Done& msg = *event.getConstMessage();
   events_announced_[from] += msg.events_published - io.events_announced;
   io.events_announced = msg.events_published;
   io.sends_tick_done = true;
@@ -1018,15 +1056,35 @@ void Simulator::PublishTransforms() {
   if (!transforms.empty()) tf_broadcaster_->sendTransform(transforms);
 }
 
-void Simulator::OnCmdVel(std::uint16_t id, const geometry_msgs::Twist::ConstPtr& msg) {
+void Simulator::SendCommand(std::uint16_t id, const geometry_msgs::Twist& command) {
+  if (std::this_thread::get_id() == thread_) {
+    OnCmdVel(id, command);
+    return;
+  }
+  cmd_queue_.addCallback(
+      boost::make_shared<QueuedCall>([this, id, command]() { OnCmdVel(id, command); }));
+}
+
+void Simulator::SendTickDone(std::uint16_t id, const Tick_Done& done) {
+  // The publisher a topic would name: the barrier counts this robot's mission messages, sent
+  // by this process's node on the mission topics, under the same name.
+  if (std::this_thread::get_id() == thread_) {
+    OnTickDone(id, ros::this_node::getName(), done);
+    return;
+  }
+  cmd_queue_.addCallback(boost::make_shared<QueuedCall>(
+      [this, id, done]() { OnTickDone(id, ros::this_node::getName(), done); }));
+}
+
+void Simulator::OnCmdVel(std::uint16_t id, const geometry_msgs::Twist& msg) {
   auto it = io_.find(id);
   if (it == io_.end() || finished_) return;
   RobotIo& io = it->second;
-  const bool finite = IsFinite(*msg);
+  const bool finite = IsFinite(msg);
   if (!finite && WallThrottle(&last_bad_cmd_warning_wall_, kWarnPeriodS)) {
     ROS_WARN("simulator: robot %u sent a cmd_vel with a non-finite value; it stands instead", id);
   }
-  const core::Velocity velocity = finite ? ToVelocity(*msg) : core::Velocity();
+  const core::Velocity velocity = finite ? ToVelocity(msg) : core::Velocity();
   if (!lockstep_ || !io.live) {
     // Real time, or a robot outside the lock-step protocol: the command applies at once.
     if (finite) world_->SetCommand(id, velocity, nullptr);

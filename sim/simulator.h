@@ -14,6 +14,7 @@
 #include <memory>
 #include <set>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -33,6 +34,7 @@
 #include "swarm_transport/Tick_Done.h"
 #include "swarm_transport/Update_Object.h"
 #include "swarm_transport/core/random.h"
+#include "swarm_transport/ros/direct_link.h"
 #include "swarm_transport/ros/params.h"
 #include "world2d.h"
 
@@ -63,6 +65,10 @@ struct SimulatorParams {
   bool tf = true;                    // ~tf: broadcast world -> robot_<id>/base_link
   bool range_circles = false;        // ~range_circles: draw each robot's local range
   double radio_range_m = 1.0;        // ~radio_range_m: default /swarm/local_range_m
+  // ~pose_topics: advertise robot_<id>/pose for every robot. Default true, false when robots
+  // are linked directly (a robot_host that runs the simulator): a publication per robot costs
+  // roscpp time in every publish of the process, and /flock/positions carries every pose.
+  bool pose_topics = true;
 
   // Empty when valid, else one sentence naming the first bad parameter and its accepted range.
   std::string Validate() const;
@@ -72,12 +78,26 @@ struct SimulatorParams {
 // services, global spawn/kill/reset, /flock/positions, markers, tf, and in lock-step /clock.
 // Single-threaded: every callback runs from Run()'s loop between world steps, so the world
 // needs no lock and a tick's result never depends on thread scheduling.
-class Simulator {
+// Robots hosted in the simulator's own process can be linked directly (AttachDirect): no
+// neighbors / cmd_vel / tick_done topics for them; as a RobotOutlet the simulator takes their
+// commands and tick_dones into the same bookkeeping as the topics' (thread-safe).
+class Simulator : public RobotOutlet {
  public:
   Simulator(ros::NodeHandle nh, ros::NodeHandle private_nh);
+  // Before Initialize(): the robots of this process that take their rounds directly (must
+  // outlive the simulator's Run()). Lock-step: the simulator runs their callbacks in its own
+  // thread (DirectRobots::SpinRobots) whenever it waits.
+  void AttachDirect(DirectRobots* robots) { direct_ = robots; }
   // Loads and validates parameters, places the initial robots, connects topics and services.
-  // False (after one ROS_FATAL) on bad parameters.
+  // False (after one ROS_FATAL) on bad parameters. Initialize() and Run() must be called from
+  // the same thread.
   bool Initialize();
+  bool lockstep() const { return lockstep_; }
+  // RobotOutlet: a directly linked robot's command and tick_done. From the simulator's own
+  // thread (lock-step: a robot run by SpinRobots) they apply at once, from any other thread
+  // they are queued for the simulator's loop like a cmd_vel message.
+  void SendCommand(std::uint16_t id, const geometry_msgs::Twist& command) override;
+  void SendTickDone(std::uint16_t id, const Tick_Done& done) override;
   // Runs the clock until ROS shuts down.
   void Run();
   // Disconnects everything.
@@ -88,8 +108,9 @@ class Simulator {
   static void RequestStop();
 
  private:
-  // The ROS side of one robot and its lock-step bookkeeping.
+  // The ROS side of one robot (or its direct link) and its lock-step bookkeeping.
   struct RobotIo {
+    bool direct = false;  // linked directly: no neighbors, cmd_vel or tick_done topics
     ros::Publisher neighbors;
     ros::Publisher pose;
     ros::Subscriber cmd_vel;
@@ -164,7 +185,8 @@ class Simulator {
   void Relay(const ros::MessageEvent<const M>& event, RelayList<M>* list, bool counted);
   void FillRelay(Neighbors* msg) const;
   void ClearRelay();
-  void OnTickDone(std::uint16_t id, const ros::MessageEvent<const Tick_Done>& event);
+  // `publisher`: the node that sent it (the barrier counts mission messages per node).
+  void OnTickDone(std::uint16_t id, const std::string& publisher, const Tick_Done& msg);
   // A live robot's tick is complete: its cmd_vel, its tick_done, and every mission message it
   // (or its process) announced have arrived.
   bool Complete(const RobotIo& io) const;
@@ -177,13 +199,16 @@ class Simulator {
   void PublishVisualsIfDue();
   void PublishMarkers();
   void PublishTransforms();
-  // Spins the callback queues once without blocking.
+  // Spins the callback queues (and, lock-step, the directly linked robots) once without
+  // blocking.
   void SpinOnce();
+  // Lock-step: runs the directly linked robots' pending callbacks in this thread.
+  void SpinRobots();
   double SimTime() const;
   ros::Time Stamp() const;
   bool Lost();
 
-  void OnCmdVel(std::uint16_t id, const geometry_msgs::Twist::ConstPtr& msg);
+  void OnCmdVel(std::uint16_t id, const geometry_msgs::Twist& msg);
   bool OnSpawn(Spawn::Request& req, Spawn::Response& res);
   bool OnKill(Kill::Request& req, Kill::Response& res);
   bool OnReset(std_srvs::Empty::Request& req, std_srvs::Empty::Response& res);
@@ -205,6 +230,8 @@ class Simulator {
   bool lockstep_ = false;
   std::unique_ptr<sim::World2D> world_;
   std::unique_ptr<core::Rng> radio_rng_;
+  DirectRobots* direct_ = nullptr;
+  std::thread::id thread_;  // Initialize()'s and Run()'s
 
   // cmd_vel callbacks have their own queue so that lock-step can wait for answers without
   // running services (which may spawn or kill robots) at arbitrary points.

@@ -1,14 +1,17 @@
 #!/usr/bin/env python3
 """deploy:=host (all robots in one robot_host process) behaves exactly like deploy:=process (a
-robot process each), and so does a robot_host that runs the simulator too (~run_simulator): in
+robot process each), and so does a robot_host that runs the simulator too (~run_simulator,
+deploy:=host_sim), whose robots are linked to the simulator directly, not by topics: in
 lock-step with the same seed all give identical poses at tick N."""
 
 import os
+import re
 import signal
 import subprocess
 import sys
 import unittest
 
+import rosgraph.masterapi
 import rospkg
 import rospy
 import rostest
@@ -17,7 +20,17 @@ import yaml
 import swarm_testing as st
 
 
-def poses(deploy, seed, robots, ticks, timeout):
+PER_ROBOT_TOPIC = re.compile(r'^/robot_\d+/(neighbors|cmd_vel|tick_done|pose)$')
+
+
+def per_robot_topics():
+    """The per-robot topics between robots and simulator that someone publishes or subscribes."""
+    pubs, subs, _ = rosgraph.masterapi.Master('/deploy_equivalence').getSystemState()
+    return sorted(t for t, _ in pubs + subs if PER_ROBOT_TOPIC.match(t))
+
+
+def poses(deploy, seed, robots, ticks, timeout, topics=None):
+    """Poses at tick 0 and `ticks`; `topics` (a list) gets the per-robot topics of the run."""
     log = st.PositionLog()
     swarm = st.launch_swarm(robots=robots, seed=seed, lockstep=True, max_ticks=ticks,
                             deploy=deploy)
@@ -25,6 +38,8 @@ def poses(deploy, seed, robots, ticks, timeout):
         if not log.wait_tick(ticks, timeout):
             raise AssertionError('deploy %s: the run stopped at tick %d'
                                  % (deploy, log.latest_tick()))
+        if topics is not None:
+            topics.extend(per_robot_topics())
         return log.at(0), log.at(ticks)
     finally:
         swarm.shutdown()
@@ -33,7 +48,8 @@ def poses(deploy, seed, robots, ticks, timeout):
 
 def poses_one_process(seed, robots, ticks, timeout):
     """The same swarm with robots and simulator in one robot_host process (no swarm.launch):
-    the parameters swarm.launch would set, the simulator's under ~simulator/."""
+    the parameters swarm.launch would set, the simulator's under ~simulator/; two callback
+    queues, which lock-step runs from the simulator's thread like one."""
     pkg = rospkg.RosPack().get_path('swarm_transport')
     with open(os.path.join(pkg, 'config', 'swarm.yaml')) as f:
         swarm = yaml.safe_load(f)
@@ -42,7 +58,7 @@ def poses_one_process(seed, robots, ticks, timeout):
     rospy.set_param('/swarm', swarm)
     name = 'robot_host_sim'
     rospy.set_param('/' + name, {
-        'from': 0, 'to': robots, 'clock': 'lockstep', 'run_simulator': True,
+        'from': 0, 'to': robots, 'clock': 'lockstep', 'run_simulator': True, 'threads': 2,
         'simulator': {'robots': robots, 'clock': 'lockstep', 'lockstep_max_ticks': ticks,
                       'lockstep_observers': 1}})
     log = st.PositionLog()
@@ -71,12 +87,20 @@ class DeployEquivalence(unittest.TestCase):
         timeout = rospy.get_param('~timeout_s')
         tol_m = rospy.get_param('~identical_tolerance_m')
         tol_deg = rospy.get_param('~identical_tolerance_deg')
-        start, by_process = poses('process', seed, robots, ticks, timeout)
+        process_topics, host_sim_topics = [], []
+        start, by_process = poses('process', seed, robots, ticks, timeout, process_topics)
         _, by_host = poses('host', seed, robots, ticks, timeout)
+        start_sim, by_host_sim = poses('host_sim', seed, robots, ticks, timeout, host_sim_topics)
         start_one, by_one = poses_one_process(seed, robots, ticks, timeout)
         self.assertEqual(sorted(by_process), list(range(robots)))
+        # The processes talk to the simulator on per-robot topics; with deploy:=host_sim the
+        # robots and the simulator are linked directly and no such topic exists.
+        self.assertIn('/robot_0/neighbors', process_topics)
+        self.assertEqual(host_sim_topics, [], 'deploy:=host_sim still uses per-robot topics')
+        self.assertEqual(start_sim, start, 'the host_sim run started elsewhere')
         self.assertEqual(start_one, start, 'the one-process run started elsewhere')
-        for name, other in (('the host', by_host), ('one process', by_one)):
+        for name, other in (('the host', by_host), ('host_sim', by_host_sim),
+                            ('one process', by_one)):
             self.assertEqual(sorted(other), list(range(robots)), name)
             for rid in range(robots):
                 self.assertLessEqual(st.moved(by_process[rid], other[rid]), tol_m,
@@ -89,10 +113,36 @@ class DeployEquivalence(unittest.TestCase):
         self.assertGreater(max(st.moved(start[r], by_host[r]) for r in range(robots)),
                            rospy.get_param('~min_move_m'), 'nobody moved: a trivial run')
 
+    def test_host_sim_realtime_runs(self):
+        """Real time has no equivalence to check, but its direct links must carry rounds to the
+        robots (on their own threads) and commands back: the robots move, without per-robot
+        topics."""
+        robots = 5
+        log = st.PositionLog()
+        swarm = st.launch_swarm(robots=robots, seed=rospy.get_param('~seed'), lockstep=False,
+                                deploy='host_sim')
+        try:
+            self.assertTrue(log.wait_tick(30, rospy.get_param('~timeout_s')),
+                            'real time host_sim stopped at radio round %d' % log.latest_tick())
+            topics = per_robot_topics()
+            ticks = log.ticks()
+            first, last = log.at(ticks[0]), log.at(ticks[-1])
+        finally:
+            swarm.shutdown()
+            log.close()
+        self.assertEqual(topics, [], 'deploy:=host_sim still uses per-robot topics')
+        self.assertEqual(sorted(last), list(range(robots)))
+        self.assertGreater(max(st.moved(first[r], last[r]) for r in range(robots)),
+                           rospy.get_param('~min_move_m'),
+                           'nobody moved in %d radio rounds' % (ticks[-1] - ticks[0]))
+
     def test_host_rejects_bad_parameters(self):
         cases = ((['_from:=5', '_to:=5'], '~to must be in'),
                  (['_to:=3', '_threads:=0'], '~threads must be in'),
-                 (['_to:=3', '_comm:=shout'], '~comm must be'))
+                 (['_to:=3', '_comm:=shout'], '~comm must be'),
+                 # The simulator's clock defaults to realtime.
+                 (['_to:=3', '_clock:=lockstep', '_run_simulator:=true'],
+                  '~clock is \'lockstep\' but ~simulator/clock is \'realtime\''))
         for i, (args, expect) in enumerate(cases):
             # A node name per case: private parameters from the command line stay set.
             p = subprocess.run(['rosrun', 'swarm_transport', 'robot_host',

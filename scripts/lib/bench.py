@@ -218,8 +218,11 @@ def run_one(a):
         else:
             for rid in range(a.robots):
                 master.setParam('/robot_%d/robot' % rid, {'comm': a.comm, 'diagnostics': True})
-        # Before roslaunch sets /use_sim_time: this process keeps wall time.
+        # Before roslaunch (or, host_sim, we) set /use_sim_time: this process keeps wall time
+        # (with sim time it would subscribe /clock, a TCP message per lock-step tick).
         rospy.init_node('bench', anonymous=True, disable_signals=True)
+        if a.deploy == 'host_sim':
+            master.setParam('/use_sim_time', a.clock == 'lockstep')
         stats = {}  # id -> list of (recv wall, fields)
 
         def on_stats(msg):
@@ -256,13 +259,14 @@ def run_one(a):
 
 
 def set_host_sim_params(master, a):
-    """What swarm.launch would set, for one robot_host process that also runs the simulator."""
+    """What swarm.launch would set, for one robot_host process that also runs the simulator
+    (linked directly to its robots: no per-robot topics between them); /use_sim_time is set by
+    the caller after its own node is up."""
     import yaml
     with open(os.path.join(st_ros.ROOT, 'config', 'swarm.yaml')) as f:
         swarm = yaml.safe_load(f)
     swarm['seed'] = a.seed
     swarm['world_size_m'] = a.arena_m
-    master.setParam('/use_sim_time', a.clock == 'lockstep')
     master.setParam('/swarm', swarm)
     master.setParam('/robot_host', {
         'from': 0, 'to': a.robots, 'clock': a.clock, 'comm': a.comm, 'diagnostics': True,

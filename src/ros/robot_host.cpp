@@ -161,7 +161,18 @@ bool RobotHost::Initialize() {
   }
   if (options_.run_simulator) {
     simulator_ = std::make_unique<Simulator>(nh_, ros::NodeHandle(private_nh_, "simulator"));
+    simulator_->AttachDirect(this);
     if (!simulator_->Initialize()) return false;
+    // Direct links carry no clock: robots ticking on their own wall timers would answer
+    // lock-step rounds out of turn, and lock-step robots would wait for rounds forever.
+    const std::string sim_clock = simulator_->lockstep() ? "lockstep" : "realtime";
+    if (sim_clock != options_.clock) {
+      ROS_FATAL(
+          "robot_host: invalid parameters: ~clock is '%s' but ~simulator/clock is '%s'; "
+          "with ~run_simulator both must be the same",
+          options_.clock.c_str(), sim_clock.c_str());
+      return false;
+    }
   }
   for (int i = 0; i < options_.threads; ++i) {
     queues_.push_back(std::make_unique<ros::CallbackQueue>());
@@ -180,16 +191,22 @@ bool RobotHost::Initialize() {
     robot.comm = options_.comm;
     robot.diagnostics = options_.diagnostics;
     robot.external_timer = realtime;
+    if (simulator_) robot.direct = simulator_.get();
     robots_.push_back(std::make_unique<RobotNode>(nh, private_nh));
     if (!robots_.back()->Initialize(robot)) return false;
   }
+  if (simulator_) inboxes_ = std::make_unique<Inbox[]>(robots_.size());
   ROS_INFO("robot_host: robots [%d, %d) up in %.1f s (%s clock, %s comm, %d threads)",
            options_.from, options_.to, (ros::WallTime::now() - started).toSec(),
            options_.clock.c_str(), options_.comm.c_str(), options_.threads);
   // Callbacks start only now: a robot must not hear anything while it is being set up.
-  for (auto& queue : queues_) {
-    spinners_.push_back(std::make_unique<ros::AsyncSpinner>(1, queue.get()));
-    spinners_.back()->start();
+  // Lock-step with the simulator here: the simulator runs the queues (SpinRobots), so a tick
+  // needs no thread hand-off and callbacks run in the same order every time.
+  if (!(simulator_ && !realtime)) {
+    for (auto& queue : queues_) {
+      spinners_.push_back(std::make_unique<ros::AsyncSpinner>(1, queue.get()));
+      spinners_.back()->start();
+    }
   }
   if (realtime) {
     // Each robot on its own timeline, as separate processes would be; the phases are spread
@@ -206,6 +223,54 @@ bool RobotHost::Initialize() {
     scheduler_->Start();
   }
   return true;
+}
+
+bool RobotHost::Hosts(std::uint16_t id) const {
+  return options_.run_simulator && options_.from <= id && id < options_.to;
+}
+
+void RobotHost::Deliver(std::uint16_t id, const Neighbors::ConstPtr& round) {
+  const std::size_t index = static_cast<std::size_t>(id - options_.from);
+  if (index >= robots_.size()) return;  // not set up (yet)
+  RobotNode* robot = robots_[index].get();
+  ros::CallbackQueue* queue = queues_[index % queues_.size()].get();
+  // On the robot's queue, like a neighbors message: never concurrently with its other
+  // callbacks, and in real time on its own thread, not the simulator's.
+  if (options_.clock == "lockstep") {
+    // Every round is a tick and is answered (the simulator sends the next one only then).
+    queue->addCallback(
+        boost::make_shared<QueuedCall>([robot, round]() { robot->OnNeighbors(round); }),
+        reinterpret_cast<std::uint64_t>(robot));
+    return;
+  }
+  // Real time: a robot that fell behind gets the latest round only, as a neighbors
+  // subscription with a short queue drops old rounds (its diagnostics count them as missed);
+  // an unbounded queue would grow while the robot can not keep up.
+  Inbox& inbox = inboxes_[index];
+  bool pending = false;
+  {
+    std::lock_guard<std::mutex> lock(inbox.mutex);
+    pending = inbox.round != nullptr;
+    inbox.round = round;
+  }
+  if (pending) return;  // the queued callback will take this one
+  queue->addCallback(boost::make_shared<QueuedCall>([robot, &inbox]() {
+                       Neighbors::ConstPtr latest;
+                       {
+                         std::lock_guard<std::mutex> lock(inbox.mutex);
+                         latest.swap(inbox.round);
+                       }
+                       if (latest) robot->OnNeighbors(latest);
+                     }),
+                     reinterpret_cast<std::uint64_t>(robot));
+}
+
+void RobotHost::SpinRobots() {
+  // Real time: the spinner threads run the queues.
+  if (options_.clock != "lockstep" || !spinners_.empty()) return;
+  // Queue by queue: robot k's callbacks in arrival order, the robots of a queue in the order
+  // their rounds were delivered (ascending id), so a run is the same every time.
+  for (auto& queue : queues_) queue->callAvailable(ros::WallDuration());
 }
 
 void RobotHost::Spin() {

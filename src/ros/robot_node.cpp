@@ -73,18 +73,20 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
   mission_params.docking_radius_m = config_.docking_radius_m;
   agent_ = core::MissionAgent(id_, mission_params);
 
-  cmd_pub_ = nh_.advertise<geometry_msgs::Twist>(names::kCmdVel, 2);
   position_pub_ = nh_.advertise<Robot_Position>(names::kPosition, 10);
-  // tcpNoDelay: a tick's perception is one small message; Nagle would add ~40 ms per tick.
-  neighbors_sub_ = nh_.subscribe(names::kNeighbors, 2, &RobotNode::OnNeighbors, this,
-                                 ros::TransportHints().tcpNoDelay());
+  if (options_.direct == nullptr) {
+    cmd_pub_ = nh_.advertise<geometry_msgs::Twist>(names::kCmdVel, 2);
+    // tcpNoDelay: a tick's perception is one small message; Nagle would add ~40 ms per tick.
+    neighbors_sub_ = nh_.subscribe(names::kNeighbors, 2, &RobotNode::OnNeighbors, this,
+                                   ros::TransportHints().tcpNoDelay());
+  }
   if (options_.clock == "lockstep") {
     // Lock-step: mission messages arrive relayed inside `neighbors`, each at the tick after it
     // was sent, whatever the scheduling; the simulator waits for this robot's tick_done. Only
     // the simulator and observers subscribe to mission topics here, so every robot can
     // advertise its outlets now: connected long before any mission, they make no first leader
     // wait a scheduling-dependent while.
-    tick_done_pub_ = nh_.advertise<Tick_Done>(names::kTickDone, 2);
+    if (options_.direct == nullptr) tick_done_pub_ = nh_.advertise<Tick_Done>(names::kTickDone, 2);
     AdvertiseMissionOutlets();
   } else {
     freeze_sub_ = nh_.subscribe(names::kFreeze, 20, &RobotNode::OnFreeze, this);
@@ -121,7 +123,11 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
 
 void RobotNode::Shutdown() {
   timer_.stop();
-  if (cmd_pub_) cmd_pub_.publish(geometry_msgs::Twist());
+  if (options_.direct != nullptr) {
+    options_.direct->SendCommand(id_, geometry_msgs::Twist());
+  } else if (cmd_pub_) {
+    cmd_pub_.publish(geometry_msgs::Twist());
+  }
 }
 
 void RobotNode::OnNeighbors(const Neighbors::ConstPtr& msg) {
@@ -418,6 +424,13 @@ void RobotNode::Publish(const core::MissionOutbox& outbox) {
   }
 }
 
+Tick_Done RobotNode::TickDone() const {
+  Tick_Done done;
+  done.tick = perception_->tick;
+  done.events_published = events_published_;
+  return done;
+}
+
 void RobotNode::Tick() {
   core::Perception in;
   in.self_id = id_;
@@ -481,15 +494,20 @@ void RobotNode::Tick() {
   // every command arrived, so the swarm hears them before its next tick.
   Publish(outbox);
   // A frozen robot keeps computing (its random sequence stays aligned) but sends zero.
-  cmd_pub_.publish(ToTwist(command));
-  if (tick_done_pub_) {
-    Tick_Done done;
-    done.tick = perception_->tick;
-    done.events_published = events_published_;
-    tick_done_pub_.publish(done);
+  const bool lockstep = options_.clock == "lockstep";
+  if (options_.direct != nullptr) {
+    // The same content as the topics would carry, in the same order.
+    options_.direct->SendCommand(id_, ToTwist(command));
+    if (lockstep) options_.direct->SendTickDone(id_, TickDone());
+  } else {
+    cmd_pub_.publish(ToTwist(command));
+    if (tick_done_pub_) tick_done_pub_.publish(TickDone());
   }
   const core::Pose2 after = core::TurnThenDrive(in.self, command, config_.tick_period_s);
-  position_pub_.publish(ToRobotPosition(id_, after));
+  // By shared pointer: roscpp hands it to subscribers in this process (the simulator of a
+  // robot_host) without serialising it and without waking its poll thread; a message
+  // published by reference is serialised, and signals that thread, even for them.
+  position_pub_.publish(boost::make_shared<Robot_Position>(ToRobotPosition(id_, after)));
   ++ticks_;
   if (stats_) RecordTick();
 }

@@ -5,10 +5,13 @@
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
 
+#include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
+#include "swarm_transport/ros/direct_link.h"
 #include "swarm_transport/ros/robot_node.h"
 
 namespace swarm_transport {
@@ -25,8 +28,10 @@ struct RobotHostOptions {
   // across robots fixed, which lock-step determinism does not need but debugging likes.
   int threads = 1;
   // ~run_simulator: also run the simulator in this process (its private parameters under
-  // ~simulator/, as under /simulator/ for the simulator node): lock-step then needs no TCP
-  // round trip per robot and tick.
+  // ~simulator/, as under /simulator/ for the simulator node; its ~clock must be ours). The
+  // simulator and the hosted robots are then linked directly (direct_link.h): no
+  // robot_<id>/neighbors, cmd_vel or tick_done topics, and by default no robot_<id>/pose
+  // (~simulator/pose_topics). Lock-step runs the robots in the simulator's thread.
   bool run_simulator = false;
   std::string Validate() const;
 };
@@ -41,7 +46,10 @@ class TickScheduler;
 // Real-time ticks come from one scheduler (one heap, one thread) instead of a wall timer per
 // robot: roscpp's timer manager re-sorts all of a process's timers, with a linear search per
 // comparison, at every expiry.
-class RobotHost {
+// With ~run_simulator the host is the simulator's DirectRobots: it delivers each round on the
+// robot's callback queue, and in lock-step it runs those queues from the simulator's thread
+// (no spinner threads: no hand-offs, and the order of callbacks is fixed).
+class RobotHost : public DirectRobots {
  public:
   RobotHost(ros::NodeHandle nh, ros::NodeHandle private_nh);
   ~RobotHost();
@@ -52,6 +60,11 @@ class RobotHost {
   void Spin();
   // Stops ticking; every robot sends a last zero velocity.
   void Shutdown();
+
+  // DirectRobots (the simulator of this process calls these from its thread).
+  bool Hosts(std::uint16_t id) const override;
+  void Deliver(std::uint16_t id, const Neighbors::ConstPtr& round) override;
+  void SpinRobots() override;
 
  private:
   // No tick or callback runs after this returns.
@@ -64,6 +77,12 @@ class RobotHost {
   // Declared before the robots: their subscriptions refer to these queues.
   std::vector<std::unique_ptr<ros::CallbackQueue>> queues_;
   std::vector<std::unique_ptr<RobotNode>> robots_;
+  // Real time with the simulator here: each robot's latest round not yet taken (Deliver).
+  struct Inbox {
+    std::mutex mutex;
+    Neighbors::ConstPtr round;
+  };
+  std::unique_ptr<Inbox[]> inboxes_;
   std::vector<std::unique_ptr<ros::AsyncSpinner>> spinners_;
   std::unique_ptr<TickScheduler> scheduler_;
 };

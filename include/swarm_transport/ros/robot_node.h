@@ -29,6 +29,7 @@
 #include "swarm_transport/core/mission_agent.h"
 #include "swarm_transport/core/random.h"
 #include "swarm_transport/core/tick_stats.h"
+#include "swarm_transport/ros/direct_link.h"
 #include "swarm_transport/ros/params.h"
 
 namespace swarm_transport {
@@ -47,6 +48,11 @@ struct RobotNodeOptions {
   // Not a parameter: a host of many robots calls TimerTick() itself instead of giving every
   // robot a wall timer (roscpp re-sorts all of a process's timers at every expiry).
   bool external_timer = false;
+  // Not a parameter: a host that also runs the simulator links its robots directly. The
+  // robot then neither subscribes neighbors nor advertises cmd_vel / tick_done: its rounds
+  // come through OnNeighbors() and its commands and tick_dones go to this outlet (which must
+  // outlive the robot).
+  RobotOutlet* direct = nullptr;
   std::string Validate() const;
 };
 
@@ -64,12 +70,14 @@ class RobotNode {
   void TimerTick();
   // Sends a last zero velocity (a stopping robot always stands still).
   void Shutdown();
+  // One radio round (the neighbors subscription's callback; a host with direct links calls it
+  // on the robot's callback queue). Lock-step: one tick.
+  void OnNeighbors(const Neighbors::ConstPtr& msg);
 
   std::uint64_t ticks() const { return ticks_; }
   double tick_period_s() const { return config_.tick_period_s; }
 
  private:
-  void OnNeighbors(const Neighbors::ConstPtr& msg);
   void OnTimer(const ros::WallTimerEvent& event);
   void OnFreeze(const Robot_Freeze::ConstPtr& msg);
   void OnContinue(const Robot_Continue::ConstPtr& msg);
@@ -90,6 +98,8 @@ class RobotNode {
   void RecordTick();
   // ~describe: one line of state (role, frozen, missions, zones) for users and tests.
   bool OnDescribe(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  // Lock-step: this tick's Tick_Done (mission messages sent so far).
+  Tick_Done TickDone() const;
   // Computes and executes one tick on `perception_`.
   void Tick();
   // Publishes what the first leader of a mission decided this tick.

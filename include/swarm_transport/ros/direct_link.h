@@ -1,0 +1,69 @@
+// In-process links between a simulator and the robots hosted in the same process: the per-robot
+// topics neighbors, cmd_vel and tick_done without roscpp in between.
+//
+// Why: every roscpp publication of a process is locked by its poll loop each cycle, and every
+// Publisher::publish looks its topic up by a linear search over all of the process's
+// publications. With a few per-robot topics per robot that is O(robots^2) work per tick in a
+// process that hosts thousands of robots and the simulator. The global topics (/flock/...) stay
+// ROS topics: they are one publication per process whatever the swarm's size.
+#ifndef SWARM_TRANSPORT_ROS_DIRECT_LINK_H_
+#define SWARM_TRANSPORT_ROS_DIRECT_LINK_H_
+
+#include <geometry_msgs/Twist.h>
+#include <ros/callback_queue_interface.h>
+
+#include <cstdint>
+#include <functional>
+#include <utility>
+
+#include "swarm_transport/Neighbors.h"
+#include "swarm_transport/Tick_Done.h"
+
+namespace swarm_transport {
+
+// Where a robot with a direct link sends what it would publish on robot_<id>/cmd_vel and
+// robot_<id>/tick_done. The content is exactly what it would publish; a lock-step simulator
+// counts a direct tick_done as sent by this process's node (ros::this_node::getName()), the
+// name its mission messages, which stay ROS topics, arrive with.
+class RobotOutlet {
+ public:
+  virtual ~RobotOutlet() = default;
+  // Robot `id`'s command of this tick (also its last zero command when it stops).
+  virtual void SendCommand(std::uint16_t id, const geometry_msgs::Twist& command) = 0;
+  // Lock-step: robot `id` finished its tick (after its command and its mission messages).
+  virtual void SendTickDone(std::uint16_t id, const Tick_Done& done) = 0;
+};
+
+// The simulator's side: the robots of its own process that take their radio rounds directly.
+// Every method is called from the simulator's thread.
+class DirectRobots {
+ public:
+  virtual ~DirectRobots() = default;
+  // True when robot `id` is hosted here and linked directly (it neither subscribes
+  // robot_<id>/neighbors nor publishes robot_<id>/cmd_vel or tick_done).
+  virtual bool Hosts(std::uint16_t id) const = 0;
+  // Hands robot `id` its radio round. It must not run the robot's tick before returning: the
+  // simulator is in the middle of its round (the robot runs on its own callback queue).
+  virtual void Deliver(std::uint16_t id, const Neighbors::ConstPtr& round) = 0;
+  // Lock-step: runs the callbacks the hosted robots have pending, in the calling (the
+  // simulator's) thread. Real time: robots run on their own threads and this does nothing.
+  virtual void SpinRobots() = 0;
+};
+
+// A callback queue entry that runs a function: how a round reaches a robot's queue, or a
+// command the simulator's command queue, from another thread.
+class QueuedCall : public ros::CallbackInterface {
+ public:
+  explicit QueuedCall(std::function<void()> call) : call_(std::move(call)) {}
+  CallResult call() override {
+    call_();
+    return Success;
+  }
+
+ private:
+  std::function<void()> call_;
+};
+
+}  // namespace swarm_transport
+
+#endif  // SWARM_TRANSPORT_ROS_DIRECT_LINK_H_
