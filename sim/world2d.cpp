@@ -32,11 +32,7 @@ constexpr std::uint64_t kPlacementStream = 0x706c616365ULL;
 constexpr double kCornerSpacingRadii = 3.0;
 constexpr double kCornerHeadingDeg = 45.0;
 
-double SquaredDistance(core::Vec2 a, core::Vec2 b) {
-  const double dx = b.x - a.x;
-  const double dy = b.y - a.y;
-  return dx * dx + dy * dy;
-}
+using core::SquaredDistance;
 
 void SetError(std::string* error, const std::string& text) {
   if (error != nullptr) *error = text;

@@ -162,6 +162,11 @@ bool IsMoveValid(const Perception& in, const FlockingParams& p, Angle heading, d
   double overlap_after = 0.0;
   for (const Neighbour& other : in.others) {
     if (!IsOtherRobot(in, other)) continue;
+    // Most neighbours are far from both ends: no square root for them (same decision).
+    if (FartherThan(from, other.position, min_separation) &&
+        FartherThan(to, other.position, min_separation)) {
+      continue;
+    }
     const double before = Distance(from, other.position);
     const double after = Distance(to, other.position);
     if (before >= min_separation) {
@@ -181,7 +186,11 @@ bool IsMoveValid(const Perception& in, const FlockingParams& p, Angle heading, d
   if (!p.check_path) return true;
   // The path is the straight segment of the drive (the turn happens in place).
   const double touching = 2.0 * p.robot_radius_m;
+  // A robot farther than touching + the drive from its start cannot be within touching of
+  // any point of the drive.
+  const double reach = touching + Distance(from, to);
   for (const Neighbour& other : in.others) {
+    if (FartherThan(from, other.position, reach)) continue;
     // A robot it is already closer to than the separation (touching after a push by the
     // simulator, rounded to float) would block every move: the overlap rule above already
     // decides how it may move relative to that one.

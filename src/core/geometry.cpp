@@ -174,9 +174,6 @@ void AddBorderIntersections(const Primitive& first, const Primitive& second,
 
 }  // namespace
 
-Vec2 operator+(Vec2 a, Vec2 b) { return {a.x + b.x, a.y + b.y}; }
-Vec2 operator-(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
-Vec2 operator*(Vec2 a, double s) { return {a.x * s, a.y * s}; }
 double Norm(Vec2 v) { return std::hypot(v.x, v.y); }
 double Distance(Vec2 a, Vec2 b) { return Norm(b - a); }
 
