@@ -470,9 +470,9 @@ void Simulator::Shutdown() {
   tf_broadcaster_.reset();
 }
 
-void Simulator::SpinOnce() {
+void Simulator::SpinOnce(double wait_s) {
   SpinRobots();
-  cmd_queue_.callAvailable();
+  cmd_queue_.callAvailable(ros::WallDuration(wait_s));
   ros::spinOnce();
 }
 
@@ -642,9 +642,7 @@ void Simulator::RunLockstep() {
 
 void Simulator::Idle() {
   while (Running()) {
-    SpinRobots();  // their ~describe services stay up
-    cmd_queue_.callAvailable(ros::WallDuration(kIdleS));
-    ros::spinOnce();
+    SpinOnce(kIdleS);  // directly linked robots' ~describe services stay up
     PublishVisualsIfDue();
   }
 }
@@ -827,9 +825,7 @@ void Simulator::WaitForEvents() {
   const ros::WallTime deadline =
       ros::WallTime::now() + ros::WallDuration(params_.lockstep_timeout_s);
   while (!events_awaited_.empty() && Running() && ros::WallTime::now() < deadline) {
-    SpinRobots();
-    cmd_queue_.callAvailable(ros::WallDuration(kPollS));
-    ros::spinOnce();
+    SpinOnce(kPollS);
   }
   if (events_awaited_.empty() || !Running()) return;
   for (const auto& key : events_awaited_) {

@@ -199,9 +199,9 @@ class Simulator : public RobotOutlet {
   void PublishVisualsIfDue();
   void PublishMarkers();
   void PublishTransforms();
-  // Spins the callback queues (and, lock-step, the directly linked robots) once without
-  // blocking.
-  void SpinOnce();
+  // Spins the callback queues (and, lock-step, the directly linked robots) once, waiting up to
+  // `wait_s` for the first command or tick_done when none is queued.
+  void SpinOnce(double wait_s = 0.0);
   // Lock-step: runs the directly linked robots' pending callbacks in this thread.
   void SpinRobots();
   double SimTime() const;

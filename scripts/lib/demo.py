@@ -12,23 +12,7 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import st_ros  # noqa: E402
-
-
-def swarm_count(points, local_range):
-    """Connected components of the graph linking robots within local_range (SPEC 8)."""
-    parent = list(range(len(points)))
-
-    def find(i):
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
-    for i in range(len(points)):
-        for j in range(i + 1, len(points)):
-            if math.hypot(points[i][0] - points[j][0], points[i][1] - points[j][1]) <= local_range:
-                parent[find(i)] = find(j)
-    return len({find(i) for i in range(len(points))})
+from experiment_presets import components  # noqa: E402
 
 
 def parse_args(argv):
@@ -109,7 +93,7 @@ def main(argv):
             state['last'] = msg
             if msg.tick % 100 == 0:
                 pts = [(r.pos_x, r.pos_y) for r in msg.robots if r.type == 0]
-                state['counts'].append((msg.tick, msg.sim_time, swarm_count(pts, local_range)))
+                state['counts'].append((msg.tick, msg.sim_time, components(pts, local_range)[0]))
 
         if not a.no_mission:
             # Lock-step waits for this demo's subscription before its first tick: the mission
@@ -244,7 +228,7 @@ def _report(a, state, local_range, wall):
     st_ros.log('ticks simulated      %d (sim time %.1f s) in %.1f s wall -> %.1f ticks/s'
                % (ticks, last.sim_time, run_wall, ticks / run_wall))
     st_ros.log('swarm count          start %d -> end %d (components within %.2f m)'
-               % (swarm_count(pts0, local_range), swarm_count(pts, local_range), local_range))
+               % (components(pts0, local_range)[0], components(pts, local_range)[0], local_range))
     if state['counts']:
         st_ros.log('swarm count by tick  ' + ', '.join('%d:%d' % (t, c)
                                                      for t, _, c in state['counts'][-8:]))

@@ -23,7 +23,6 @@ using core::MissionPhase;
 using XmlRpc::XmlRpcValue;
 
 constexpr char kNode[] = "recorder";
-// The recorder's own output topic (Swarm_Stats).
 // /flock/positions comes every tick and a slow recorder must not lose lock-step ticks: the
 // queue holds many ticks (the simulator does not wait for observers once it runs).
 constexpr std::uint32_t kPositionsQueue = 1000;

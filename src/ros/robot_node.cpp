@@ -123,10 +123,14 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
 
 void RobotNode::Shutdown() {
   timer_.stop();
+  SendCommand(geometry_msgs::Twist());
+}
+
+void RobotNode::SendCommand(const geometry_msgs::Twist& command) {
   if (options_.direct != nullptr) {
-    options_.direct->SendCommand(id_, geometry_msgs::Twist());
+    options_.direct->SendCommand(id_, command);
   } else if (cmd_pub_) {
-    cmd_pub_.publish(geometry_msgs::Twist());
+    cmd_pub_.publish(command);
   }
 }
 
@@ -494,14 +498,12 @@ void RobotNode::Tick() {
   // every command arrived, so the swarm hears them before its next tick.
   Publish(outbox);
   // A frozen robot keeps computing (its random sequence stays aligned) but sends zero.
-  const bool lockstep = options_.clock == "lockstep";
-  if (options_.direct != nullptr) {
-    // The same content as the topics would carry, in the same order.
-    options_.direct->SendCommand(id_, ToTwist(command));
-    if (lockstep) options_.direct->SendTickDone(id_, TickDone());
-  } else {
-    cmd_pub_.publish(ToTwist(command));
-    if (tick_done_pub_) tick_done_pub_.publish(TickDone());
+  // Direct links get the same content as the topics would carry, in the same order.
+  SendCommand(ToTwist(command));
+  if (options_.direct != nullptr && options_.clock == "lockstep") {
+    options_.direct->SendTickDone(id_, TickDone());
+  } else if (tick_done_pub_) {
+    tick_done_pub_.publish(TickDone());
   }
   const core::Pose2 after = core::TurnThenDrive(in.self, command, config_.tick_period_s);
   // By shared pointer: roscpp hands it to subscribers in this process (the simulator of a

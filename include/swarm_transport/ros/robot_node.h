@@ -98,6 +98,8 @@ class RobotNode {
   void RecordTick();
   // ~describe: one line of state (role, frozen, missions, zones) for users and tests.
   bool OnDescribe(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
+  // Its velocity command, over the direct link or the cmd_vel topic.
+  void SendCommand(const geometry_msgs::Twist& command);
   // Lock-step: this tick's Tick_Done (mission messages sent so far).
   Tick_Done TickDone() const;
   // Computes and executes one tick on `perception_`.
