@@ -59,12 +59,34 @@ class ExperimentRunner(unittest.TestCase):
                          % (' '.join(args), out))
         return out
 
-    def smoke(self, name):
+    def smoke(self, name, *extra):
         out_dir = os.path.join(self.tmp, name, param('preset'))
         text = self.run_experiment('run', param('preset'), '--runs', str(param('runs')),
                                    '--jobs', str(param('jobs')), '--seed-base',
-                                   str(param('seed_base')), '--out', out_dir)
+                                   str(param('seed_base')), '--out', out_dir, *extra)
         return out_dir, text
+
+    def check_trace(self, run_dir):
+        """--trace: every robot's pose at every tick from tick 0 on, inside the arena."""
+        path = os.path.join(run_dir, 'trace.csv')
+        self.assertTrue(os.path.isfile(path), path)
+        with open(path) as f:
+            reader = csv.DictReader(f)
+            self.assertEqual(reader.fieldnames, ['tick', 'robot_id', 'x', 'y', 'heading_deg'])
+            rows = list(reader)
+        per_tick = {}
+        for r in rows:
+            per_tick.setdefault(int(r['tick']), set()).add(int(r['robot_id']))
+            x, y, h = float(r['x']), float(r['y']), float(r['heading_deg'])
+            self.assertTrue(0.0 <= x <= param('world_size_m') and
+                            0.0 <= y <= param('world_size_m'), r)
+            self.assertTrue(0.0 <= h < 360.0, r)
+        ticks = sorted(per_tick)
+        self.assertEqual(ticks[0], 0, path)
+        self.assertEqual(ticks, list(range(ticks[0], ticks[-1] + 1)), 'a tick is missing')
+        self.assertGreaterEqual(ticks[-1], param('max_ticks') - 1, path)
+        for tick, ids in per_tick.items():
+            self.assertEqual(ids, set(range(param('robots'))), 'tick %d' % tick)
 
     def test_smoke_preset_end_to_end_and_reproducible(self):
         first, text = self.smoke('a')
@@ -111,7 +133,11 @@ class ExperimentRunner(unittest.TestCase):
                 self.assertEqual(f.read(8), b'\x89PNG\r\n\x1a\n', path)
             self.assertGreater(os.path.getsize(path), 2000, path)
 
-        second, _ = self.smoke('b')
+        # Traced: the same numbers (the tracer only listens) and a trace of every tick.
+        second, _ = self.smoke('b', '--trace')
+        for s in settings:
+            for k in range(param('runs')):
+                self.check_trace(os.path.join(second, 'raw', s, 'run_%d' % k))
         _, again = read_summary(os.path.join(second, 'summary.csv'))
         self.assertEqual([(r['setting'], r['metric']) for r in rows],
                          [(r['setting'], r['metric']) for r in again])
@@ -174,7 +200,7 @@ class ExperimentRunner(unittest.TestCase):
         header = ('mission_id,kind,assigned,leaders,final_state,queued_tick,gathering_tick,'
                   'loading_tick,transport_tick,unloading_tick,done_tick,transport_ticks,'
                   'slip_per_robot_m,distance_per_robot_m,leader_waits,path_fraction_attached,'
-                  'leader_swarm_at_arrival,object_error_m\n')
+                  'leader_swarm_at_arrival,object_error_m,leader_contact\n')
         for k, end in enumerate(('DONE', 'TICK_LIMIT')):
             d = os.path.join(base, 't', 'raw', 't1', 'run_%d' % k)
             os.makedirs(d)
@@ -183,7 +209,7 @@ class ExperimentRunner(unittest.TestCase):
             with open(os.path.join(d, 'missions.csv'), 'w') as f:
                 f.write(header)
                 if end == 'DONE':
-                    f.write('7,transport,6,1,DONE,0,0,40,42,110,112,68,2.5,6.1,0,,,0.04\n')
+                    f.write('7,transport,6,1,DONE,0,0,40,42,110,112,68,2.5,6.1,0,,,0.04,0.25\n')
         summary = {(r['setting'], r['metric']): r for r in
                    stats.summarize(p, stats.collect(p, os.path.join(base, 't')))}
         self.assertEqual(summary[('t1', 'aborted')]['runs'], 2)
@@ -191,6 +217,7 @@ class ExperimentRunner(unittest.TestCase):
         self.assertEqual(summary[('t1', 'transport_ticks')]['runs'], 1)
         self.assertAlmostEqual(summary[('t1', 'transport_ticks')]['mean'], 68.0)
         self.assertAlmostEqual(summary[('t1', 'gathering_ticks')]['mean'], 40.0)
+        self.assertAlmostEqual(summary[('t1', 'leader_contact')]['mean'], 0.25)
 
     def test_every_preset_is_valid(self):
         names = presets.preset_names()

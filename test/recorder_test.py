@@ -24,7 +24,7 @@ MISSIONS_HEADER = [
     'mission_id', 'kind', 'assigned', 'leaders', 'final_state', 'queued_tick', 'gathering_tick',
     'loading_tick', 'transport_tick', 'unloading_tick', 'done_tick', 'transport_ticks',
     'slip_per_robot_m', 'distance_per_robot_m', 'leader_waits', 'path_fraction_attached',
-    'leader_swarm_at_arrival', 'object_error_m']
+    'leader_swarm_at_arrival', 'object_error_m', 'leader_contact']
 RUN_HEADER = ['run_name', 'seed', 'robots', 'ticks', 'sim_time_s', 'samples',
               'mean_swarm_count', 'final_swarm_count', 'missions_done', 'missions_aborted']
 
@@ -176,13 +176,16 @@ class Recorder(unittest.TestCase):
         self.assertEqual(r['leader_swarm_at_arrival'], '')
         error = number(r['object_error_m'])
         self.assertTrue(0.0 <= error <= g('goal_tolerance_m') + g('float_tolerance'), r)
+        contact = number(r['leader_contact'])  # a fraction of the passive robots' ticks
+        self.assertTrue(0.0 <= contact <= 1.0, r)
 
         # The leader-only row: leader metrics, no transport metrics.
         self.assertEqual(int(lead['mission_id']), g('leader/mission_id'))
         self.assertEqual(lead['kind'], 'leader')
         self.assertEqual((lead['assigned'], lead['leaders'], lead['final_state']),
                          ('1', '1', 'DONE'))
-        for key in ('transport_ticks', 'slip_per_robot_m', 'distance_per_robot_m'):
+        for key in ('transport_ticks', 'slip_per_robot_m', 'distance_per_robot_m',
+                    'leader_contact'):
             self.assertEqual(lead[key], '', key)
         self.assertLessEqual(int(lead['queued_tick']), int(lead['done_tick']))
         self.assertGreaterEqual(int(lead['leader_waits']), 0)

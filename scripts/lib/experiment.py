@@ -57,6 +57,8 @@ def parse_args(argv):
                    help='results page written by --report (default docs/results.md)')
     r.add_argument('--keep-logs', action='store_true',
                    help='keep every run\'s ROS logs (default: only of failed runs)')
+    r.add_argument('--trace', action='store_true',
+                   help='also write every run\'s trace.csv: each robot\'s pose at every tick')
     r.add_argument('--retries', type=int, default=1,
                    help='restarts of a run whose ROS side failed (default 1)')
     rep = sub.add_parser('report', help='aggregate, plot and write the results page from '
@@ -114,7 +116,7 @@ def cmd_list():
 # ---------------------------------------------------------------------------------------------
 # run
 
-def prepare_jobs(preset, out, runs, seed_base, only, keep_logs):
+def prepare_jobs(preset, out, runs, seed_base, only, keep_logs, trace=False):
     """Writes every run's directory (config.yaml, placement, job.json) and returns the jobs in
     execution order: run 0 of every setting first, so partial results cover every setting."""
     views = [v for v in presets.settings(preset) if not only or v['name'] in only]
@@ -146,7 +148,10 @@ def prepare_jobs(preset, out, runs, seed_base, only, keep_logs):
                    'run_dir': run_dir, 'record_dir': setting_dir, 'run_name': 'run_%d' % k,
                    'placement': view['placement'], 'placement_file': '',
                    'dispatcher': preset['kind'] != 'flocking',
-                   'observers': (0 if preset['kind'] == 'flocking' else 1) + extra_observers,
+                   # A mission run's worker follows /flock/positions; so does a traced one.
+                   'observers': (0 if preset['kind'] == 'flocking' and not trace else 1) +
+                                extra_observers,
+                   'trace': trace,
                    'tick_period_s': float(config['tick_period_s']),
                    'mission': view['mission'] or None, 'leader_id': None,
                    'local_range_m': float(config['local_range_m']), 'keep_logs': keep_logs}
@@ -273,7 +278,7 @@ def cmd_run(a):
     os.makedirs(out, exist_ok=True)
     thesis_runs = preset['runs']
     preset['runs'] = runs  # what the tables and the trimmed mean refer to
-    jobs = prepare_jobs(preset, out, runs, seed_base, only, a.keep_logs)
+    jobs = prepare_jobs(preset, out, runs, seed_base, only, a.keep_logs, a.trace)
     settings_run = sorted({j['setting'] for j in jobs}, key=[
         v['name'] for v in presets.settings(preset)].index)
     log('experiment %s: %s' % (preset['name'], preset['description']))

@@ -23,7 +23,7 @@ METRICS = {
     'leader': ['path_fraction_attached', 'leader_swarm_at_arrival', 'leader_waits',
                'leader_ticks', 'aborted'],
     'transport': ['transport_ticks', 'slip_per_robot_m', 'distance_per_robot_m', 'leader_waits',
-                  'object_error_m', 'gathering_ticks', 'aborted'],
+                  'object_error_m', 'gathering_ticks', 'leader_contact', 'aborted'],
 }
 TOP_KEYS = {'description', 'kind', 'order', 'section', 'figures', 'runs', 'seed_base',
             'base_config', 'config', 'robots', 'placement', 'cluster', 'max_ticks',

@@ -25,9 +25,10 @@ TITLES = {
     'distance_per_robot_m': 'distance per robot (m)',
     'object_error_m': 'object error (m)',
     'gathering_ticks': 'gathering ticks',
+    'leader_contact': 'leader contact (%)',
     'aborted': 'aborted (%)',
 }
-PERCENT = {'path_fraction_attached', 'aborted'}   # stored as fractions, shown in %
+PERCENT = {'path_fraction_attached', 'leader_contact', 'aborted'}   # stored as fractions, shown in %
 PANELS = {   # the metrics drawn as bars, in the thesis's order of diagrams
     'flocking': ['final_swarm_count', 'mean_swarm_count', 'swarm_count_slope_per_h'],
     'leader': ['path_fraction_attached', 'leader_swarm_at_arrival', 'leader_waits'],
@@ -40,7 +41,7 @@ TABLE = {
     'leader': ['path_fraction_attached', 'leader_swarm_at_arrival', 'leader_waits',
                'leader_ticks', 'aborted'],
     'transport': ['transport_ticks', 'slip_per_robot_m', 'distance_per_robot_m',
-                  'leader_waits', 'object_error_m', 'aborted'],
+                  'leader_waits', 'leader_contact', 'object_error_m', 'aborted'],
 }
 FLAT_TOLERANCE = 0.10   # "flat": (max - min) / mean of the trimmed means at most this
 

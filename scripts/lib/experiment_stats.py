@@ -140,7 +140,7 @@ def _mission(kind, run_dir, info):
             metrics['leader_ticks'] = number(row.get('done_tick'))
         else:
             for name in ('transport_ticks', 'slip_per_robot_m', 'distance_per_robot_m',
-                         'leader_waits', 'object_error_m'):
+                         'leader_waits', 'object_error_m', 'leader_contact'):
                 metrics[name] = number(row.get(name))
             start, stop = number(row.get('gathering_tick')), number(row.get('loading_tick'))
             metrics['gathering_ticks'] = (stop - start if start is not None and

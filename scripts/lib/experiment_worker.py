@@ -110,6 +110,12 @@ def _run(job, ros, started):
     rospy.Subscriber('/clock', Clock, on_clock, queue_size=10, tcp_nodelay=True)
     rospy.Subscriber('/flock/stats', Swarm_Stats, on_stats, queue_size=100, tcp_nodelay=True)
     waiter = Waiter(ros, job, state, lock, t_launch)
+    trace = Trace(os.path.join(job['run_dir'], 'trace.csv')) if job.get('trace') else None
+    if trace is not None and job['kind'] == 'flocking':
+        # Counted among the observers: the lock-step gate waits for it, so tick 0 is traced.
+        from swarm_transport.msg import Robot_Positions
+        rospy.Subscriber('/flock/positions', Robot_Positions, trace.add, queue_size=10000,
+                         tcp_nodelay=True)
     out = {}
     period = job['tick_period_s']
     end_time = job['max_ticks'] * period - 1e-6 * period
@@ -125,7 +131,9 @@ def _run(job, ros, started):
         waiter.until(finished, 'the run did not reach tick %d' % job['max_ticks'])
         out['end'] = 'max_ticks'
     else:
-        out.update(_run_mission(job, ros, state, lock, waiter))
+        out.update(_run_mission(job, ros, state, lock, waiter, trace))
+    if trace is not None:
+        trace.write()
     with lock:
         first, last = state['first_wall'], state['last_wall']
         st = state['stats']
@@ -170,7 +178,7 @@ class Waiter(object):
         raise RunFailed('timeout: %s (sim time %.1f s)' % (what, self.state['clock']))
 
 
-def _run_mission(job, ros, state, lock, waiter):
+def _run_mission(job, ros, state, lock, waiter, trace=None):
     """Submits the mission before tick 0 (the lock-step waits for this process's
     /flock/positions subscription), follows it to DONE/ABORTED or the tick limit, and waits
     for the recorder's missions.csv row."""
@@ -229,6 +237,8 @@ def _run_mission(job, ros, state, lock, waiter):
             state['positions_tick'] = p.tick
         if track is not None:
             track.add(p)
+        if trace is not None:
+            trace.add(p)
 
     # Subscribing opens the lock-step gate (observers:=1): tick 0 follows.
     rospy.Subscriber('/flock/positions', Robot_Positions, on_positions, queue_size=10000,
@@ -255,6 +265,30 @@ def _run_mission(job, ros, state, lock, waiter):
     if track is not None:
         track.write(os.path.join(job['run_dir'], 'leader_track.csv'))
     return out
+
+
+class Trace(object):
+    """Every physical robot's pose at every tick (--trace), from /flock/positions: columns
+    tick,robot_id,x,y,heading_deg; written when the run ends."""
+
+    def __init__(self, path):
+        self.path = path
+        self.rows = []
+        self.lock = threading.Lock()
+
+    def add(self, msg):
+        rows = ['%d,%d,%.4f,%.4f,%.2f' % (msg.tick, r.robot_id, r.pos_x, r.pos_y, r.angle)
+                for r in msg.robots if r.type == 0]
+        with self.lock:
+            self.rows.extend(rows)
+
+    def write(self):
+        with self.lock:
+            rows = list(self.rows)
+        with open(self.path, 'w') as f:
+            f.write('tick,robot_id,x,y,heading_deg\n')
+            for row in rows:
+                f.write(row + '\n')
 
 
 def _has_row(path, mid):

@@ -159,6 +159,14 @@ bool TransportTracker::Feed(std::uint64_t tick, const std::vector<Vec2>& positio
     const double moved = Norm(delta);
     distance_sum_ += moved;
     if (is_leader[i] && moved < kLeaderWaitM) ++leader_waits_;
+    if (is_leader[i] || contact_range_m_ <= 0.0) continue;
+    ++passive_ticks_;
+    for (std::size_t j = 0; j < n; ++j) {
+      if (is_leader[j] && !FartherThan(positions[i], positions[j], contact_range_m_)) {
+        ++contact_ticks_;
+        break;
+      }
+    }
   }
   previous_ = positions;
   last_tick_ = tick;
@@ -171,6 +179,11 @@ double TransportTracker::SlipPerRobot() const {
 
 double TransportTracker::DistancePerRobot() const {
   return previous_.empty() ? 0.0 : distance_sum_ / static_cast<double>(previous_.size());
+}
+
+std::optional<double> TransportTracker::LeaderContact() const {
+  if (passive_ticks_ == 0) return std::nullopt;
+  return static_cast<double>(contact_ticks_) / static_cast<double>(passive_ticks_);
 }
 
 LeaderTracker::LeaderTracker(Vec2 target, double local_range_m)

@@ -40,7 +40,7 @@ constexpr char kMissionsHeader[] =
     "mission_id,kind,assigned,leaders,final_state,queued_tick,gathering_tick,loading_tick,"
     "transport_tick,unloading_tick,done_tick,transport_ticks,slip_per_robot_m,"
     "distance_per_robot_m,leader_waits,path_fraction_attached,leader_swarm_at_arrival,"
-    "object_error_m";
+    "object_error_m,leader_contact";
 constexpr char kRunHeader[] =
     "run_name,seed,robots,ticks,sim_time_s,samples,mean_swarm_count,final_swarm_count,"
     "missions_done,missions_aborted";
@@ -498,7 +498,13 @@ void Recorder::Feed(MissionRecord* m, const Frame& frame) {
       positions.push_back(frame.positions[static_cast<std::size_t>(index)]);
       leaders.push_back(spec.IsLeader(id));
     }
-    if (complete) m->transport.Feed(frame.tick, positions, leaders);
+    if (complete) {
+      // Contact = within the local range, where a passive robot can align with a leader.
+      if (!m->transport.started()) {
+        m->transport = core::TransportTracker(params_.swarm.flocking.local_range_m);
+      }
+      m->transport.Feed(frame.tick, positions, leaders);
+    }
   }
   if (!complete && !m->warned_missing) {
     m->warned_missing = true;
@@ -535,13 +541,14 @@ void Recorder::WriteMission(std::uint16_t id, const MissionRecord& m) {
   const bool done = m.final_state && *m.final_state == MissionPhase::kDone;
   const bool leader_only = m.has_spec && m.spec.LeaderOnly();
   const char* kind = !m.has_spec ? "unknown" : leader_only ? "leader" : "transport";
-  std::string transport_ticks, slip, distance, waits, fraction, swarm, error;
+  std::string transport_ticks, slip, distance, waits, fraction, swarm, error, contact;
   if (m.has_spec && !leader_only) {
     if (m.transport.started()) {
       transport_ticks = Num(m.transport.ticks());
       slip = Num(m.transport.SlipPerRobot());
       distance = Num(m.transport.DistancePerRobot());
       waits = Num(m.transport.LeaderWaits());
+      if (const auto c = m.transport.LeaderContact()) contact = Num(*c);
     }
     if (m.object) error = Num(core::Distance(*m.object, m.spec.target));
   } else if (leader_only && m.leader) {
@@ -564,7 +571,7 @@ void Recorder::WriteMission(std::uint16_t id, const MissionRecord& m) {
       << Opt(e[PhaseIndex(MissionPhase::kTransport)]) << ","
       << Opt(e[PhaseIndex(MissionPhase::kUnloading)]) << ","
       << Opt(e[PhaseIndex(MissionPhase::kDone)]) << "," << transport_ticks << "," << slip << ","
-      << distance << "," << waits << "," << fraction << "," << swarm << "," << error;
+      << distance << "," << waits << "," << fraction << "," << swarm << "," << error << "," << contact;
   if (missions_csv_.is_open() && !missions_csv_.Append(row.str())) {
     ROS_ERROR("%s: could not write a row of %s/missions.csv", kNode, run_dir_.c_str());
   }

@@ -187,6 +187,41 @@ TEST(TransportTrackerTest, LeaderWaitsCountEveryLeaderAndTick) {
   EXPECT_EQ(t.LeaderWaits(), 4u);
 }
 
+TEST(TransportTrackerTest, LeaderContactCountsPassiveRobotTicksWithALeaderInRange) {
+  // Range 1.0. Leader at x = 0; passive robots at x = 0.5 (in range), 1.0 (in range: the
+  // boundary counts, as for the neighbourhood) and 3.0 (out of range).
+  TransportTracker t(1.0);
+  Points p = {{0.0, 0.0}, {0.5, 0.0}, {1.0, 0.0}, {3.0, 0.0}};
+  const std::vector<bool> leaders = {true, false, false, false};
+  ASSERT_TRUE(t.Feed(0, p, leaders));
+  EXPECT_FALSE(t.LeaderContact().has_value());  // the start tick counts nothing
+  ASSERT_TRUE(t.Feed(1, p, leaders));
+  ASSERT_TRUE(t.LeaderContact().has_value());
+  EXPECT_NEAR(*t.LeaderContact(), 2.0 / 3.0, 1e-12);
+  // The far robot comes within range of the leader: 5 of 6 passive robot-ticks.
+  p[3] = {0.0, 0.9};
+  ASSERT_TRUE(t.Feed(2, p, leaders));
+  EXPECT_NEAR(*t.LeaderContact(), 5.0 / 6.0, 1e-12);
+  // A second leader does not count as a passive robot, nor twice for one in range of both.
+  TransportTracker two(1.0);
+  const Points q = {{0.0, 0.0}, {0.2, 0.0}, {0.1, 0.0}};
+  ASSERT_TRUE(two.Feed(0, q, {true, true, false}));
+  ASSERT_TRUE(two.Feed(1, q, {true, true, false}));
+  EXPECT_DOUBLE_EQ(*two.LeaderContact(), 1.0);
+}
+
+TEST(TransportTrackerTest, LeaderContactIsUndefinedWithoutPassiveRobotsOrRange) {
+  TransportTracker all_leaders(1.0);
+  const Points p = {{0.0, 0.0}, {0.5, 0.0}};
+  ASSERT_TRUE(all_leaders.Feed(0, p, {true, true}));
+  ASSERT_TRUE(all_leaders.Feed(1, p, {true, true}));
+  EXPECT_FALSE(all_leaders.LeaderContact().has_value());
+  TransportTracker no_range;
+  ASSERT_TRUE(no_range.Feed(0, p, {true, false}));
+  ASSERT_TRUE(no_range.Feed(1, p, {true, false}));
+  EXPECT_FALSE(no_range.LeaderContact().has_value());
+}
+
 TEST(TransportTrackerTest, RejectsCallsThatDoNotFit) {
   TransportTracker t;
   const std::vector<bool> two = {true, false};

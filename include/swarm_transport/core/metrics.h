@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "swarm_transport/core/geometry.h"
@@ -61,8 +62,12 @@ double TrimmedMean(std::vector<double> values);
 // fixed offset plus the centroid of the assigned robots [SPEC 6.6], so its movement is the
 // centroid's: slip_i += |dp_i - dcentroid|. Distance: distance_i += |dp_i|. Both are averaged
 // over the robots. A leader wait is one leader in one tick moving less than kLeaderWaitM.
+// Leader contact: of the passive robots' ticks (the same ticks), the fraction in which the
+// robot had a leader within contact_range_m (its local range), i.e. could align with one.
 class TransportTracker {
  public:
+  explicit TransportTracker(double contact_range_m = 0.0) : contact_range_m_(contact_range_m) {}
+
   // One tick. The first call sets the start; each later call with a larger tick adds the
   // movement since the previous call (missed ticks in between count as ticks). False (and no
   // change) when the call does not fit: empty positions, sizes differing from each other or
@@ -79,6 +84,9 @@ class TransportTracker {
   double DistancePerRobot() const;
   // Leader waits summed over all leaders.
   std::uint64_t LeaderWaits() const { return leader_waits_; }
+  // Fraction in [0, 1] of passive robot-ticks with a leader in contact range; nullopt without
+  // passive robots, before two ticks, or without a contact range (> 0).
+  std::optional<double> LeaderContact() const;
 
  private:
   bool started_ = false;
@@ -88,6 +96,9 @@ class TransportTracker {
   double slip_sum_ = 0.0;      // over robots and ticks
   double distance_sum_ = 0.0;  // over robots and ticks
   std::uint64_t leader_waits_ = 0;
+  double contact_range_m_ = 0.0;
+  std::uint64_t passive_ticks_ = 0;  // over passive robots and ticks
+  std::uint64_t contact_ticks_ = 0;  // ... with a leader within contact_range_m_
 };
 
 // Leader success of one leader-only mission [T7.3], fed once per tick from its start until
