@@ -1,6 +1,7 @@
 #include "simulator.h"
 
 #include <geometry_msgs/TransformStamped.h>
+#include <ros/master.h>
 #include <rosgraph_msgs/Clock.h>
 #include <visualization_msgs/MarkerArray.h>
 
@@ -502,10 +503,31 @@ void Simulator::RunRealtime() {
            static_cast<unsigned long long>(tick_));
 }
 
+bool Simulator::RelaysConnected() const {
+  XmlRpc::XmlRpcValue request, response, payload;
+  request[0] = ros::this_node::getName();
+  if (!ros::master::execute("getSystemState", request, response, payload, false)) return false;
+  std::map<std::string, int> registered;  // topic -> publishing nodes
+  XmlRpc::XmlRpcValue& publishers = payload[0];
+  for (int i = 0; i < publishers.size(); ++i) {
+    registered[static_cast<std::string>(publishers[i][0])] = publishers[i][1].size();
+  }
+  for (const ros::Subscriber& sub : relay_subs_) {
+    const auto it = registered.find(sub.getTopic());
+    const int expected = it == registered.end() ? 0 : it->second;
+    if (static_cast<int>(sub.getNumPublishers()) < expected) return false;
+  }
+  return true;
+}
+
 void Simulator::WaitForRobots() {
   const ros::WallTime deadline =
       ros::WallTime::now() + ros::WallDuration(params_.lockstep_start_timeout_s);
   std::size_t connected = 0;
+  // A link counts before its handshake is done (see Ready): the relays must stay connected a
+  // moment, so that what was published before (a latched mission) has arrived.
+  ros::WallTime relays_since;
+  ros::WallTime ready_since;
   while (Running()) {
     connected = 0;
     for (auto& entry : io_) {
@@ -514,15 +536,30 @@ void Simulator::WaitForRobots() {
     const bool observed = params_.lockstep_observers == 0 ||
                           positions_pub_.getNumSubscribers() >=
                               static_cast<std::uint32_t>(params_.lockstep_observers);
-    if (connected == io_.size() && observed) {
-      SpinOnce();  // what arrived before the last observer (a mission) is relayed at tick 0
-      break;
+    const ros::WallTime now = ros::WallTime::now();
+    if (!RelaysConnected()) {
+      relays_since = ros::WallTime();
+    } else if (relays_since.isZero()) {
+      relays_since = now;
     }
+    const bool relayed = !relays_since.isZero() && (now - relays_since).toSec() >= kSettleS;
+    if (connected == io_.size() && observed && relayed) {
+      // What was published before the last observer subscribed (a mission, sent just before
+      // an experiment's runner subscribes) may still be on its way: take it in for a moment
+      // so that it is relayed at tick 0 whatever the scheduling.
+      if (ready_since.isZero()) ready_since = now;
+      SpinOnce();
+      if ((now - ready_since).toSec() >= kSettleS) break;
+      ros::WallDuration(kIdleS).sleep();
+      continue;
+    }
+    ready_since = ros::WallTime();
     if (ros::WallTime::now() >= deadline) {
       ROS_WARN(
-          "lockstep: only %zu of %zu robots connected after %.1f s; starting anyway "
-          "(the others join when they connect)",
-          connected, io_.size(), params_.lockstep_start_timeout_s);
+          "lockstep: only %zu of %zu robots connected (mission relays %s) after %.1f s; "
+          "starting anyway (the others join when they connect)",
+          connected, io_.size(), relayed ? "connected" : "not all connected",
+          params_.lockstep_start_timeout_s);
       break;
     }
     SpinOnce();

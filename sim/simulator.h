@@ -164,6 +164,9 @@ class Simulator : public RobotOutlet {
   void RunLockstep();
   // Lock-step: waits until every robot is connected (or the start timeout passed).
   void WaitForRobots();
+  // Lock-step start: every node the master lists as a publisher of a relayed mission topic
+  // (the robots' outlets, a dispatcher, a test) is connected to this simulator's relay.
+  bool RelaysConnected() const;
   // Lock-step: marks connected robots live and disconnected ones not live.
   void UpdateLiveness();
   // Lock-step: spins until every live robot answered the current tick or the timeout passed.

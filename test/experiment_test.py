@@ -91,7 +91,7 @@ class ExperimentRunner(unittest.TestCase):
     def test_smoke_preset_end_to_end_and_reproducible(self):
         first, text = self.smoke('a')
         settings = param('settings').split()
-        self.assertIn('RESULT preset=%s runs=%d ' % (param('preset'),
+        self.assertIn('RESULT preset=%s deploy=process runs=%d ' % (param('preset'),
                                                      param('runs') * len(settings)), text)
         header, rows = read_summary(os.path.join(first, 'summary.csv'))
         self.assertEqual(header, SUMMARY_HEADER)
@@ -156,6 +156,35 @@ class ExperimentRunner(unittest.TestCase):
         self.assertIn('swarm_count.png', text)
         self.assertTrue(os.path.isfile(os.path.join(self.tmp, 'results', param('preset'),
                                                     'swarm_count.png')))
+
+    def test_transport_repeats_in_every_deployment(self):
+        """A transport preset in one process per robot and in one process for all (host_sim):
+        the same seeds give the same missions.csv rows, byte for byte. Under load a mission
+        used to start at a scheduling-dependent tick (a first leader waited tick by tick for
+        its subscribers); two runs at a time (--jobs 2) keep both cores busy."""
+        preset = param('transport_preset')
+        rows = {}
+        for deploy in ('process', 'host_sim'):
+            out = os.path.join(self.tmp, 'deploy_' + deploy, preset)
+            text = self.run_experiment('run', preset, '--runs', '1', '--jobs', '2', '--deploy',
+                                       deploy, '--out', out)
+            self.assertIn('RESULT preset=%s deploy=%s ' % (preset, deploy), text)
+            for setting in param('transport_settings').split():
+                run_dir = os.path.join(out, 'raw', setting, 'run_0')
+                with open(os.path.join(run_dir, 'result.json')) as f:
+                    self.assertEqual(json.load(f)['end'], 'DONE', run_dir)
+                with open(os.path.join(run_dir, 'missions.csv')) as f:
+                    lines = f.read().splitlines()
+                self.assertEqual(len(lines), 2, run_dir)  # header + the mission
+                row = dict(zip(lines[0].split(','), lines[1].split(',')))
+                self.assertEqual(row['final_state'], 'DONE', run_dir)
+                self.assertEqual(row['queued_tick'], '0', run_dir)  # submitted before tick 0
+                self.assertEqual(row['gathering_tick'], '0', run_dir)
+                self.assertGreater(int(row['transport_ticks']), 0, run_dir)
+                self.assertTrue(0.0 <= float(row['leader_contact']) <= 1.0, run_dir)
+                rows.setdefault(setting, []).append(lines[1])
+        for setting, (process, host_sim) in rows.items():
+            self.assertEqual(process, host_sim, '%s: process and host_sim differ' % setting)
 
     def test_trimmed_mean_drops_the_thesis_outliers(self):
         self.assertEqual(presets.trim_each_end(10), 2)   # middle 6 of 10 (thesis 7.2)

@@ -57,6 +57,10 @@ def parse_args(argv):
                    help='results page written by --report (default docs/results.md)')
     r.add_argument('--keep-logs', action='store_true',
                    help='keep every run\'s ROS logs (default: only of failed runs)')
+    r.add_argument('--deploy', default='process', choices=('process', 'host', 'host_sim'),
+                   help='process: one process per robot (the thesis\'s architecture, default); '
+                        'host_sim: simulator and robots in one process over direct links, the '
+                        'same runs much faster (swarm.launch deploy:=...)')
     r.add_argument('--trace', action='store_true',
                    help='also write every run\'s trace.csv: each robot\'s pose at every tick')
     r.add_argument('--retries', type=int, default=1,
@@ -116,7 +120,8 @@ def cmd_list():
 # ---------------------------------------------------------------------------------------------
 # run
 
-def prepare_jobs(preset, out, runs, seed_base, only, keep_logs, trace=False):
+def prepare_jobs(preset, out, runs, seed_base, only, keep_logs, trace=False,
+                 deploy='process'):
     """Writes every run's directory (config.yaml, placement, job.json) and returns the jobs in
     execution order: run 0 of every setting first, so partial results cover every setting."""
     views = [v for v in presets.settings(preset) if not only or v['name'] in only]
@@ -151,7 +156,7 @@ def prepare_jobs(preset, out, runs, seed_base, only, keep_logs, trace=False):
                    # A mission run's worker follows /flock/positions; so does a traced one.
                    'observers': (0 if preset['kind'] == 'flocking' and not trace else 1) +
                                 extra_observers,
-                   'trace': trace,
+                   'trace': trace, 'deploy': deploy,
                    'tick_period_s': float(config['tick_period_s']),
                    'mission': view['mission'] or None, 'leader_id': None,
                    'local_range_m': float(config['local_range_m']), 'keep_logs': keep_logs}
@@ -278,12 +283,14 @@ def cmd_run(a):
     os.makedirs(out, exist_ok=True)
     thesis_runs = preset['runs']
     preset['runs'] = runs  # what the tables and the trimmed mean refer to
-    jobs = prepare_jobs(preset, out, runs, seed_base, only, a.keep_logs, a.trace)
+    jobs = prepare_jobs(preset, out, runs, seed_base, only, a.keep_logs, a.trace,
+                        a.deploy)
     settings_run = sorted({j['setting'] for j in jobs}, key=[
         v['name'] for v in presets.settings(preset)].index)
     log('experiment %s: %s' % (preset['name'], preset['description']))
-    log('  %d settings x %d runs = %d runs, seeds %d..%d, %d in parallel, output %s'
-        % (len(settings_run), runs, len(jobs), seed_base, seed_base + runs - 1, a.jobs, out))
+    log('  %d settings x %d runs = %d runs, seeds %d..%d, %d in parallel, deploy %s, output %s'
+        % (len(settings_run), runs, len(jobs), seed_base, seed_base + runs - 1, a.jobs,
+           a.deploy, out))
     started = time.time()
     done = []
 
@@ -304,7 +311,7 @@ def cmd_run(a):
                _duration(elapsed), _duration(eta)))
 
     meta = {'preset': preset, 'runs': runs, 'preset_runs': thesis_runs,
-            'seed_base': seed_base, 'jobs': a.jobs,
+            'seed_base': seed_base, 'jobs': a.jobs, 'deploy': a.deploy,
             'settings': settings_run, 'started': time.strftime('%Y-%m-%d %H:%M:%S'),
             'command': 'scripts/experiment ' + ' '.join(sys.argv[1:])}
     Pool(a.jobs, a.retries).run(jobs, on_done)
@@ -332,8 +339,8 @@ def cmd_run(a):
                                                    ' (logs: %s)' % r['ros_log']
                                                    if r.get('ros_log') else ''))
     n = max(1, len(ok))
-    log('RESULT preset=%s runs=%d wall_s=%.1f sim_ticks=%d ticks_per_s=%.1f'
-        % (preset['name'], len(done), wall, timing['sim_ticks'],
+    log('RESULT preset=%s deploy=%s runs=%d wall_s=%.1f sim_ticks=%d ticks_per_s=%.1f'
+        % (preset['name'], a.deploy, len(done), wall, timing['sim_ticks'],
            timing['sim_ticks'] / wall if wall > 0 else 0.0))
     log('  wall time split (per-run clocks summed; %d ticking at a time, a run\'s shutdown '
         'overlaps the next start-up): start-up %.1f s (%.2f s/run: master, roslaunch, first '

@@ -77,7 +77,8 @@ def _launch_args(job):
             'max_ticks': job['max_ticks'], 'extra_config': job['config_path'],
             'placement': job['placement'], 'observers': job['observers'],
             'dispatcher': 'true' if job['dispatcher'] else 'false',
-            'recorder': 'true', 'record_dir': job['record_dir'], 'run_name': job['run_name']}
+            'recorder': 'true', 'record_dir': job['record_dir'], 'run_name': job['run_name'],
+            'deploy': job.get('deploy', 'process')}
     if job.get('placement_file'):
         args['placement_file'] = job['placement_file']
     return args
@@ -129,6 +130,10 @@ def _run(job, ros, started):
             return (state['clock'] >= end_time and
                     time.time() - state['clock_wall'] > END_GRACE_S)
         waiter.until(finished, 'the run did not reach tick %d' % job['max_ticks'])
+        if trace is not None:
+            # The recorder may be done before this process has taken in the last frames.
+            waiter.until(lambda: trace.last_tick >= job['max_ticks'] - 1,
+                         'the trace did not reach tick %d' % (job['max_ticks'] - 1))
         out['end'] = 'max_ticks'
     else:
         out.update(_run_mission(job, ros, state, lock, waiter, trace))
@@ -274,6 +279,7 @@ class Trace(object):
     def __init__(self, path):
         self.path = path
         self.rows = []
+        self.last_tick = -1
         self.lock = threading.Lock()
 
     def add(self, msg):
@@ -281,6 +287,7 @@ class Trace(object):
                 for r in msg.robots if r.type == 0]
         with self.lock:
             self.rows.extend(rows)
+            self.last_tick = max(self.last_tick, msg.tick)
 
     def write(self):
         with self.lock:

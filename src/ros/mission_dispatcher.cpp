@@ -6,6 +6,8 @@
 #include <iomanip>
 #include <sstream>
 
+#include <ros/master.h>
+
 #include "swarm_transport/Mission_Event.h"
 #include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/ros/conversions.h"
@@ -19,6 +21,10 @@ using XmlRpc::XmlRpcValue;
 
 constexpr char kNode[] = "mission_dispatcher";
 constexpr std::size_t kPhaseCount = 8;
+// Before publishing a new order, wait at most this long (wall) for every node the master lists
+// as a subscriber of the order and status topics to be connected.
+constexpr double kListenerWaitS = 1.0;
+constexpr double kListenerPollS = 0.005;
 
 // XmlRpc gives ints and doubles as different types; `x: 7` in a YAML file means 7.0.
 bool AsDouble(XmlRpcValue& v, double* out) {
@@ -400,7 +406,10 @@ MissionDispatcher::Verdict MissionDispatcher::Submit(core::MissionSpec spec,
   m.phase = MissionPhase::kQueued;
   m.entered[static_cast<std::size_t>(MissionPhase::kQueued)] = ros::Time::now();
   m.reached = 1u << static_cast<unsigned>(MissionPhase::kQueued);
-  if (publish) new_pub_.publish(ToNewMission(spec));
+  if (publish) {
+    AwaitListeners();
+    new_pub_.publish(ToNewMission(spec));
+  }
   PublishStatus(spec, MissionPhase::kQueued, "accepted from " + source);
   const std::string what = Describe(spec);
   ROS_INFO("%s: queued mission %u from %s: %s", kNode, spec.id, source.c_str(), what.c_str());
@@ -537,6 +546,36 @@ void MissionDispatcher::SendEvent(std::uint16_t id, core::MissionEventKind kind,
   event_pub_.publish(msg);
   ROS_INFO("%s: sent %s for mission %u (%s; from tick %llu)", kNode, EventName(kind), id, why,
            static_cast<unsigned long long>(not_before_tick));
+}
+
+void MissionDispatcher::AwaitListeners() {
+  // A node that subscribed but is not connected yet (start-up, a loaded machine) would miss
+  // the QUEUED status (not latched) and get the latched order late: the recorder would lack
+  // the QUEUED tick and a lock-step run would not repeat. Connections are made by roscpp's
+  // own thread, so waiting here (briefly, in a service call) lets them complete.
+  const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(kListenerWaitS);
+  while (ros::ok()) {
+    XmlRpc::XmlRpcValue request, response, payload;
+    request[0] = ros::this_node::getName();
+    if (!ros::master::execute("getSystemState", request, response, payload, false)) return;
+    std::uint32_t want_new = 0, want_status = 0;
+    XmlRpc::XmlRpcValue& subscribers = payload[1];
+    for (int i = 0; i < subscribers.size(); ++i) {
+      const std::string topic = subscribers[i][0];
+      if (topic == new_pub_.getTopic()) want_new = subscribers[i][1].size();
+      if (topic == status_pub_.getTopic()) want_status = subscribers[i][1].size();
+    }
+    // This node subscribes to statuses itself (its own link counts like any other).
+    if (new_pub_.getNumSubscribers() >= want_new && status_pub_.getNumSubscribers() >= want_status) {
+      return;
+    }
+    if (ros::WallTime::now() >= until) {
+      ROS_WARN("%s: not every subscriber of the mission topics is connected after %.1f s; "
+               "publishing anyway", kNode, kListenerWaitS);
+      return;
+    }
+    ros::WallDuration(kListenerPollS).sleep();
+  }
 }
 
 bool MissionDispatcher::OnSubmit(Submit_Mission::Request& req, Submit_Mission::Response& res) {

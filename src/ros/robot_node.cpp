@@ -19,6 +19,10 @@ namespace {
 // Diagnostics: one line per robot per this many wall seconds on this topic.
 constexpr char kStatsTopic[] = "/flock/robot_stats";
 constexpr double kStatsPeriodS = 1.0;
+// Lock-step: how long a first leader's tick may wait for its mission subscribers (below the
+// simulator's default lockstep_timeout_s of 2 s), polling every kLockstepOutletPollS.
+constexpr double kLockstepOutletWaitS = 1.5;
+constexpr double kLockstepOutletPollS = 0.002;
 constexpr std::uint32_t kStatsQueue = 10;
 // Broadcast comm: every robot publishes once per tick, so the queue must hold a whole swarm's
 // tick (as the simulator's); a robot not heard for this many radio rounds is forgotten.
@@ -376,6 +380,22 @@ bool RobotNode::MissionOutletsReady() {
   return outlets_ready_;
 }
 
+void RobotNode::AwaitMissionOutlets() {
+  if (MissionOutletsReady()) return;
+  // Lock-step ticks take milliseconds: a first leader that waited for its subscribers tick by
+  // tick would start its mission at a tick that depends on how fast they connect (seen under
+  // load: tick 135 instead of 0). So it waits within this tick, whose answer the simulator
+  // awaits, up to kLockstepOutletWaitS; connections are made by roscpp's own thread.
+  const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(kLockstepOutletWaitS);
+  while (!MissionOutletsReady() && ros::WallTime::now() < until && ros::ok()) {
+    ros::WallDuration(kLockstepOutletPollS).sleep();
+  }
+  if (!MissionOutletsReady()) {
+    ROS_WARN("robot %u: mission subscribers not connected after %.1f s; the mission starts "
+             "when they are (this run may not repeat exactly)", id_, kLockstepOutletWaitS);
+  }
+}
+
 void RobotNode::Publish(const core::MissionOutbox& outbox) {
   if (outbox.empty()) return;
   if (!status_pub_) {
@@ -465,6 +485,7 @@ void RobotNode::Tick() {
   }
 
   core::MissionOutbox outbox;
+  if (options_.clock == "lockstep") AwaitMissionOutlets();
   const core::MissionPlan plan = MissionOutletsReady()
                                      ? agent_.Tick(in.self, heard, perception_->tick, &outbox)
                                      : agent_.Tick(in.self, heard, perception_->tick, nullptr);

@@ -103,6 +103,9 @@ class MissionDispatcher {
                      const std::string& reason);
   void EnterPhase(std::uint16_t id, TrackedMission* mission, core::MissionPhase phase);
   void ScheduleSignal(std::uint16_t id, TrackedMission* mission, core::MissionEventKind kind);
+  // Before a new order: waits (at most kListenerWaitS) until every registered subscriber of
+  // the order and status topics is connected.
+  void AwaitListeners();
   void SendEvent(std::uint16_t id, core::MissionEventKind kind, std::uint64_t not_before_tick,
                  const char* why);
   void Forget();

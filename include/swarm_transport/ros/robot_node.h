@@ -113,6 +113,8 @@ class RobotNode {
   void AdvertiseMissionOutlets();
   // Asks the master how many nodes subscribe to each mission topic (once per new outlet).
   void LearnExpectedSubscribers();
+  // Lock-step: blocks the tick (at most kLockstepOutletWaitS) until MissionOutletsReady().
+  void AwaitMissionOutlets();
   bool InRange(std::uint16_t from, std::uint16_t to) const;
 
   ros::NodeHandle nh_;
