@@ -33,6 +33,10 @@ constexpr std::uint32_t kPoseQueue = 10;
 constexpr std::uint32_t kCmdVelQueue = 10;
 constexpr std::uint32_t kPositionQueue = 10000;
 constexpr std::uint32_t kPositionsQueue = 100;
+// Lock-step runs thousands of ticks per second in one process (deploy:=host_sim): a recorder
+// or a runner that falls behind for a moment must not lose frames (a sample would move to a
+// later tick). Memory is used only while a subscriber lags.
+constexpr std::uint32_t kLockstepPositionsQueue = 10000;
 constexpr std::uint32_t kMissionQueue = 100;
 constexpr std::uint32_t kMarkersQueue = 2;
 // Polling period of the lock-step wait (s): also bounds a robot-less tick to ~1 ms.
@@ -259,7 +263,8 @@ bool Simulator::Initialize() {
   radio_rng_ = std::make_unique<core::Rng>(params_.swarm.seed, kRadioStream);
 
   // Latched: a late subscriber (a test after the last lock-step tick) still gets the state.
-  positions_pub_ = nh_.advertise<Robot_Positions>(names::kPositions, kPositionsQueue, true);
+  positions_pub_ = nh_.advertise<Robot_Positions>(
+      names::kPositions, lockstep_ ? kLockstepPositionsQueue : kPositionsQueue, true);
   robots_pub_ = nh_.advertise<Robot_Positions>(names::kRobots, 1, true);
   markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>(names::kMarkers, kMarkersQueue);
   if (lockstep_) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>(kClockTopic, 10);

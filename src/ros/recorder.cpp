@@ -25,7 +25,7 @@ using XmlRpc::XmlRpcValue;
 constexpr char kNode[] = "recorder";
 // /flock/positions comes every tick and a slow recorder must not lose lock-step ticks: the
 // queue holds many ticks (the simulator does not wait for observers once it runs).
-constexpr std::uint32_t kPositionsQueue = 1000;
+constexpr std::uint32_t kPositionsQueue = 10000;
 constexpr std::uint32_t kMissionQueue = 1000;
 constexpr std::uint32_t kStatsQueue = 10;
 // Wall seconds between two warnings of one kind.
