@@ -27,7 +27,7 @@ METRICS = {
 }
 TOP_KEYS = {'description', 'kind', 'order', 'section', 'figures', 'runs', 'seed_base',
             'base_config', 'config', 'robots', 'placement', 'cluster', 'max_ticks',
-            'trim_each_end', 'x_label', 'group_label', 'thesis', 'expect', 'mission',
+            'trim_each_end', 'x_label', 'group_label', 'thesis', 'note', 'expect', 'mission',
             'settings', 'jobs', 'name'}
 SETTING_KEYS = {'name', 'label', 'x', 'group', 'robots', 'config', 'mission', 'placement',
                 'max_ticks'}
@@ -89,6 +89,10 @@ def validate(preset, name):
     p.setdefault('x_label', 'setting')
     p.setdefault('group_label', '')
     p.setdefault('thesis', '')
+    p.setdefault('note', '')  # ours: what explains a difference from the thesis
+    for key in ('thesis', 'note'):
+        if not isinstance(p[key], str):
+            fail('%s must be a text' % key)
     p.setdefault('expect', [])
     p.setdefault('trim_each_end', None)
     base = os.path.join(CONFIG_DIR, p['base_config'])

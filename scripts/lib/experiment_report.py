@@ -331,6 +331,13 @@ def cmd_report(dirs, out_md):
             meta = json.load(f)
         preset = presets.validate(meta['preset'], meta['preset']['name'])
         preset['runs'] = meta.get('runs', preset['runs'])
+        # The prose (the thesis's claim, our note) may have been written after the run: take
+        # it from the preset as it is now, when it still exists.
+        try:
+            current = presets.load_preset(preset['name'])
+            preset['thesis'], preset['note'] = current['thesis'], current['note']
+        except presets.PresetError:
+            pass
         summary, plots = aggregate_dir(d, preset)
         entries.append((preset, meta, summary, plots, d))
     entries.sort(key=lambda e: (e[0].get('order', 1000), e[0]['name']))
@@ -376,6 +383,9 @@ def cmd_report(dirs, out_md):
             lines.append('**Measured trend:**')
             lines.append('')
             lines.extend('- %s' % t for t in trends)
+            lines.append('')
+        if preset.get('note'):
+            lines.append('**Why it differs:** %s' % ' '.join(preset['note'].split()))
             lines.append('')
     with open(out_md, 'w') as f:
         f.write('\n'.join(lines))
