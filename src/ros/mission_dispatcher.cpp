@@ -1,12 +1,12 @@
 #include "swarm_transport/ros/mission_dispatcher.h"
 
+#include <ros/master.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iomanip>
 #include <sstream>
-
-#include <ros/master.h>
 
 #include "swarm_transport/Mission_Event.h"
 #include "swarm_transport/Robot_Position.h"
@@ -566,12 +566,15 @@ void MissionDispatcher::AwaitListeners() {
       if (topic == status_pub_.getTopic()) want_status = subscribers[i][1].size();
     }
     // This node subscribes to statuses itself (its own link counts like any other).
-    if (new_pub_.getNumSubscribers() >= want_new && status_pub_.getNumSubscribers() >= want_status) {
+    if (new_pub_.getNumSubscribers() >= want_new &&
+        status_pub_.getNumSubscribers() >= want_status) {
       return;
     }
     if (ros::WallTime::now() >= until) {
-      ROS_WARN("%s: not every subscriber of the mission topics is connected after %.1f s; "
-               "publishing anyway", kNode, kListenerWaitS);
+      ROS_WARN(
+          "%s: not every subscriber of the mission topics is connected after %.1f s; "
+          "publishing anyway",
+          kNode, kListenerWaitS);
       return;
     }
     ros::WallDuration(kListenerPollS).sleep();

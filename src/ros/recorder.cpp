@@ -571,7 +571,8 @@ void Recorder::WriteMission(std::uint16_t id, const MissionRecord& m) {
       << Opt(e[PhaseIndex(MissionPhase::kTransport)]) << ","
       << Opt(e[PhaseIndex(MissionPhase::kUnloading)]) << ","
       << Opt(e[PhaseIndex(MissionPhase::kDone)]) << "," << transport_ticks << "," << slip << ","
-      << distance << "," << waits << "," << fraction << "," << swarm << "," << error << "," << contact;
+      << distance << "," << waits << "," << fraction << "," << swarm << "," << error << ","
+      << contact;
   if (missions_csv_.is_open() && !missions_csv_.Append(row.str())) {
     ROS_ERROR("%s: could not write a row of %s/missions.csv", kNode, run_dir_.c_str());
   }
