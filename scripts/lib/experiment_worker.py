@@ -217,6 +217,9 @@ def _run_mission(job, ros, state, lock, waiter, trace=None):
                 raise RunFailed('roslaunch ended before the mission dispatcher came up')
             if time.time() > up_by:
                 raise RunFailed('the mission dispatcher did not come up')
+    # The recorder must hear the QUEUED status (not latched): on a loaded machine it may
+    # subscribe after the dispatcher is up. The dispatcher then waits for the connection.
+    _wait_subscribed('/recorder', ('/flock/mission/status', '/flock/mission/new'), up_by, ros)
     msg = New_Mission(mission_id=mid, target_x=m['target'][0], target_y=m['target'][1],
                       transport_mode=int(m.get('mode', 0)))
     if job['kind'] == 'leader':
@@ -296,6 +299,22 @@ class Trace(object):
             f.write('tick,robot_id,x,y,heading_deg\n')
             for row in rows:
                 f.write(row + '\n')
+
+
+def _wait_subscribed(node, topics, deadline, ros):
+    """Waits until the master lists `node` as a subscriber of every topic in `topics`."""
+    import rosgraph
+    master = rosgraph.Master('/experiment_run')
+    while True:
+        _, subscribers, _ = master.getSystemState()
+        have = {topic for topic, nodes in subscribers if node in nodes}
+        if all(t in have for t in topics):
+            return
+        if not ros.alive('roslaunch'):
+            raise RunFailed('roslaunch ended before %s subscribed' % node)
+        if time.time() > deadline:
+            raise RunFailed('%s did not subscribe to %s' % (node, ', '.join(topics)))
+        time.sleep(0.02)
 
 
 def _has_row(path, mid):

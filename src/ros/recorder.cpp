@@ -270,7 +270,12 @@ void Recorder::OnPositions(const Robot_Positions::ConstPtr& msg) {
     frame.positions.push_back(r.second);
   }
   history_.push_back(std::move(frame));
-  while (history_.size() > kHistoryFrames) history_.pop_front();
+  const std::size_t capacity = HistoryCapacity(history_.back().positions.size());
+  while (history_.size() > capacity) {
+    // The oldest frame leaves: windows whose end is not known yet take it in now.
+    FeedMissions(false, history_.front().tick);
+    history_.pop_front();
+  }
   SampleIfDue(history_.back());
   FeedMissions(false);
   WriteFinished(false);
@@ -430,7 +435,12 @@ std::optional<std::uint64_t> Recorder::WindowEnd(const MissionRecord& m) {
   return end;
 }
 
-void Recorder::FeedMissions(bool drain) {
+std::size_t Recorder::HistoryCapacity(std::size_t robots) {
+  return std::clamp(kHistoryPositions / std::max<std::size_t>(robots, 1), kMinHistoryFrames,
+                    kMaxHistoryFrames);
+}
+
+void Recorder::FeedMissions(bool drain, std::optional<std::uint64_t> through) {
   if (history_.empty()) return;
   const std::uint64_t newest = history_.back().tick;
   for (auto& kv : missions_) {
@@ -440,8 +450,8 @@ void Recorder::FeedMissions(bool drain) {
     std::uint64_t limit = 0;
     if (drain || WindowEnd(m)) {
       limit = newest;
-    } else if (newest >= kLagTicks) {
-      limit = newest - kLagTicks;
+    } else if (through) {
+      limit = *through;
     } else {
       continue;
     }

@@ -60,9 +60,11 @@ class CsvFile {
 // missions.csv (one row per DONE / ABORTED mission) and run.csv (one summary row, rewritten
 // after every finished mission and at shutdown) to <output_dir>/<run_name>/.
 // Mission phases come from the first leader's Mission_Status ticks; a mission's metrics are
-// fed from buffered /flock/positions frames inside its window, kLagTicks behind the newest
-// frame until the window's end is known, so a status that arrives after later frames still
-// cuts the window at its own tick. A transport's window is TRANSPORT .. UNLOADING. A
+// fed from buffered /flock/positions frames inside its window once the window's end is known,
+// or a frame when it leaves the history (HistoryCapacity frames), so a status that arrives
+// after later frames still cuts the window at its own tick (in lock-step at thousands of
+// ticks per second, hundreds of frames may come first). A transport's window is
+// TRANSPORT .. UNLOADING. A
 // leader-only mission's runs from its order (the leader leads as soon as it holds it; its
 // first status may come much later, see RobotNode::MissionOutletsReady) to its DONE, or to
 // the first tick the leader is within goal_tolerance_m of the target - the leader's own
@@ -83,10 +85,12 @@ class Recorder {
   // roscpp's, whose shutdown would stop the logging of the closing summary.
   static void RequestStop();
 
-  // Frames kept for missions whose status arrives late.
-  static constexpr std::size_t kHistoryFrames = 256;
-  // Frames a window without a known end is fed behind the newest frame.
-  static constexpr std::uint64_t kLagTicks = 20;
+  // Frames kept for missions whose status arrives late: as many as hold kHistoryPositions
+  // robot positions, within [kMinHistoryFrames, kMaxHistoryFrames].
+  static constexpr std::size_t kHistoryPositions = 4000000;
+  static constexpr std::size_t kMinHistoryFrames = 256;
+  static constexpr std::size_t kMaxHistoryFrames = 20000;
+  static std::size_t HistoryCapacity(std::size_t robots);
   // Missions followed at once; more are ignored with a warning.
   static constexpr std::size_t kMaxMissions = 4096;
 
@@ -128,8 +132,10 @@ class Recorder {
   // The window (start, end] of frames that feed the mission's metrics.
   static std::optional<std::uint64_t> WindowStart(const MissionRecord& m);
   static std::optional<std::uint64_t> WindowEnd(const MissionRecord& m);
-  // Feeds every mission the buffered frames it is due; `drain` ignores kLagTicks (shutdown).
-  void FeedMissions(bool drain);
+  // Feeds every mission the buffered frames it is due: all of them when its window's end is
+  // known or `drain` (shutdown), else those up to tick `through` (a frame leaving the
+  // history), else none.
+  void FeedMissions(bool drain, std::optional<std::uint64_t> through = std::nullopt);
   void Feed(MissionRecord* m, const Frame& frame);
   // Writes and forgets finished missions whose frames are all in; `drain`: all of them.
   void WriteFinished(bool drain);
