@@ -522,6 +522,15 @@ bool Simulator::RelaysConnected() const {
     const int expected = it == registered.end() ? 0 : it->second;
     if (static_cast<int>(sub.getNumPublishers()) < expected) return false;
   }
+  // Every subscriber of the (latched) robot list has it: a robot checks a mission's robots
+  // against it, and one without it would accept an order naming a robot that does not exist.
+  XmlRpc::XmlRpcValue& subscribers = payload[1];
+  for (int i = 0; i < subscribers.size(); ++i) {
+    if (static_cast<std::string>(subscribers[i][0]) == robots_pub_.getTopic() &&
+        static_cast<int>(robots_pub_.getNumSubscribers()) < subscribers[i][1].size()) {
+      return false;
+    }
+  }
   return true;
 }
 

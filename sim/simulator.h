@@ -165,7 +165,8 @@ class Simulator : public RobotOutlet {
   // Lock-step: waits until every robot is connected (or the start timeout passed).
   void WaitForRobots();
   // Lock-step start: every node the master lists as a publisher of a relayed mission topic
-  // (the robots' outlets, a dispatcher, a test) is connected to this simulator's relay.
+  // (the robots' outlets, a dispatcher, a test) is connected to this simulator's relay, and
+  // every subscriber of the robot list is connected (it got the latched list).
   bool RelaysConnected() const;
   // Lock-step: marks connected robots live and disconnected ones not live.
   void UpdateLiveness();
