@@ -1,7 +1,6 @@
 #include "simulator.h"
 
 #include <geometry_msgs/TransformStamped.h>
-#include <ros/master.h>
 #include <rosgraph_msgs/Clock.h>
 #include <visualization_msgs/MarkerArray.h>
 
@@ -15,6 +14,7 @@
 #include "swarm_transport/Robot_Positions.h"
 #include "swarm_transport/core/mission.h"
 #include "swarm_transport/ros/conversions.h"
+#include "swarm_transport/ros/graph.h"
 #include "swarm_transport/ros/names.h"
 
 namespace swarm_transport {
@@ -509,38 +509,20 @@ void Simulator::RunRealtime() {
 }
 
 bool Simulator::RelaysConnected() const {
-  XmlRpc::XmlRpcValue request, response, payload;
-  request[0] = ros::this_node::getName();
-  if (!ros::master::execute("getSystemState", request, response, payload, false)) return false;
-  std::map<std::string, int> registered;  // topic -> publishing nodes
-  XmlRpc::XmlRpcValue& publishers = payload[0];
-  for (int i = 0; i < publishers.size(); ++i) {
-    registered[static_cast<std::string>(publishers[i][0])] = publishers[i][1].size();
-  }
+  TopicNodeCounts graph;
+  if (!QueryTopicNodeCounts(&graph)) return false;
   for (const ros::Subscriber& sub : relay_subs_) {
-    const auto it = registered.find(sub.getTopic());
-    const int expected = it == registered.end() ? 0 : it->second;
-    if (static_cast<int>(sub.getNumPublishers()) < expected) return false;
+    if (!graph.AllConnected(sub)) return false;
   }
   // Every subscriber of the (latched) robot list has it: a robot checks a mission's robots
   // against it, and one without it would accept an order naming a robot that does not exist.
-  XmlRpc::XmlRpcValue& subscribers = payload[1];
-  for (int i = 0; i < subscribers.size(); ++i) {
-    if (static_cast<std::string>(subscribers[i][0]) == robots_pub_.getTopic() &&
-        static_cast<int>(robots_pub_.getNumSubscribers()) < subscribers[i][1].size()) {
-      return false;
-    }
-  }
-  return true;
+  return graph.AllConnected(robots_pub_);
 }
 
 void Simulator::WaitForRobots() {
   const ros::WallTime deadline =
       ros::WallTime::now() + ros::WallDuration(params_.lockstep_start_timeout_s);
   std::size_t connected = 0;
-  // A link counts before its handshake is done (see Ready): the relays must stay connected a
-  // moment, so that what was published before (a latched mission) has arrived.
-  ros::WallTime relays_since;
   ros::WallTime ready_since;
   while (Running()) {
     connected = 0;
@@ -551,16 +533,13 @@ void Simulator::WaitForRobots() {
                           positions_pub_.getNumSubscribers() >=
                               static_cast<std::uint32_t>(params_.lockstep_observers);
     const ros::WallTime now = ros::WallTime::now();
-    if (!RelaysConnected()) {
-      relays_since = ros::WallTime();
-    } else if (relays_since.isZero()) {
-      relays_since = now;
-    }
-    const bool relayed = !relays_since.isZero() && (now - relays_since).toSec() >= kSettleS;
-    if (connected == io_.size() && observed && relayed) {
-      // What was published before the last observer subscribed (a mission, sent just before
-      // an experiment's runner subscribes) may still be on its way: take it in for a moment
-      // so that it is relayed at tick 0 whatever the scheduling.
+    // Asks the master only once the cheap conditions hold.
+    const bool ready = connected == io_.size() && observed && RelaysConnected();
+    if (ready) {
+      // A link counts before its handshake is done (see Ready), and what was published before
+      // the last observer subscribed (a latched mission, one sent just before an experiment's
+      // runner subscribes) may still be on its way: everything must stay connected a moment,
+      // taking it in, so that it is relayed at tick 0 whatever the scheduling.
       if (ready_since.isZero()) ready_since = now;
       SpinOnce();
       if ((now - ready_since).toSec() >= kSettleS) break;
@@ -572,7 +551,7 @@ void Simulator::WaitForRobots() {
       ROS_WARN(
           "lockstep: only %zu of %zu robots connected (mission relays %s) after %.1f s; "
           "starting anyway (the others join when they connect)",
-          connected, io_.size(), relayed ? "connected" : "not all connected",
+          connected, io_.size(), RelaysConnected() ? "connected" : "not all connected",
           params_.lockstep_start_timeout_s);
       break;
     }
@@ -1103,24 +1082,22 @@ void Simulator::PublishTransforms() {
   if (!transforms.empty()) tf_broadcaster_->sendTransform(transforms);
 }
 
-void Simulator::SendCommand(std::uint16_t id, const geometry_msgs::Twist& command) {
+void Simulator::OnSimulatorThread(std::function<void()> call) {
   if (std::this_thread::get_id() == thread_) {
-    OnCmdVel(id, command);
+    call();
     return;
   }
-  cmd_queue_.addCallback(
-      boost::make_shared<QueuedCall>([this, id, command]() { OnCmdVel(id, command); }));
+  cmd_queue_.addCallback(boost::make_shared<QueuedCall>(std::move(call)));
+}
+
+void Simulator::SendCommand(std::uint16_t id, const geometry_msgs::Twist& command) {
+  OnSimulatorThread([this, id, command]() { OnCmdVel(id, command); });
 }
 
 void Simulator::SendTickDone(std::uint16_t id, const Tick_Done& done) {
   // The publisher a topic would name: the barrier counts this robot's mission messages, sent
   // by this process's node on the mission topics, under the same name.
-  if (std::this_thread::get_id() == thread_) {
-    OnTickDone(id, ros::this_node::getName(), done);
-    return;
-  }
-  cmd_queue_.addCallback(boost::make_shared<QueuedCall>(
-      [this, id, done]() { OnTickDone(id, ros::this_node::getName(), done); }));
+  OnSimulatorThread([this, id, done]() { OnTickDone(id, ros::this_node::getName(), done); });
 }
 
 void Simulator::OnCmdVel(std::uint16_t id, const geometry_msgs::Twist& msg) {

@@ -10,6 +10,7 @@
 
 #include <csignal>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <set>
@@ -213,6 +214,8 @@ class Simulator : public RobotOutlet {
   bool Lost();
 
   void OnCmdVel(std::uint16_t id, const geometry_msgs::Twist& msg);
+  // Runs `call` now on the simulator's thread, or queues it for its loop from another one.
+  void OnSimulatorThread(std::function<void()> call);
   bool OnSpawn(Spawn::Request& req, Spawn::Response& res);
   bool OnKill(Kill::Request& req, Kill::Response& res);
   bool OnReset(std_srvs::Empty::Request& req, std_srvs::Empty::Response& res);

@@ -1,7 +1,5 @@
 #include "swarm_transport/ros/mission_dispatcher.h"
 
-#include <ros/master.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +9,7 @@
 #include "swarm_transport/Mission_Event.h"
 #include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/ros/conversions.h"
+#include "swarm_transport/ros/graph.h"
 #include "swarm_transport/ros/names.h"
 
 namespace swarm_transport {
@@ -555,21 +554,10 @@ void MissionDispatcher::AwaitListeners() {
   // own thread, so waiting here (briefly, in a service call) lets them complete.
   const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(kListenerWaitS);
   while (ros::ok()) {
-    XmlRpc::XmlRpcValue request, response, payload;
-    request[0] = ros::this_node::getName();
-    if (!ros::master::execute("getSystemState", request, response, payload, false)) return;
-    std::uint32_t want_new = 0, want_status = 0;
-    XmlRpc::XmlRpcValue& subscribers = payload[1];
-    for (int i = 0; i < subscribers.size(); ++i) {
-      const std::string topic = subscribers[i][0];
-      if (topic == new_pub_.getTopic()) want_new = subscribers[i][1].size();
-      if (topic == status_pub_.getTopic()) want_status = subscribers[i][1].size();
-    }
+    TopicNodeCounts graph;
+    if (!QueryTopicNodeCounts(&graph)) return;
     // This node subscribes to statuses itself (its own link counts like any other).
-    if (new_pub_.getNumSubscribers() >= want_new &&
-        status_pub_.getNumSubscribers() >= want_status) {
-      return;
-    }
+    if (graph.AllConnected(new_pub_) && graph.AllConnected(status_pub_)) return;
     if (ros::WallTime::now() >= until) {
       ROS_WARN(
           "%s: not every subscriber of the mission topics is connected after %.1f s; "

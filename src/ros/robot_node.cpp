@@ -1,9 +1,9 @@
 #include "swarm_transport/ros/robot_node.h"
 
 #include <geometry_msgs/Twist.h>
-#include <ros/master.h>
 #include <std_msgs/String.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -295,7 +295,7 @@ void RobotNode::OnNewMission(const New_Mission::ConstPtr& msg) {
   std::string why = core::ValidateMission(spec, context);
   if (why.empty() && agent_.OnNewMission(spec, &why)) {
     if (spec.FirstLeader() == id_ && !status_pub_) AdvertiseMissionOutlets();
-    if (spec.FirstLeader() == id_ && expected_subscribers_.empty()) LearnExpectedSubscribers();
+    if (spec.FirstLeader() == id_ && expected_.subscribers.empty()) LearnExpectedSubscribers();
     return;
   }
   // Only the robots concerned say so, so that one bad message does not log N lines.
@@ -351,15 +351,7 @@ void RobotNode::AdvertiseMissionOutlets() {
 void RobotNode::LearnExpectedSubscribers() {
   outlets_since_ = ros::WallTime::now();
   outlets_ready_ = false;
-  expected_subscribers_.clear();
-  XmlRpc::XmlRpcValue request, response, payload;
-  request[0] = ros::this_node::getName();
-  if (!ros::master::execute("getSystemState", request, response, payload, true)) return;
-  XmlRpc::XmlRpcValue& subscribers = payload[1];
-  for (int i = 0; i < subscribers.size(); ++i) {
-    expected_subscribers_[static_cast<std::string>(subscribers[i][0])] =
-        static_cast<std::uint32_t>(subscribers[i][1].size());
-  }
+  if (!QueryTopicNodeCounts(&expected_, true)) expected_ = TopicNodeCounts();
 }
 
 bool RobotNode::MissionOutletsReady() {
@@ -367,15 +359,13 @@ bool RobotNode::MissionOutletsReady() {
   // A message published before a subscriber connected is lost for it: a first leader holds
   // its phase machine until every node that subscribed when it got the mission is connected
   // (the master told us how many), or 5 s of wall time passed.
-  const auto connected = [this](const ros::Publisher& pub, const char* topic) {
-    const auto it = expected_subscribers_.find(topic);
-    return pub.getNumSubscribers() >= (it == expected_subscribers_.end() ? 1u : it->second);
+  // At least one subscriber (the simulator's relay) even if the master did not answer.
+  const auto connected = [this](const ros::Publisher& pub) {
+    return pub.getNumSubscribers() >=
+           std::max<std::uint32_t>(1, expected_.Subscribers(pub.getTopic()));
   };
-  outlets_ready_ = (connected(freeze_pub_, names::kFreeze) &&
-                    connected(continue_pub_, names::kContinue) &&
-                    connected(update_pub_, names::kObjectUpdate) &&
-                    connected(delete_pub_, names::kObjectDelete) &&
-                    connected(status_pub_, names::kMissionStatus)) ||
+  outlets_ready_ = (connected(freeze_pub_) && connected(continue_pub_) && connected(update_pub_) &&
+                    connected(delete_pub_) && connected(status_pub_)) ||
                    ros::WallTime::now() - outlets_since_ > ros::WallDuration(5.0);
   return outlets_ready_;
 }

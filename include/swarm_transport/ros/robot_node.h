@@ -30,6 +30,7 @@
 #include "swarm_transport/core/random.h"
 #include "swarm_transport/core/tick_stats.h"
 #include "swarm_transport/ros/direct_link.h"
+#include "swarm_transport/ros/graph.h"
 #include "swarm_transport/ros/params.h"
 
 namespace swarm_transport {
@@ -140,7 +141,7 @@ class RobotNode {
   ros::Publisher update_pub_;
   ros::Publisher delete_pub_;
   ros::Publisher status_pub_;
-  std::map<std::string, std::uint32_t> expected_subscribers_;
+  TopicNodeCounts expected_;  // the graph when it became a first leader
   ros::WallTime outlets_since_;
   bool outlets_ready_ = false;
   ros::ServiceServer describe_srv_;
