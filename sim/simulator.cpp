@@ -733,6 +733,8 @@ void Simulator::PublishRadio() {
   }
 
   const auto lists = world_->NeighbourLists(params_.radio_range_m);
+  const int hops =
+      params_.swarm.flocking.neighbourhood == core::Neighbourhood::kChain ? params_.swarm.chain_hops : 1;
   const double range2 = params_.radio_range_m * params_.radio_range_m;
   std::vector<char> heard(ids.size(), 0);
   std::vector<std::size_t> touched;
@@ -756,6 +758,28 @@ void Simulator::PublishRadio() {
       msg.robots.push_back(truth[j]);
       heard[j] = 1;
       touched.push_back(j);
+    }
+    // A chain's far end: what the robots in range heard in range, passed on hop by hop.
+    if (hops > 1) {
+      heard[i] = 1;
+      touched.push_back(i);
+      std::size_t ring_begin = 0;
+      std::vector<std::size_t> ring;
+      for (std::uint16_t other : lists[i]) ring.push_back(static_cast<std::size_t>(index_of(other)));
+      for (int hop = 2; hop <= hops && ring_begin < ring.size(); ++hop) {
+        const std::size_t ring_end = ring.size();
+        for (std::size_t k = ring_begin; k < ring_end; ++k) {
+          for (std::uint16_t far : lists[ring[k]]) {
+            const std::size_t j = static_cast<std::size_t>(index_of(far));
+            if (heard[j]) continue;
+            heard[j] = 1;
+            touched.push_back(j);
+            ring.push_back(j);
+            if (!Lost()) msg.relayed.push_back(truth[j]);
+          }
+        }
+        ring_begin = ring_end;
+      }
     }
     const core::Vec2 self = robot->second.pose.position;
     for (const Robot_Position& p : relayed) {

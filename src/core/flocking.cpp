@@ -72,19 +72,58 @@ std::string FlockingParams::Validate() const {
   return "";
 }
 
+bool ParseNeighbourhood(const std::string& name, Neighbourhood* out) {
+  if (name == "chain") {
+    *out = Neighbourhood::kChain;
+  } else if (name == "disc") {
+    *out = Neighbourhood::kDisc;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+const char* NeighbourhoodName(Neighbourhood n) {
+  return n == Neighbourhood::kChain ? "chain" : "disc";
+}
+
+bool FlockGroup::Admits(std::uint16_t id) const {
+  return std::binary_search(ids.begin(), ids.end(), id) == only;
+}
+
 std::vector<Neighbour> NeighbourhoodOf(const Perception& in, const FlockingParams& p) {
   Neighbour self;
   self.id = in.self_id;
   self.position = in.self.position;
   self.heading = in.self.heading;
   std::vector<Neighbour> neighbourhood{self};
+  // Candidates not linked yet; statists join at once.
+  std::vector<const Neighbour*> candidates;
+  candidates.reserve(in.others.size());
   for (const Neighbour& other : in.others) {
     // Its own echo would count it twice.
     if (IsSelf(in, other)) continue;
-    if (other.type == kTypeStatist ||
-        Distance(in.self.position, other.position) <= p.local_range_m) {
+    if (other.type == kTypeStatist) {
       neighbourhood.push_back(other);
+    } else if (in.group.Admits(other.id)) {
+      candidates.push_back(&other);
     }
+  }
+  // Breadth first from itself: a disc stops after the first ring. Every robot linked so far is
+  // tried once as the source of links to the rest (statists link nobody: they count, but a
+  // chain runs through robots).
+  std::vector<Vec2> frontier{in.self.position};
+  for (std::size_t next = 0; next < frontier.size() && !candidates.empty(); ++next) {
+    const Vec2 from = frontier[next];
+    auto linked = std::partition(candidates.begin(), candidates.end(), [&](const Neighbour* n) {
+      return FartherThan(from, n->position, p.local_range_m) ||
+             Distance(from, n->position) > p.local_range_m;
+    });
+    for (auto it = linked; it != candidates.end(); ++it) {
+      neighbourhood.push_back(**it);
+      if (p.neighbourhood == Neighbourhood::kChain) frontier.push_back((*it)->position);
+    }
+    candidates.erase(linked, candidates.end());
   }
   return neighbourhood;
 }

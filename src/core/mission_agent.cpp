@@ -118,49 +118,41 @@ void MissionAgent::EnterPhase(Live* live, MissionPhase phase, std::uint64_t tick
   outbox->statuses.push_back(Report(*live, inside));
 }
 
-std::vector<std::pair<std::uint16_t, std::uint16_t>> MissionAgent::OthersRuns(
-    const MissionSpec& spec) const {
-  std::vector<std::pair<std::uint16_t, std::uint16_t>> runs;
-  for (const auto& run : spec.AssignedRuns()) {
-    if (self_id_ < run.first || self_id_ >= run.second) {
-      runs.push_back(run);
-      continue;
-    }
-    if (run.first < self_id_) runs.emplace_back(run.first, self_id_);
-    if (self_id_ + 1 < run.second) runs.emplace_back(static_cast<std::uint16_t>(self_id_ + 1), run.second);
+MissionAgent::Group MissionAgent::Locate(const Live& live, const Pose2& self,
+                                         const std::vector<Neighbour>& heard) const {
+  const MissionSpec& spec = live.spec;
+  Group group;
+  group.where[self_id_] = self.position;
+  for (const Neighbour& n : heard) {
+    if (n.type == 0 && spec.Assigns(n.id)) group.where.emplace(n.id, n.position);
   }
-  return runs;
+  Vec2 sum;
+  for (const auto& kv : group.where) sum = sum + kv.second;
+  group.centroid = sum * (1.0 / static_cast<double>(group.where.size()));
+  return group;
 }
 
-void MissionAgent::UpdateDocking(Live* live, double to_target, std::uint64_t tick,
-                                 MissionOutbox* outbox) {
-  // The swarm brings the object near the target fast, but its passive robots cannot stop on a
-  // 5 cm tolerance: their alignment carries the centroid past it, back and forth for hundreds
-  // of ticks. So the last few centimetres are the first leader's alone.
-  if (params_.docking_radius_m <= 0.0) return;
-  if (!live->docking) {
-    if (to_target <= params_.docking_radius_m && tick >= live->docking_retry_tick) {
-      live->docking = true;
-      live->docking_best_m = to_target;
-      live->docking_best_tick = tick;
-      outbox->freeze = OthersRuns(live->spec);
+void MissionAgent::UpdateCentre(Live* live, const Pose2& self, Group* group) const {
+  // Transport began (this robot learns it from the first leader's status, the first leader
+  // itself when it enters the phase): everyone was frozen since LOADING, so every robot anchors
+  // the object to the same centroid, and from then on moves it with the robots' centroid.
+  if (live->phase >= MissionPhase::kTransport && live->phase <= MissionPhase::kUnloading) {
+    if (!live->anchored) {
+      live->anchored = true;
+      live->offset = live->centre - group->centroid;
+      live->place = self.position - live->centre;
     }
-    return;
+    live->centre = live->offset + group->centroid;
   }
-  if (to_target < live->docking_best_m - 1e-6) {
-    live->docking_best_m = to_target;
-    live->docking_best_tick = tick;
-  } else if (tick - live->docking_best_tick > params_.docking_patience_ticks) {
-    // Blocked (a frozen robot in its way): let the swarm move again and retry later.
-    live->docking = false;
-    live->docking_retry_tick = tick + params_.docking_patience_ticks;
-    outbox->resume = OthersRuns(live->spec);
+  const Shape object = live->spec.ObjectAt(live->centre);
+  group->inside = 0;
+  for (const auto& kv : group->where) {
+    if (object.Contains(kv.second)) ++group->inside;
   }
 }
 
-void MissionAgent::RunFirstLeader(Live* live, const Pose2& self,
-                                  const std::vector<Neighbour>& heard, std::uint64_t tick,
-                                  MissionOutbox* outbox) {
+void MissionAgent::RunFirstLeader(Live* live, const Pose2& self, const Group& group,
+                                  std::uint64_t tick, MissionOutbox* outbox) {
   const MissionSpec& spec = live->spec;
   if (!live->phase_started) {
     live->phase_started = true;
@@ -169,21 +161,7 @@ void MissionAgent::RunFirstLeader(Live* live, const Pose2& self,
   }
   if (spec.LeaderOnly()) return;  // ends in LeaderArrived
 
-  // Where every assigned robot is: itself, and what the radio brought (range or mission peers).
-  std::map<std::uint16_t, Vec2> where;
-  where[self_id_] = self.position;
-  for (const Neighbour& n : heard) {
-    if (n.type == 0 && spec.Assigns(n.id)) where.emplace(n.id, n.position);
-  }
-  const std::vector<std::uint16_t> assigned = spec.Assigned();
-  const Shape object = spec.ObjectAt(live->centre);
-  std::uint16_t inside = 0;
-  Vec2 sum;
-  for (const auto& kv : where) {
-    if (object.Contains(kv.second)) ++inside;
-    sum = sum + kv.second;
-  }
-  const Vec2 centroid = sum * (1.0 / static_cast<double>(where.size()));
+  const std::uint16_t inside = group.inside;
   const bool periodic = params_.progress_every_ticks > 0 &&
                         (tick - live->phase_tick) % params_.progress_every_ticks == 0 &&
                         tick != live->phase_tick;
@@ -202,7 +180,7 @@ void MissionAgent::RunFirstLeader(Live* live, const Pose2& self,
 
   switch (live->phase) {
     case MissionPhase::kGathering:
-      if (inside == assigned.size()) {
+      if (inside == spec.Assigned().size()) {
         outbox->freeze = spec.AssignedRuns();
         EnterPhase(live, MissionPhase::kLoading, tick, inside, outbox);
       } else if (periodic) {
@@ -212,22 +190,20 @@ void MissionAgent::RunFirstLeader(Live* live, const Pose2& self,
     case MissionPhase::kLoading:
       if (live->loaded && tick >= live->signal_tick) {
         outbox->resume = spec.AssignedRuns();
-        live->offset = live->centre - centroid;
         live->transport_ticks = 0;
         EnterPhase(live, MissionPhase::kTransport, tick, inside, outbox);
+        // Anchored now, on the positions every robot will anchor to at the next tick.
+        Group anchor = group;
+        UpdateCentre(live, self, &anchor);
       }
       break;
     case MissionPhase::kTransport: {
-      live->centre = live->offset + centroid;
       ++live->transport_ticks;
-      const double to_target = Distance(live->centre, spec.target);
-      if (to_target <= params_.goal_tolerance_m) {
-        live->docking = false;
+      if (Distance(live->centre, spec.target) <= params_.goal_tolerance_m) {
         outbox->update_object = std::make_pair(spec.id, live->centre);
         outbox->freeze = spec.AssignedRuns();
         EnterPhase(live, MissionPhase::kUnloading, tick, inside, outbox);
       } else {
-        UpdateDocking(live, to_target, tick, outbox);
         if (live->transport_ticks % static_cast<std::uint64_t>(params_.object_update_ticks) == 0) {
           outbox->update_object = std::make_pair(spec.id, live->centre);
         }
@@ -253,44 +229,59 @@ MissionPlan MissionAgent::Tick(const Pose2& self, const std::vector<Neighbour>& 
   if (!queue_.empty()) plan.active = queue_.front();
   if (plan.active) {
     Live& live = live_.at(*plan.active);
-    if (outbox != nullptr && live.spec.FirstLeader() == self_id_) {
-      RunFirstLeader(&live, self, heard, tick, outbox);
-    }
-  }
-  if (plan.active) {
-    const Live& live = live_.at(*plan.active);
     const MissionSpec& spec = live.spec;
-    if (spec.IsLeader(self_id_) && !live.self_arrived) {
-      if (spec.LeaderOnly()) {
+    Group group;
+    if (!spec.LeaderOnly()) {
+      group = Locate(live, self, heard);
+      UpdateCentre(&live, self, &group);
+    }
+    if (outbox != nullptr && spec.FirstLeader() == self_id_) {
+      RunFirstLeader(&live, self, group, tick, outbox);
+    }
+    if (spec.LeaderOnly()) {
+      if (spec.IsLeader(self_id_) && !live.self_arrived) {
         plan.lead = true;
         plan.keep_flock = true;
         plan.goal = spec.target;
         plan.steer = Bearing(self.position, spec.target);
-      } else if (live.phase == MissionPhase::kTransport) {
-        // Steer along object centre -> target, so leaders do not circle the target [T5.4].
-        plan.lead = true;
-        plan.keep_flock = false;
-        plan.steer = Bearing(live.centre, spec.target);
-        plan.goal = spec.target + (self.position - live.centre);
-        if (live.docking) {
-          // The others stand: moving d moves the object d / n, so it aims n times as far (a
-          // leader drives at most its speed and never farther than its goal).
-          const double n = static_cast<double>(spec.Assigned().size());
-          plan.goal = self.position + (spec.target - live.centre) * n;
-        }
       }
+    } else {
+      // Its swarm is its mission group [THESIS_CODE 1].
+      plan.group.only = true;
+      plan.group.ids = spec.Assigned();
+      Carry carry;
+      carry.transport = live.phase >= MissionPhase::kTransport && live.anchored;
+      carry.mode = static_cast<TransportMode>(spec.transport_mode);
+      carry.leader = spec.IsLeader(self_id_);
+      carry.centre = live.centre;
+      carry.object = spec.ObjectAt(live.centre);
+      carry.target = spec.target;
+      carry.goal_tolerance_m = params_.goal_tolerance_m;
+      carry.formation_offset = live.place;
+      for (std::uint16_t id : plan.group.ids) {
+        if (id != self_id_) carry.peers.push_back(id);
+      }
+      plan.carry = carry;
     }
+  }
+  if (!plan.carry) {
+    // Idle (or leading alone): the robots of others' transport missions are not its swarm.
+    for (const auto& kv : live_) {
+      if (kv.second.spec.LeaderOnly()) continue;
+      for (std::uint16_t id : kv.second.spec.Assigned()) plan.group.ids.push_back(id);
+    }
+    std::sort(plan.group.ids.begin(), plan.group.ids.end());
+    plan.group.ids.erase(std::unique(plan.group.ids.begin(), plan.group.ids.end()),
+                         plan.group.ids.end());
   }
   for (const auto& kv : live_) {
     const Live& live = kv.second;
     if (live.spec.LeaderOnly()) continue;  // a leader-only mission has no object
     const bool active = plan.active && *plan.active == kv.first;
-    // A leader carrying its object is not kept inside it: the object rides on the robots and
-    // follows their centroid, so a leader held at its border would hold the object too. It
-    // heads for the target, slows or waits only for robots in its way (the thesis counts a
-    // leader wait only "when another robot blocked its way" [T7.4]); the passive robots flee
-    // into the object as it moves. Once arrived it is passive and the object is safety again.
-    if (active && plan.lead) continue;
+    // Its own object binds its robots as CarryStep says (a robot outside drives for its
+    // centre over any ground, as in the thesis's code: held to "no deeper outside" it could be
+    // wedged at the rim for good); the leader of a leader-only mission has none.
+    if (active && plan.carry) continue;
     Zone zone;
     zone.id = live.spec.id;
     zone.shape = live.spec.ObjectAt(live.centre);

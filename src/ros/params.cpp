@@ -54,6 +54,19 @@ bool ReadBool(XmlRpc::XmlRpcValue& dict, const char* key, bool* out, std::string
   return true;
 }
 
+// A string key whose value `parse` accepts; `allowed` names the accepted values.
+template <typename T, typename Parse>
+bool ReadChoice(XmlRpc::XmlRpcValue& dict, const char* key, const char* allowed, T* out,
+                std::string* error, Parse parse) {
+  if (!dict.hasMember(key)) return true;
+  if (dict[key].getType() != XmlRpc::XmlRpcValue::TypeString ||
+      !parse(static_cast<std::string>(dict[key]), out)) {
+    *error = std::string("parameter '") + key + "' must be " + allowed;
+    return false;
+  }
+  return true;
+}
+
 XmlRpc::XmlRpcValue FromYaml(const YAML::Node& node) {
   XmlRpc::XmlRpcValue v;
   if (node.IsMap()) {
@@ -89,6 +102,8 @@ std::string SwarmConfig::Validate() const {
   if (!e.empty()) return e;
   e = leader.Validate();
   if (!e.empty()) return e;
+  e = transport.Validate();
+  if (!e.empty()) return e;
   std::ostringstream os;
   if (!(tick_period_s > 0.0) || !std::isfinite(tick_period_s)) {
     os << "tick_period_s must be > 0 but is " << tick_period_s;
@@ -96,8 +111,8 @@ std::string SwarmConfig::Validate() const {
     os << "loaded_delay_s and unloaded_delay_s must be finite";
   } else if (object_update_ticks < 1) {
     os << "object_update_ticks must be >= 1 but is " << object_update_ticks;
-  } else if (!(docking_radius_m >= 0.0) || !std::isfinite(docking_radius_m)) {
-    os << "docking_radius_m must be a finite number >= 0 but is " << docking_radius_m;
+  } else if (chain_hops < 1) {
+    os << "chain_hops must be >= 1 but is " << chain_hops;
   }
   return os.str();
 }
@@ -169,7 +184,15 @@ bool ConfigFromXmlRpc(XmlRpc::XmlRpcValue& dict, SwarmConfig* config, std::strin
             ReadDouble(dict, "loaded_delay_s", &c.loaded_delay_s, error) &&
             ReadDouble(dict, "unloaded_delay_s", &c.unloaded_delay_s, error) &&
             ReadInt(dict, "object_update_ticks", &c.object_update_ticks, error) &&
-            ReadDouble(dict, "docking_radius_m", &c.docking_radius_m, error);
+            ReadChoice(dict, "neighbourhood", "chain or disc", &f.neighbourhood, error,
+                       core::ParseNeighbourhood) &&
+            ReadInt(dict, "chain_hops", &c.chain_hops, error) &&
+            ReadChoice(dict, "gathering", "hold or fill", &c.transport.gathering, error,
+                       core::ParseGatherMode) &&
+            ReadBool(dict, "leaders_bound", &c.transport.leaders_bound, error) &&
+            ReadDouble(dict, "approach_radius_m", &c.transport.approach_radius_m, error) &&
+            ReadDouble(dict, "formation_speed_fraction", &c.transport.formation_speed_fraction,
+                       error);
   if (!ok) return false;
   if (seed < 0) {
     *error = "parameter 'seed' must be >= 0";

@@ -74,7 +74,7 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
   core::MissionAgentParams mission_params;
   mission_params.goal_tolerance_m = config_.leader.goal_tolerance_m;
   mission_params.object_update_ticks = config_.object_update_ticks;
-  mission_params.docking_radius_m = config_.docking_radius_m;
+  mission_params.transport = config_.transport;
   agent_ = core::MissionAgent(id_, mission_params);
 
   position_pub_ = nh_.advertise<Robot_Position>(names::kPosition, 10);
@@ -461,18 +461,20 @@ void RobotNode::Tick() {
       ++it;
     }
   } else {
-    in.others.reserve(perception_->robots.size());
-    for (const Robot_Position& r : perception_->robots) {
-      if (!IsFinite(r)) continue;  // the radio relays what robots sent; never trust it blindly
-      in.others.push_back(ToNeighbour(r));
+    in.others.reserve(perception_->robots.size() + perception_->relayed.size() +
+                      perception_->mission_peers.size());
+    // In range, then passed on hop by hop (a chain's far end), then the mission channel.
+    for (const auto* list :
+         {&perception_->robots, &perception_->relayed, &perception_->mission_peers}) {
+      for (const Robot_Position& r : *list) {
+        if (!IsFinite(r)) continue;  // the radio relays what robots sent; never trust it blindly
+        in.others.push_back(ToNeighbour(r));
+      }
     }
   }
-  // Mission peers are heard over the mission's channel, not seen: they count for the mission
-  // (who is inside the object) but not for flocking, which stays local.
-  std::vector<core::Neighbour> heard = in.others;
-  for (const Robot_Position& r : perception_->mission_peers) {
-    if (IsFinite(r)) heard.push_back(ToNeighbour(r));
-  }
+  // Mission peers and relayed robots are positions like any other: the flock group decides
+  // whom the swarm runs over, and collisions count everyone.
+  const std::vector<core::Neighbour>& heard = in.others;
 
   core::MissionOutbox outbox;
   if (options_.clock == "lockstep") AwaitMissionOutlets();
@@ -481,10 +483,14 @@ void RobotNode::Tick() {
                                      : agent_.Tick(in.self, heard, perception_->tick, nullptr);
   in.zones = config_.danger_zones;
   in.zones.insert(in.zones.end(), plan.zones.begin(), plan.zones.end());
+  in.group = plan.group;
   last_plan_ = plan;
 
   core::MoveDecision move;
-  if (plan.lead) {
+  if (plan.carry) {
+    move = core::CarryStep(in, config_.flocking, config_.transport, *plan.carry, *rng_,
+                           config_.tick_period_s);
+  } else if (plan.lead) {
     if (leader_memory_mission_ != plan.active) {
       leader_memory_ = core::LeaderMemory();
       leader_memory_mission_ = plan.active;
@@ -502,7 +508,8 @@ void RobotNode::Tick() {
   last_move_ = move;
   last_heard_ = in.others.size();
   core::Velocity command;
-  if (!frozen_ && move.distance_m > 0.0) {
+  // A stand may still turn (a carrying leader that holds faces its course).
+  if (!frozen_) {
     command = core::CommandFor(in.self, move.heading, move.distance_m, config_.tick_period_s);
   }
   // Mission messages go out before the command: in lock-step the simulator steps only after

@@ -89,17 +89,66 @@ TEST(FlockingParamsTest, RejectsNonFiniteAndOutOfRangeFields) {
   EXPECT_EQ(tiny_world.Validate().rfind("world_size_m must be", 0), 0u);
 }
 
-TEST(NeighbourhoodTest, HoldsSelfOnceRobotsInRangeAndEveryStatist) {
+std::vector<int> SortedIds(const std::vector<Neighbour>& neighbourhood) {
+  std::vector<int> ids;
+  for (const Neighbour& n : neighbourhood) ids.push_back(n.id);
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+
+TEST(NeighbourhoodTest, DiscHoldsSelfOnceRobotsInRangeAndEveryStatist) {
   Perception in = At(5.0, 5.0, 0.0);
   in.others = {Robot(1, 5.0, 5.0),          // its own echo
                Robot(2, 5.9, 5.0),          // in range
-               Robot(3, 6.1, 5.0),          // out of range
+               Robot(3, 6.1, 5.0),          // out of range (in range of 2: not for a disc)
                Robot(4, 10.0, 10.0, 0, 2),  // statist, far away
                Robot(5, 5.0, 6.0)};         // exactly at the range
-  std::vector<Neighbour> neighbourhood = NeighbourhoodOf(in, Quiet());
-  std::vector<int> ids;
-  for (const Neighbour& n : neighbourhood) ids.push_back(n.id);
-  EXPECT_EQ(ids, (std::vector<int>{1, 2, 4, 5}));
+  FlockingParams disc = Quiet();
+  disc.neighbourhood = Neighbourhood::kDisc;
+  const std::vector<Neighbour> neighbourhood = NeighbourhoodOf(in, disc);
+  EXPECT_EQ(neighbourhood.front().id, 1);  // itself first, once
+  EXPECT_EQ(SortedIds(neighbourhood), (std::vector<int>{1, 2, 4, 5}));
+}
+
+TEST(NeighbourhoodTest, ChainLinksRobotsHopByHopWithinRange) {
+  // A line of robots 0.9 apart at range 1.0 is one swarm.
+  Perception in = At(1.0, 5.0, 0.0);
+  for (int i = 1; i <= 8; ++i) in.others.push_back(Robot(static_cast<std::uint16_t>(1 + i), 1.0 + 0.9 * i, 5.0));
+  EXPECT_EQ(NeighbourhoodOf(in, Quiet()).size(), 9u);
+  // A gap of 1.1 after the fourth robot splits it.
+  for (std::size_t i = 4; i < in.others.size(); ++i) in.others[i].position.x += 0.2;
+  EXPECT_EQ(SortedIds(NeighbourhoodOf(in, Quiet())), (std::vector<int>{1, 2, 3, 4, 5}));
+  // The disc of the same robots holds only the first.
+  FlockingParams disc = Quiet();
+  disc.neighbourhood = Neighbourhood::kDisc;
+  EXPECT_EQ(SortedIds(NeighbourhoodOf(in, disc)), (std::vector<int>{1, 2}));
+}
+
+TEST(NeighbourhoodTest, ChainRunsOnlyThroughTheRobotsItsGroupAdmits) {
+  Perception in = At(1.0, 5.0, 0.0);
+  in.others = {Robot(2, 1.9, 5.0), Robot(3, 2.8, 5.0), Robot(4, 3.7, 5.0),
+               Robot(9, 1.0, 5.5)};
+  // On a mission with 1, 2 and 4: 4 is linked only through 3, which is not in the group; 9 is
+  // near but not in the group either.
+  in.group.only = true;
+  in.group.ids = {1, 2, 4};
+  EXPECT_EQ(SortedIds(NeighbourhoodOf(in, Quiet())), (std::vector<int>{1, 2}));
+  // Idle, with 3 on another robot's mission: 3 drops out and breaks the chain to 4.
+  in.group.only = false;
+  in.group.ids = {3};
+  EXPECT_EQ(SortedIds(NeighbourhoodOf(in, Quiet())), (std::vector<int>{1, 2, 9}));
+  // Idle, nobody excluded: everyone.
+  in.group.ids.clear();
+  EXPECT_EQ(SortedIds(NeighbourhoodOf(in, Quiet())), (std::vector<int>{1, 2, 3, 4, 9}));
+}
+
+TEST(NeighbourhoodTest, NamesParseBothWays) {
+  Neighbourhood n = Neighbourhood::kDisc;
+  ASSERT_TRUE(ParseNeighbourhood("chain", &n));
+  EXPECT_EQ(n, Neighbourhood::kChain);
+  EXPECT_STREQ(NeighbourhoodName(Neighbourhood::kDisc), "disc");
+  EXPECT_FALSE(ParseNeighbourhood("ring", &n));
+  EXPECT_EQ(n, Neighbourhood::kChain);
 }
 
 TEST(DesiredHeadingTest, AlignmentAloneAveragesHeadings) {

@@ -46,9 +46,11 @@ TEST(MissionAgentTest, ObjectIsSafetyForItsRobotsAndDangerForOthers) {
   ASSERT_TRUE(other.OnNewMission(Thesis(), &why)) << why;
   MissionOutbox out;
   const MissionPlan m = member.Tick(PoseAt(1.0, 1.0), {}, 0, &out);
-  ASSERT_EQ(m.zones.size(), 1u);
-  EXPECT_TRUE(m.zones[0].inverted);
-  EXPECT_TRUE(m.zones[0].Forbids({1.0, 1.0}));  // outside its object: it must get in
+  // Its own object is no zone to it: CarryStep binds it (a robot outside drives in).
+  EXPECT_TRUE(m.zones.empty());
+  ASSERT_TRUE(m.carry.has_value());
+  EXPECT_FALSE(m.carry->object.Contains({1.0, 1.0}));  // outside its object: it must get in
+  EXPECT_TRUE(m.carry->object.Contains({7.0, 7.0}));
   EXPECT_FALSE(m.lead);
   EXPECT_TRUE(out.empty());  // not the first leader: it sends nothing
   const MissionPlan o = other.Tick(PoseAt(1.0, 1.0), {}, 0, &out);
@@ -86,8 +88,9 @@ TEST(MissionAgentTest, FirstLeaderRunsTheWholeMission) {
   // object's centre to the target.
   out = MissionOutbox();
   MissionPlan plan = leader.Tick(PoseAt(5.0, 5.0), {At(1, 5.5, 5.5), At(2, 4.5, 4.5)}, 11, &out);
-  EXPECT_TRUE(plan.lead);
-  EXPECT_NEAR(plan.steer.degrees(), 225.0, 1e-9);
+  ASSERT_TRUE(plan.carry.has_value());
+  EXPECT_TRUE(plan.carry->leader);
+  EXPECT_NEAR(Bearing(plan.carry->centre, plan.carry->target).degrees(), 225.0, 1e-9);
   ASSERT_TRUE(out.update_object.has_value());
   EXPECT_NEAR(out.update_object->second.x, 5.0, 1e-12);
   // Arrival within 0.05: last update, freeze, UNLOADING.
@@ -120,78 +123,79 @@ void IntoTransport(MissionAgent* leader) {
   ASSERT_EQ(Phases(out), std::vector<std::string>{"TRANSPORT"});
 }
 
-TEST(MissionAgentTest, ALeaderCarryingItsObjectIsNotKeptInsideIt) {
+TEST(MissionAgentTest, TheObjectMovesWithTheCurrentCentroidOfItsRobots) {
   MissionAgent leader(0, MissionAgentParams());
   IntoTransport(&leader);
   MissionOutbox out;
-  // Far ahead of the centroid: no safety zone holds it back, it steers centre -> target.
+  // The robots moved by (-1, -1): so did the object (offset 0 from the centroid (7, 7)), this
+  // tick, not one tick late.
   const MissionPlan plan =
-      leader.Tick(PoseAt(4.0, 4.0), {At(1, 6.0, 6.0), At(2, 5.0, 5.0)}, 11, &out);
-  EXPECT_TRUE(plan.lead);
-  EXPECT_TRUE(plan.zones.empty());
-  // A passive robot of the mission keeps the object as its safety zone.
+      leader.Tick(PoseAt(6.0, 6.0), {At(1, 6.5, 6.5), At(2, 5.5, 5.5)}, 11, &out);
+  ASSERT_TRUE(plan.carry.has_value());
+  EXPECT_TRUE(plan.carry->transport);
+  EXPECT_TRUE(plan.carry->leader);
+  EXPECT_NEAR(plan.carry->centre.x, 6.0, 1e-9);
+  EXPECT_NEAR(plan.carry->centre.y, 6.0, 1e-9);
+  ASSERT_TRUE(out.update_object.has_value());
+  EXPECT_NEAR(out.update_object->second.x, 6.0, 1e-9);
+  // The object it is bound to (CarryStep) is where the robots are now.
+  EXPECT_FALSE(plan.carry->object.Contains({7.5, 7.5}));
+  EXPECT_TRUE(plan.carry->object.Contains({5.5, 5.5}));
+}
+
+TEST(MissionAgentTest, EveryMemberAnchorsTheObjectToTheSameCentroid) {
+  // A passive member learns TRANSPORT one tick after the first leader (the status is relayed);
+  // everyone stood meanwhile, so it anchors the object where the first leader did.
   MissionAgent passive(1, MissionAgentParams());
   std::string why;
   ASSERT_TRUE(passive.OnNewMission(Thesis(), &why));
-  const MissionPlan p = passive.Tick(PoseAt(7.0, 7.0), {}, 11, nullptr);
-  ASSERT_EQ(p.zones.size(), 1u);
-  EXPECT_TRUE(p.zones[0].inverted);
+  const std::vector<Neighbour> others = {At(0, 7.0, 7.4), At(2, 6.2, 6.9)};
+  MissionPlan plan = passive.Tick(PoseAt(7.3, 7.2), others, 10, nullptr);
+  ASSERT_TRUE(plan.carry.has_value());
+  EXPECT_FALSE(plan.carry->transport);  // gathering / loading: the object stays put
+  passive.OnStatus(7, MissionPhase::kTransport);
+  plan = passive.Tick(PoseAt(7.3, 7.2), others, 11, nullptr);
+  EXPECT_TRUE(plan.carry->transport);
+  EXPECT_NEAR(plan.carry->centre.x, 7.0, 1e-9);
+  EXPECT_NEAR(plan.carry->centre.y, 7.0, 1e-9);
+  EXPECT_NEAR(plan.carry->formation_offset.x, 0.3, 1e-9);  // its place in a formation
+  EXPECT_NEAR(plan.carry->formation_offset.y, 0.2, 1e-9);
+  // All move by (-0.1, 0): so does the object.
+  plan = passive.Tick(PoseAt(7.2, 7.2), {At(0, 6.9, 7.4), At(2, 6.1, 6.9)}, 12, nullptr);
+  EXPECT_NEAR(plan.carry->centre.x, 6.9, 1e-9);
+  EXPECT_NEAR(plan.carry->centre.y, 7.0, 1e-9);
 }
 
-TEST(MissionAgentTest, FirstLeaderDocksTheObjectAloneNearTheTarget) {
-  MissionAgentParams params;
-  params.docking_radius_m = 0.2;
-  params.docking_patience_ticks = 5;
-  MissionAgent leader(1, params);  // first leader in the middle of robots [1, 4)
+TEST(MissionAgentTest, FormationRobotsKnowTheirMode) {
+  MissionAgent passive(1, MissionAgentParams());
   std::string why;
   MissionSpec spec = Thesis();
-  spec.range_from = 1;
-  spec.range_to = 4;
-  ASSERT_TRUE(leader.OnNewMission(spec, &why));
-  MissionOutbox out;
-  leader.Tick(PoseAt(7.0, 7.0), {At(2, 7.5, 7.5), At(3, 6.5, 6.5)}, 1, &out);
-  ASSERT_TRUE(leader.OnEvent(7, MissionEventKind::kLoaded, 0, &why)) << why;
-  out = MissionOutbox();
-  leader.Tick(PoseAt(7.0, 7.0), {At(2, 7.5, 7.5), At(3, 6.5, 6.5)}, 2, &out);
-  ASSERT_EQ(Phases(out), std::vector<std::string>{"TRANSPORT"});
-  // 0.3 m away: the swarm carries on.
-  out = MissionOutbox();
-  leader.Tick(PoseAt(3.3, 3.0), {At(2, 3.8, 3.5), At(3, 2.8, 2.5)}, 3, &out);
-  EXPECT_TRUE(out.freeze.empty());
-  // 0.15 m away (centroid (3.15, 3.0)): the others [2, 4) stand, the leader aims three times
-  // as far as the object must go.
-  out = MissionOutbox();
-  MissionPlan plan = leader.Tick(PoseAt(3.15, 3.0), {At(2, 3.65, 3.5), At(3, 2.65, 2.5)}, 4, &out);
-  ASSERT_EQ(out.freeze.size(), 1u);
-  EXPECT_EQ(out.freeze[0], std::make_pair(std::uint16_t{2}, std::uint16_t{4}));
-  EXPECT_TRUE(plan.lead);
-  EXPECT_NEAR(plan.goal.x, 3.15 - 3 * 0.15, 1e-9);
-  EXPECT_NEAR(plan.goal.y, 3.0, 1e-9);
-  EXPECT_NEAR(plan.steer.degrees(), 180.0, 1e-9);
-  // No progress for more than 5 ticks (since tick 4): the others continue at tick 10, no
-  // docking again before tick 15.
-  for (std::uint64_t t = 5; t <= 9; ++t) {
-    out = MissionOutbox();
-    leader.Tick(PoseAt(3.15, 3.0), {At(2, 3.65, 3.5), At(3, 2.65, 2.5)}, t, &out);
-    EXPECT_TRUE(out.resume.empty()) << t;
-  }
-  out = MissionOutbox();
-  plan = leader.Tick(PoseAt(3.15, 3.0), {At(2, 3.65, 3.5), At(3, 2.65, 2.5)}, 10, &out);
-  ASSERT_EQ(out.resume.size(), 1u);
-  EXPECT_EQ(out.resume[0], std::make_pair(std::uint16_t{2}, std::uint16_t{4}));
-  EXPECT_NEAR(plan.goal.x, 3.0 + (3.15 - 3.15), 1e-9);  // plain goal again: target + offset
-  out = MissionOutbox();
-  leader.Tick(PoseAt(3.14, 3.0), {At(2, 3.64, 3.5), At(3, 2.64, 2.5)}, 14, &out);
-  EXPECT_TRUE(out.freeze.empty());
-  out = MissionOutbox();
-  leader.Tick(PoseAt(3.14, 3.0), {At(2, 3.64, 3.5), At(3, 2.64, 2.5)}, 16, &out);
-  EXPECT_EQ(out.freeze.size(), 1u);
-  // Arrival: every robot freezes for unloading.
-  out = MissionOutbox();
-  leader.Tick(PoseAt(3.01, 3.0), {At(2, 3.51, 3.5), At(3, 2.51, 2.5)}, 17, &out);
-  EXPECT_EQ(Phases(out), std::vector<std::string>{"UNLOADING"});
-  ASSERT_EQ(out.freeze.size(), 1u);
-  EXPECT_EQ(out.freeze[0], std::make_pair(std::uint16_t{1}, std::uint16_t{4}));
+  spec.transport_mode = 1;
+  ASSERT_TRUE(passive.OnNewMission(spec, &why));
+  passive.OnStatus(7, MissionPhase::kTransport);
+  const MissionPlan plan = passive.Tick(PoseAt(7.3, 7.2), {At(0, 7.0, 7.4)}, 11, nullptr);
+  ASSERT_TRUE(plan.carry.has_value());
+  EXPECT_EQ(plan.carry->mode, TransportMode::kFormation);
+  EXPECT_EQ(plan.carry->peers, (std::vector<std::uint16_t>{0, 2}));
+}
+
+TEST(MissionAgentTest, ASwarmIsItsMissionGroupOrAllButOthersMissionGroups) {
+  MissionAgent member(1, MissionAgentParams());
+  MissionAgent idle(5, MissionAgentParams());
+  std::string why;
+  ASSERT_TRUE(member.OnNewMission(Thesis(), &why));
+  ASSERT_TRUE(idle.OnNewMission(Thesis(), &why));
+  const MissionPlan m = member.Tick(PoseAt(1.0, 1.0), {}, 0, nullptr);
+  EXPECT_TRUE(m.group.only);
+  EXPECT_EQ(m.group.ids, (std::vector<std::uint16_t>{0, 1, 2}));
+  const MissionPlan i = idle.Tick(PoseAt(1.0, 1.0), {}, 0, nullptr);
+  EXPECT_FALSE(i.group.only);
+  EXPECT_EQ(i.group.ids, (std::vector<std::uint16_t>{0, 1, 2}));
+  EXPECT_FALSE(i.group.Admits(2));
+  EXPECT_TRUE(i.group.Admits(4));
+  // Once the object is deleted everyone is a candidate again.
+  ASSERT_TRUE(idle.OnObjectDelete(7, &why));
+  EXPECT_TRUE(idle.Tick(PoseAt(1.0, 1.0), {}, 1, nullptr).group.Admits(2));
 }
 
 TEST(MissionAgentTest, SignalsOutOfPhaseAreRejected) {
@@ -212,8 +216,9 @@ TEST(MissionAgentTest, DuplicateLiveIdIsRejectedAndChangesNothing) {
   EXPECT_FALSE(robot.OnNewMission(other, &why));
   MissionOutbox out;
   const MissionPlan plan = robot.Tick(PoseAt(1.0, 1.0), {}, 0, &out);
-  ASSERT_EQ(plan.zones.size(), 1u);
-  EXPECT_TRUE(plan.zones[0].shape.Contains({7.0, 7.0}));
+  ASSERT_TRUE(plan.carry.has_value());
+  EXPECT_TRUE(plan.carry->object.Contains({7.0, 7.0}));
+  EXPECT_FALSE(plan.carry->object.Contains({2.0, 9.0}));
 }
 
 TEST(MissionAgentTest, MissionsQueueFirstInFirstOut) {

@@ -87,7 +87,11 @@ TEST(ConfigValidation, RejectsBadValuesAndKeepsTheOldConfig) {
       {"robot_radius_m", XmlRpc::XmlRpcValue(0.0)},
       {"tick_period_s", XmlRpc::XmlRpcValue(0.0)},
       {"seed", XmlRpc::XmlRpcValue(-3)},
-      {"docking_radius_m", XmlRpc::XmlRpcValue(-0.1)},
+      {"chain_hops", XmlRpc::XmlRpcValue(0)},
+      {"neighbourhood", XmlRpc::XmlRpcValue(std::string("ring"))},
+      {"gathering", XmlRpc::XmlRpcValue(1)},
+      {"leaders_bound", XmlRpc::XmlRpcValue(std::string("yes"))},
+      {"formation_speed_fraction", XmlRpc::XmlRpcValue(1.5)},
       {"local_range_m", XmlRpc::XmlRpcValue(std::string("far"))},
   };
   for (Case c : cases) {

@@ -14,6 +14,14 @@
 namespace swarm_transport {
 namespace core {
 
+// Which robots form a robot's swarm [SPEC 4, THESIS_CODE 1]: the chain (the connected component
+// of robots linked hop by hop within local range, itself included), or the disc (only robots
+// within local range of itself).
+enum class Neighbourhood { kChain, kDisc };
+// "chain" / "disc"; false for anything else.
+bool ParseNeighbourhood(const std::string& name, Neighbourhood* out);
+const char* NeighbourhoodName(Neighbourhood n);
+
 // The behaviour parameters of a robot, with units in the names.
 struct FlockingParams {
   double local_range_m = 1.0;         // neighbourhood radius
@@ -27,6 +35,7 @@ struct FlockingParams {
   int speed_retries = 2;              // retries at lower speed after a failed +-180 search
   bool check_path = true;             // also reject moves whose path crosses a robot's disc
   double zone_margin_m = 0.02;        // flight aims this far inside the allowed region
+  Neighbourhood neighbourhood = Neighbourhood::kChain;  // whom alignment and cohesion run over
 
   // Empty when valid, else one sentence naming the first bad field and the accepted range.
   std::string Validate() const;
@@ -43,6 +52,15 @@ struct Neighbour {
   Angle heading;
 };
 
+// The candidates of a robot's swarm: all physical robots but `ids` (idle: the members of
+// transport missions it is not part of), or only `ids` (on a transport mission: its group)
+// [THESIS_CODE 1]. Statists always count; a virtual copy counts when its robot does.
+struct FlockGroup {
+  bool only = false;
+  std::vector<std::uint16_t> ids;  // ascending
+  bool Admits(std::uint16_t id) const;
+};
+
 // What a robot knows at the start of its tick.
 struct Perception {
   std::uint16_t self_id = 0;
@@ -51,6 +69,8 @@ struct Perception {
   std::vector<Neighbour> others;
   // Zones that apply to this robot (danger and safety).
   std::vector<Zone> zones;
+  // Who may be in its swarm (collisions count every robot in `others` regardless).
+  FlockGroup group;
 };
 
 // Why the executed move differs from the desired heading.
@@ -66,7 +86,9 @@ struct MoveDecision {
   int neighbours_in_range = 0;  // including itself
 };
 
-// Robots (and copies / statists) that form this robot's neighbourhood: in range or statist.
+// The robots (and copies / statists) alignment and cohesion run over, itself first: the
+// candidates `in.group` admits, linked to itself within local range - directly (disc) or hop
+// by hop (chain) - and every statist regardless of range.
 std::vector<Neighbour> NeighbourhoodOf(const Perception& in, const FlockingParams& p);
 
 // Steps 1-4: the heading the robot wants. Draws exactly one free-will sample from `rng` every

@@ -15,6 +15,7 @@
 #include "swarm_transport/core/flocking.h"
 #include "swarm_transport/core/leader.h"
 #include "swarm_transport/core/mission.h"
+#include "swarm_transport/core/transport.h"
 
 namespace swarm_transport {
 namespace core {
@@ -25,12 +26,7 @@ struct MissionAgentParams {
   int object_update_ticks = 1;       // first leader publishes Update_Object every N ticks
   int progress_every_ticks = 50;     // first leader repeats its status with progress every N
   std::uint64_t phase_timeout_ticks = 20000;  // a phase that lasts longer aborts the mission
-  // Docking (ext): once the object centre is this close to the target (m; 0: never), the first
-  // leader freezes the other assigned robots and alone moves the object the rest of the way,
-  // n times its distance to go per tick (the object follows the centroid of n robots).
-  double docking_radius_m = 0.2;
-  // Docking gives up (the others continue) after this many ticks without getting closer.
-  std::uint64_t docking_patience_ticks = 20;
+  TransportParams transport;        // gathering and carrying (leaders bound or not)
 };
 
 // A status report the first leader publishes.
@@ -60,7 +56,9 @@ struct MissionOutbox {
 // How the robot behaves this tick.
 struct MissionPlan {
   std::vector<Zone> zones;   // objects: safety for its active mission, danger for all others
-  bool lead = false;         // use LeaderStep instead of FlockingStep
+  FlockGroup group;          // its swarm's candidates: its mission group, or all but others'
+  std::optional<Carry> carry;  // a transport mission's robot: use CarryStep
+  bool lead = false;         // a leader-only mission's leader: use LeaderStep
   bool keep_flock = false;   // leader-only missions wait for / give up on the swarm
   Vec2 goal;                 // leader's goal
   Angle steer;               // leader's heading
@@ -90,7 +88,10 @@ class MissionAgent {
   // True when this robot is the first leader of a live mission (it must be able to publish).
   bool IsFirstLeaderOfAny() const;
 
-  // One tick: `self` is its pose, `heard` every robot it heard (in range and mission peers).
+  // One tick: `self` is its pose, `heard` every robot it heard (in range, relayed and mission
+  // peers). A transport mission's robots each compute its object's centre from the positions
+  // they hear: fixed while gathering, in transport the offset at its start + the current
+  // centroid of the mission's robots [T5.4, THESIS_CODE 2].
   // Fills `outbox` (first leader only) and returns how to move. A null `outbox` means the robot
   // cannot publish yet: a first leader's phase machine waits (its members gather anyway).
   MissionPlan Tick(const Pose2& self, const std::vector<Neighbour>& heard, std::uint64_t tick,
@@ -106,24 +107,27 @@ class MissionAgent {
     MissionPhase phase = MissionPhase::kQueued;  // as known by this robot
     std::uint64_t phase_tick = 0;               // first-leader: tick the phase began
     bool phase_started = false;
-    Vec2 offset;                                 // first-leader: centre - centroid at TRANSPORT
+    bool anchored = false;     // transport began for this robot: `offset`, `place` are set
+    Vec2 offset;               // centre - centroid of the mission's robots at transport start
+    Vec2 place;                // formation: this robot's position - centre at transport start
     std::uint64_t transport_ticks = 0;
     bool loaded = false;       // first-leader: LOADED arrived during LOADING
     bool unloaded = false;     // first-leader: UNLOADED arrived during UNLOADING
     std::uint64_t signal_tick = 0;  // ... and takes effect at this tick
     bool self_arrived = false; // this leader reached its leader-only goal
-    bool docking = false;      // first-leader: the others stand, it places the object alone
-    double docking_best_m = 0.0;          // ... the closest the centre came while docking
-    std::uint64_t docking_best_tick = 0;  // ... and when
-    std::uint64_t docking_retry_tick = 0; // after giving up: not before this tick again
+  };
+  // Where a transport mission's robots are, as this robot hears them.
+  struct Group {
+    std::map<std::uint16_t, Vec2> where;  // itself and every assigned robot heard
+    Vec2 centroid;
+    std::uint16_t inside = 0;  // of them inside the object at its current centre
   };
   void Drop(std::uint16_t mission_id);
-  // The mission's assigned ids except this robot, as half-open runs.
-  std::vector<std::pair<std::uint16_t, std::uint16_t>> OthersRuns(const MissionSpec& spec) const;
-  // First leader in TRANSPORT, not arrived: starts, keeps or gives up docking.
-  void UpdateDocking(Live* live, double to_target, std::uint64_t tick, MissionOutbox* outbox);
-  void RunFirstLeader(Live* live, const Pose2& self, const std::vector<Neighbour>& heard,
-                      std::uint64_t tick, MissionOutbox* outbox);
+  Group Locate(const Live& live, const Pose2& self, const std::vector<Neighbour>& heard) const;
+  // A member of a transport mission: moves the object with its robots once transport began.
+  void UpdateCentre(Live* live, const Pose2& self, Group* group) const;
+  void RunFirstLeader(Live* live, const Pose2& self, const Group& group, std::uint64_t tick,
+                      MissionOutbox* outbox);
   StatusReport Report(const Live& live, std::uint16_t inside) const;
   void EnterPhase(Live* live, MissionPhase phase, std::uint64_t tick, std::uint16_t inside,
                   MissionOutbox* outbox);

@@ -12,6 +12,7 @@
 
 #include "swarm_transport/core/flocking.h"
 #include "swarm_transport/core/leader.h"
+#include "swarm_transport/core/transport.h"
 
 namespace swarm_transport {
 
@@ -19,13 +20,16 @@ namespace swarm_transport {
 struct SwarmConfig {
   core::FlockingParams flocking;
   core::LeaderParams leader;
+  core::TransportParams transport;
   double tick_period_s = 0.1;            // one tick (lock-step: simulated; real time: wall)
   std::uint64_t seed = 1;                // base seed of every robot's generator
   std::vector<core::Zone> danger_zones;  // static danger zones
   double loaded_delay_s = 2.0;           // dispatcher: LOADED this long after LOADING (<0: wait)
   double unloaded_delay_s = 2.0;         // dispatcher: UNLOADED this long after UNLOADING
   int object_update_ticks = 1;           // first leader publishes Update_Object every N ticks
-  double docking_radius_m = 0.2;         // (ext) first leader docks the object alone this close
+  // The radio passes positions on hop by hop this many hops for a chain neighbourhood (1: only
+  // robots in range are heard; mission peers are always heard over the mission channel).
+  int chain_hops = 16;
 
   // Empty when valid, else one sentence naming the bad key.
   std::string Validate() const;

@@ -1,0 +1,83 @@
+// How a mission robot moves while it gathers under its object and while it carries it
+// [SPEC 6, THESIS_CODE 2-3], in swarm mode (the thesis's evaluated code) and in formation mode
+// (the hybrid transport of the thesis's conclusion, SPEC 9.6). Pure.
+#ifndef SWARM_TRANSPORT_CORE_TRANSPORT_H_
+#define SWARM_TRANSPORT_CORE_TRANSPORT_H_
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "swarm_transport/core/flocking.h"
+
+namespace swarm_transport {
+namespace core {
+
+// Gathering: hold (drive for the object's centre, stand the moment it is inside: the thesis's
+// evaluated code) or fill (flee in by the shortest way, then flock inside to make room for
+// late-comers: the thesis's text [T5.4]).
+enum class GatherMode { kHold, kFill };
+bool ParseGatherMode(const std::string& name, GatherMode* out);
+
+// New_Mission.transport_mode.
+enum class TransportMode : std::uint8_t { kSwarm = 0, kFormation = 1 };
+
+// Parameters of carrying; the defaults are the thesis's evaluated code (THESIS_CODE 2).
+struct TransportParams {
+  GatherMode gathering = GatherMode::kHold;
+  // Leaders' destinations stay inside the object like everyone's (thesis code); false lets a
+  // carrying leader head for the target wherever the object is (only robots stop it).
+  bool leaders_bound = true;
+  double lookahead = 1.5;          // passive: the point lookahead x its step ahead must be inside
+  double passive_slowdown = 0.9;   // passive: speed factor after a failed +-180 degree search
+  int passive_tries = 40;          // ... this many times at most (thesis: until legal), then stand
+  double leader_slowdown = 0.75;   // leader: speed factor after a blocked move
+  int leader_tries = 10;           // ... this many times at most, then it turns and holds
+  // (ext) A leader up to this far outside its object keeps its course (moving no farther out,
+  // else facing it) instead of driving for the centre: its heading keeps voting for the course
+  // in its swarm's alignment (0: the thesis's code, every robot outside drives for the centre).
+  double leader_reach_m = 0.5;
+  // Swarm transport (ext): within this distance of the target (m; 0: never) every mission
+  // robot's speed shrinks in proportion to the object's distance to go, so that the swarm's
+  // alignment, which lags its leaders' course by a few ticks, does not carry the object past
+  // the tolerance; after an overshoot the leaders' course turns by ~180 degrees, where
+  // alignment hardly pulls at all, and the swarm runs off with the object.
+  double approach_radius_m = 0.5;
+  // Formation: the body moves at this fraction of the speed; a robot out of place drives up to
+  // the full speed to rejoin its place.
+  double formation_speed_fraction = 0.95;
+
+  // Empty when valid, else one sentence naming the first bad field.
+  std::string Validate() const;
+};
+
+// What a mission robot knows of its object this tick (MissionAgent fills it).
+struct Carry {
+  bool transport = false;  // false: gathering (or loading)
+  TransportMode mode = TransportMode::kSwarm;
+  bool leader = false;
+  Shape object;  // at `centre`
+  Vec2 centre;   // current: offset at transport start + centroid of the mission's robots
+  Vec2 target;
+  double goal_tolerance_m = 0.05;
+  Vec2 formation_offset;  // formation: its place relative to the centre, fixed at the start
+  std::vector<std::uint16_t> peers;  // the mission's other robots, ascending
+
+  bool Arrived() const { return transport && Distance(centre, target) <= goal_tolerance_m; }
+};
+
+// One tick of a mission robot, in this order: arrived -> stand; formation -> drive to its place
+// in the body moving along object centre -> target; outside the object -> straight for its
+// centre (no noise, no alignment; leaders too unless unbound); gathering -> hold or fill;
+// transport leader -> the bearing object centre -> target, destination inside the object,
+// slower on each blocked try, else turn to that bearing and hold; transport passive ->
+// alignment, free will and cohesion over its chain with the point lookahead steps ahead inside
+// the object, +-180 degree search, slower after each failed search. Draws exactly one
+// free-will sample from `rng`, like FlockingStep.
+MoveDecision CarryStep(const Perception& in, const FlockingParams& p, const TransportParams& tp,
+                       const Carry& carry, Rng& rng, double duration_s);
+
+}  // namespace core
+}  // namespace swarm_transport
+
+#endif  // SWARM_TRANSPORT_CORE_TRANSPORT_H_

@@ -1,0 +1,193 @@
+#include "swarm_transport/core/transport.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace swarm_transport {
+namespace core {
+namespace {
+
+// The avoidance search turns in whole degrees up to a step back [T5.2].
+constexpr int kMaxSwerveDeg = 180;
+// A formation robot this close to its place stands (nothing worth a move).
+constexpr double kInPlaceM = 1e-6;
+
+std::string Problem(const std::string& field, const std::string& requirement, double value) {
+  std::ostringstream out;
+  out << field << " must be " << requirement << " but is " << value;
+  return out.str();
+}
+
+MoveDecision Stand(Angle desired, Angle heading) {
+  MoveDecision d;
+  d.desired_heading = desired;
+  d.heading = heading;
+  d.distance_m = 0.0;
+  d.outcome = MoveOutcome::kStand;
+  return d;
+}
+
+MoveDecision Drive(Angle desired, Angle heading, double distance, MoveOutcome outcome) {
+  MoveDecision d;
+  d.desired_heading = desired;
+  d.heading = heading;
+  d.distance_m = distance;
+  d.outcome = outcome;
+  return d;
+}
+
+// A passive robot in transport: the +-180 degree search for a heading whose point `lookahead`
+// steps ahead lies inside the object and whose move is valid; slower after each failed search.
+MoveDecision BoundedSearch(const Perception& in, const FlockingParams& p,
+                           const TransportParams& tp, const Shape& object, Angle desired,
+                           double duration_s) {
+  double speed = p.speed_m_per_tick;
+  for (int attempt = 0; attempt <= tp.passive_tries; ++attempt) {
+    for (int swerve = 0; swerve <= kMaxSwerveDeg; ++swerve) {
+      for (const int sign : {1, -1}) {
+        if (sign < 0 && (swerve == 0 || swerve == kMaxSwerveDeg)) continue;
+        const Angle heading = desired + Angle(sign * swerve);
+        // The cheap test first: most headings near a border fail it.
+        const Vec2 ahead = in.self.position + UnitVector(heading) * (speed * tp.lookahead);
+        if (!object.Contains(ahead) || !IsMoveValid(in, p, heading, speed, duration_s)) continue;
+        const MoveOutcome outcome = attempt > 0  ? MoveOutcome::kSlowed
+                                    : swerve > 0 ? MoveOutcome::kSwerved
+                                                 : MoveOutcome::kStraight;
+        return Drive(desired, heading, speed, outcome);
+      }
+    }
+    speed *= tp.passive_slowdown;
+  }
+  return Stand(desired, in.self.heading);
+}
+
+// A leader in transport: never swerves; slower on each blocked try; else turns and holds.
+MoveDecision LeaderCarry(const Perception& in, const FlockingParams& p, const TransportParams& tp,
+                         const Carry& carry, double duration_s) {
+  const Angle steer = Bearing(carry.centre, carry.target);
+  // Just outside (the object drifted off under it), it keeps to its course as long as that
+  // takes it no farther out, so its heading still counts for the course in its swarm.
+  const double out_before = carry.object.DistanceTo(in.self.position);
+  double speed = p.speed_m_per_tick;
+  for (int attempt = 0; attempt <= tp.leader_tries; ++attempt) {
+    const Vec2 to = in.self.position + UnitVector(steer) * speed;
+    const bool inside = !tp.leaders_bound || carry.object.DistanceTo(to) <= out_before;
+    if (inside && IsMoveValid(in, p, steer, speed, duration_s)) {
+      return Drive(steer, steer, speed, attempt == 0 ? MoveOutcome::kStraight : MoveOutcome::kSlowed);
+    }
+    speed *= tp.leader_slowdown;
+  }
+  // It faces the course while it holds, so that its heading still counts for its swarm.
+  return Stand(steer, steer);
+}
+
+// Formation: every robot drives to its place in the body; the body moves along object centre
+// -> target. The other members move by the same step this tick, so they are checked for
+// collisions where they will be, not where they are.
+MoveDecision FormationCarry(const Perception& in, const FlockingParams& p,
+                            const TransportParams& tp, const Carry& carry, double duration_s) {
+  const Vec2 to_target = carry.target - carry.centre;
+  const double remaining = Norm(to_target);
+  const double body_step = std::min(remaining, p.speed_m_per_tick * tp.formation_speed_fraction);
+  const Vec2 step = remaining > 0.0 ? to_target * (body_step / remaining) : Vec2{};
+  const Vec2 place = carry.centre + carry.formation_offset + step;
+  const double gap = Distance(in.self.position, place);
+  const Angle heading = Bearing(in.self.position, place);
+  if (gap < kInPlaceM) return Stand(heading, in.self.heading);
+
+  Perception moved = in;
+  for (Neighbour& n : moved.others) {
+    if (std::binary_search(carry.peers.begin(), carry.peers.end(), n.id)) {
+      n.position = n.position + step;
+    }
+  }
+  FlockingParams reach = p;
+  reach.speed_m_per_tick = std::min(gap, p.speed_m_per_tick);
+  MoveDecision d = AvoidCollisions(moved, reach, heading, duration_s);
+  return d;
+}
+
+}  // namespace
+
+bool ParseGatherMode(const std::string& name, GatherMode* out) {
+  if (name == "hold") {
+    *out = GatherMode::kHold;
+  } else if (name == "fill") {
+    *out = GatherMode::kFill;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+std::string TransportParams::Validate() const {
+  if (!(lookahead >= 1.0) || !std::isfinite(lookahead)) {
+    return Problem("transport lookahead", "finite and >= 1", lookahead);
+  }
+  if (!(passive_slowdown > 0.0 && passive_slowdown < 1.0)) {
+    return Problem("passive_slowdown", "in (0, 1)", passive_slowdown);
+  }
+  if (passive_tries < 0) return Problem("passive_tries", ">= 0", passive_tries);
+  if (!(leader_slowdown > 0.0 && leader_slowdown < 1.0)) {
+    return Problem("leader_slowdown", "in (0, 1)", leader_slowdown);
+  }
+  if (leader_tries < 0) return Problem("leader_tries", ">= 0", leader_tries);
+  if (!(approach_radius_m >= 0.0) || !std::isfinite(approach_radius_m)) {
+    return Problem("approach_radius_m", "finite and >= 0", approach_radius_m);
+  }
+  if (!(formation_speed_fraction > 0.0 && formation_speed_fraction <= 1.0)) {
+    return Problem("formation_speed_fraction", "in (0, 1]", formation_speed_fraction);
+  }
+  return "";
+}
+
+MoveDecision CarryStep(const Perception& in, const FlockingParams& p, const TransportParams& tp,
+                       const Carry& carry, Rng& rng, double duration_s) {
+  const Vec2 position = in.self.position;
+  const bool passive_inside_transport = carry.transport && !carry.Arrived() &&
+                                        carry.mode == TransportMode::kSwarm && !carry.leader &&
+                                        carry.object.Contains(position);
+  const bool filling = !carry.transport && tp.gathering == GatherMode::kFill;
+  if (!passive_inside_transport && !filling) {
+    // The branches below use no free will: draw the sample the others draw.
+    rng.Uniform(-p.free_will_deg / 2.0, p.free_will_deg / 2.0);
+  }
+  if (carry.Arrived()) return Stand(in.self.heading, in.self.heading);
+  if (carry.transport && carry.mode == TransportMode::kFormation) {
+    return FormationCarry(in, p, tp, carry, duration_s);
+  }
+  const bool unbound_leader = carry.transport && carry.leader && !tp.leaders_bound;
+  const bool near_leader = carry.transport && carry.leader &&
+                           carry.object.DistanceTo(position) <= tp.leader_reach_m;
+  if (!carry.object.Contains(position) && !unbound_leader && !near_leader && !filling) {
+    return AvoidCollisions(in, p, Bearing(position, carry.centre), duration_s);
+  }
+  if (!carry.transport) {
+    if (filling) {
+      // Filling [T5.4]: the object is a safety zone to flee into and stay in.
+      Perception kept = in;
+      Zone safety;
+      safety.shape = carry.object;
+      safety.inverted = true;
+      kept.zones.push_back(safety);
+      return FlockingStep(kept, p, rng, duration_s);
+    }
+    return Stand(in.self.heading, in.self.heading);
+  }
+  FlockingParams approach = p;
+  const double to_go = Distance(carry.centre, carry.target);
+  if (to_go < tp.approach_radius_m) {
+    approach.speed_m_per_tick = p.speed_m_per_tick * to_go / tp.approach_radius_m;
+  }
+  if (carry.leader) return LeaderCarry(in, approach, tp, carry, duration_s);
+  bool fleeing = false;
+  const Angle desired = DesiredHeading(in, p, rng, &fleeing);
+  MoveDecision d = BoundedSearch(in, approach, tp, carry.object, desired, duration_s);
+  d.fleeing = fleeing;
+  d.neighbours_in_range = static_cast<int>(NeighbourhoodOf(in, p).size());
+  return d;
+}
+
+}  // namespace core
+}  // namespace swarm_transport

@@ -1,0 +1,210 @@
+// Carrying: gathering, the thesis's swarm transport (leaders bound to the current object,
+// outside -> centre, passive look-ahead) and formation transport.
+#include "swarm_transport/core/transport.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "swarm_transport/core/kinematics.h"
+
+namespace swarm_transport {
+namespace core {
+namespace {
+
+constexpr double kTick = 1.0;
+
+FlockingParams Params() {
+  FlockingParams p;
+  p.local_range_m = 1.0;
+  p.speed_m_per_tick = 0.1;
+  p.free_will_deg = 0.0;
+  p.cohesion = 0.0;
+  p.robot_radius_m = 0.05;
+  return p;
+}
+
+Neighbour Robot(std::uint16_t id, double x, double y, double heading_deg = 0.0) {
+  Neighbour n;
+  n.id = id;
+  n.position = {x, y};
+  n.heading = Angle(heading_deg);
+  return n;
+}
+
+// Robot 1 at (x, y) heading `deg` carrying a 2x2 object centred at `centre` to (3, 3).
+struct Scene {
+  Perception in;
+  Carry carry;
+};
+Scene Carrying(double x, double y, double deg, Vec2 centre, bool leader) {
+  Scene s;
+  s.in.self_id = 1;
+  s.in.self = {{x, y}, Angle(deg)};
+  s.carry.transport = true;
+  s.carry.leader = leader;
+  s.carry.centre = centre;
+  s.carry.object = Shape::FromRect(centre, {2.0, 2.0});
+  s.carry.target = {3.0, 3.0};
+  s.in.group.only = true;
+  s.in.group.ids = {1, 2, 3};
+  return s;
+}
+
+Vec2 Destination(const Perception& in, const MoveDecision& d) {
+  return TurnThenDrive(in.self, CommandFor(in.self, d.heading, d.distance_m, kTick), kTick)
+      .position;
+}
+
+TEST(TransportParamsTest, DefaultsAreValidAndBadValuesNamed) {
+  EXPECT_EQ(TransportParams().Validate(), "");
+  TransportParams p;
+  p.leader_slowdown = 1.0;
+  EXPECT_EQ(p.Validate(), "leader_slowdown must be in (0, 1) but is 1");
+  p = TransportParams();
+  p.formation_speed_fraction = 0.0;
+  EXPECT_EQ(p.Validate(), "formation_speed_fraction must be in (0, 1] but is 0");
+  GatherMode g = GatherMode::kFill;
+  EXPECT_TRUE(ParseGatherMode("hold", &g));
+  EXPECT_EQ(g, GatherMode::kHold);
+  EXPECT_FALSE(ParseGatherMode("wander", &g));
+}
+
+TEST(CarryStepTest, ALeaderIsBoundToTheCurrentObject) {
+  // Leader 0.05 inside the south-west corner of the object at (7, 7), course 225 degrees: at
+  // 0.1 and at 0.075 per tick it would leave the object (each axis moves 0.071, 0.053 > 0.05);
+  // at 0.75^2 x 0.1 (0.040 per axis) it stays inside.
+  Scene s = Carrying(6.05, 6.05, 0.0, {7.0, 7.0}, true);
+  Rng rng(1, 1);
+  const MoveDecision d = CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick);
+  EXPECT_EQ(d.outcome, MoveOutcome::kSlowed);
+  EXPECT_NEAR(d.heading.degrees(), 225.0, 1e-9);
+  EXPECT_NEAR(d.distance_m, 0.1 * 0.75 * 0.75, 1e-12);
+  EXPECT_TRUE(s.carry.object.Contains(Destination(s.in, d)));
+}
+
+TEST(CarryStepTest, ABlockedLeaderTurnsToItsCourseAndHolds) {
+  // On the border itself: no speed keeps it inside; it faces 225 degrees and stands.
+  Scene s = Carrying(6.0, 7.0, 90.0, {7.0, 7.0}, true);
+  s.carry.target = {3.0, 7.0};  // course 180: straight out of the west border
+  Rng rng(1, 1);
+  const MoveDecision d = CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick);
+  EXPECT_EQ(d.outcome, MoveOutcome::kStand);
+  EXPECT_DOUBLE_EQ(d.distance_m, 0.0);
+  EXPECT_NEAR(d.heading.degrees(), 180.0, 1e-9);
+  // Unbound, it drives on.
+  TransportParams unbound;
+  unbound.leaders_bound = false;
+  const MoveDecision free = CarryStep(s.in, Params(), unbound, s.carry, rng, kTick);
+  EXPECT_EQ(free.outcome, MoveOutcome::kStraight);
+  EXPECT_DOUBLE_EQ(free.distance_m, 0.1);
+}
+
+TEST(CarryStepTest, ARobotWedgedAtTheRimGoesRoundToGetIn) {
+  // Just outside the south border, two robots holding inside block the way in: it may move
+  // along or away from the rim (no safety zone holds it) rather than stand for good.
+  Scene s = Carrying(6.226, 5.963, 172.0, {7.0, 7.0}, false);
+  s.carry.transport = false;
+  s.in.others = {Robot(4, 6.161, 6.052), Robot(7, 6.313, 6.050)};
+  Rng rng(1, 1);
+  const MoveDecision d = CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick);
+  EXPECT_EQ(d.outcome, MoveOutcome::kSwerved);
+  EXPECT_GT(d.distance_m, 0.0);
+}
+
+TEST(CarryStepTest, AnyRobotOutsideDrivesStraightForTheCentre) {
+  for (const bool leader : {false, true}) {
+    Scene s = Carrying(9.0, 7.0, 0.0, {7.0, 7.0}, leader);
+    s.in.others = {Robot(2, 7.0, 7.3, 90.0)};  // a heading to align with: it must not
+    Rng rng(1, 1);
+    FlockingParams p = Params();
+    p.free_will_deg = 90.0;
+    const MoveDecision d = CarryStep(s.in, p, TransportParams(), s.carry, rng, kTick);
+    EXPECT_NEAR(d.heading.degrees(), 180.0, 1e-9) << leader;
+    EXPECT_DOUBLE_EQ(d.distance_m, 0.1);
+  }
+}
+
+TEST(CarryStepTest, APassiveRobotKeepsItsLookAheadPointInside) {
+  // Heading east (its chain's mean) 0.1 from the east border: 1.5 steps ahead is outside, so
+  // it swerves until the point 0.15 ahead is inside: cos(h) * 0.15 <= 0.1.
+  Scene s = Carrying(7.9, 7.0, 0.0, {7.0, 7.0}, false);
+  s.in.others = {Robot(2, 7.6, 7.0, 0.0)};
+  Rng rng(1, 1);
+  const MoveDecision d = CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick);
+  EXPECT_EQ(d.outcome, MoveOutcome::kSwerved);
+  EXPECT_NEAR(d.distance_m, 0.1, 1e-12);
+  const Vec2 ahead = s.in.self.position + UnitVector(d.heading) * 0.15;
+  EXPECT_TRUE(s.carry.object.Contains(ahead));
+  EXPECT_GE(std::fabs(d.heading.degrees() > 180 ? d.heading.degrees() - 360 : d.heading.degrees()),
+            std::acos(0.1 / 0.15) * 180.0 / M_PI - 1.0);
+}
+
+TEST(CarryStepTest, GatheringHoldsOnEntryOrFillsTheObject) {
+  Scene s = Carrying(6.5, 7.0, 0.0, {7.0, 7.0}, false);
+  s.carry.transport = false;
+  Rng rng(1, 1);
+  EXPECT_EQ(CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick).outcome,
+            MoveOutcome::kStand);
+  TransportParams fill;
+  fill.gathering = GatherMode::kFill;
+  EXPECT_GT(CarryStep(s.in, Params(), fill, s.carry, rng, kTick).distance_m, 0.0);
+}
+
+TEST(CarryStepTest, EveryBranchDrawsOneSample) {
+  Scene inside = Carrying(7.0, 7.0, 0.0, {7.0, 7.0}, false);
+  Scene outside = Carrying(9.0, 9.0, 0.0, {7.0, 7.0}, true);
+  Rng a(5, 5);
+  Rng b(5, 5);
+  CarryStep(inside.in, Params(), TransportParams(), inside.carry, a, kTick);
+  CarryStep(outside.in, Params(), TransportParams(), outside.carry, b, kTick);
+  EXPECT_EQ(a.Uniform(0.0, 1.0), b.Uniform(0.0, 1.0));
+}
+
+TEST(CarryStepTest, ArrivedRobotsStand) {
+  Scene s = Carrying(3.2, 3.0, 0.0, {3.02, 3.03}, false);
+  Rng rng(1, 1);
+  EXPECT_EQ(CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick).outcome,
+            MoveOutcome::kStand);
+}
+
+TEST(CarryStepTest, FormationRobotsHoldTheirOffsetsAndMoveAsOneBody) {
+  // Three robots in a tight row across the course, one just behind another along it: each
+  // moves exactly the body's step, so the row keeps its shape (and no robot is in another's way).
+  const Vec2 centre{7.0, 7.0};
+  const std::vector<Vec2> places = {{7.0, 7.0}, {7.08, 7.08}, {6.9, 7.2}};
+  TransportParams tp;
+  const double step = 0.1 * tp.formation_speed_fraction;
+  for (std::size_t i = 0; i < places.size(); ++i) {
+    Scene s = Carrying(places[i].x, places[i].y, 45.0, centre, i == 0);
+    s.in.self_id = static_cast<std::uint16_t>(i + 1);
+    s.carry.mode = TransportMode::kFormation;
+    s.carry.formation_offset = places[i] - centre;
+    s.carry.peers.clear();
+    for (std::size_t j = 0; j < places.size(); ++j) {
+      if (j == i) continue;
+      s.in.others.push_back(Robot(static_cast<std::uint16_t>(j + 1), places[j].x, places[j].y));
+      s.carry.peers.push_back(static_cast<std::uint16_t>(j + 1));
+    }
+    Rng rng(1, 1);
+    const MoveDecision d = CarryStep(s.in, Params(), tp, s.carry, rng, kTick);
+    const Vec2 moved = Destination(s.in, d) - places[i];
+    EXPECT_NEAR(moved.x, -step / std::sqrt(2.0), 1e-9) << i;
+    EXPECT_NEAR(moved.y, -step / std::sqrt(2.0), 1e-9) << i;
+  }
+}
+
+TEST(CarryStepTest, AFormationRobotOutOfPlaceRejoinsAtFullSpeed) {
+  Scene s = Carrying(7.5, 7.0, 0.0, {7.0, 7.0}, false);
+  s.carry.mode = TransportMode::kFormation;
+  s.carry.formation_offset = {0.0, 0.5};  // its place is 0.5 m north-west of where it is
+  Rng rng(1, 1);
+  const MoveDecision d = CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick);
+  EXPECT_DOUBLE_EQ(d.distance_m, 0.1);
+  const Vec2 to = Destination(s.in, d);
+  EXPECT_LT(Distance(to, Vec2{7.0, 7.5}), Distance(s.in.self.position, Vec2{7.0, 7.5}) - 0.09);
+}
+
+}  // namespace
+}  // namespace core
+}  // namespace swarm_transport
