@@ -92,10 +92,30 @@ MoveDecision FormationCarry(const Perception& in, const FlockingParams& p,
   const double body_step = std::min(remaining, p.speed_m_per_tick * tp.formation_speed_fraction);
   const Vec2 step = remaining > 0.0 ? to_target * (body_step / remaining) : Vec2{};
   const Vec2 place = carry.centre + carry.formation_offset + step;
-  const double gap = Distance(in.self.position, place);
-  const Angle heading = Bearing(in.self.position, place);
+  const Vec2 at = in.self.position;
+  // In place (within the slack a push apart by the simulator leaves): it moves exactly with the
+  // body, and the other members, which do the same, are no obstacles to that move. Chasing the
+  // last millimetres of its place would fight the push every tick.
+  if (Distance(at + step, place) <= tp.formation_slack_m) {
+    const double length = Norm(step);
+    const Angle heading = length > kInPlaceM ? Bearing(at, at + step) : in.self.heading;
+    if (length <= kInPlaceM) return Stand(heading, in.self.heading);
+    Perception others = in;
+    others.others.erase(std::remove_if(others.others.begin(), others.others.end(),
+                                       [&](const Neighbour& n) {
+                                         return std::binary_search(carry.peers.begin(),
+                                                                   carry.peers.end(), n.id);
+                                       }),
+                        others.others.end());
+    if (IsMoveValid(others, p, heading, length, duration_s)) {
+      return Drive(heading, heading, length, MoveOutcome::kStraight);
+    }
+  }
+  // Out of place (or something else in its way): to its place at up to the full speed; the
+  // members are checked where they will be after this tick's body step.
+  const double gap = Distance(at, place);
+  const Angle heading = Bearing(at, place);
   if (gap < kInPlaceM) return Stand(heading, in.self.heading);
-
   Perception moved = in;
   for (Neighbour& n : moved.others) {
     if (std::binary_search(carry.peers.begin(), carry.peers.end(), n.id)) {
@@ -104,8 +124,7 @@ MoveDecision FormationCarry(const Perception& in, const FlockingParams& p,
   }
   FlockingParams reach = p;
   reach.speed_m_per_tick = std::min(gap, p.speed_m_per_tick);
-  MoveDecision d = AvoidCollisions(moved, reach, heading, duration_s);
-  return d;
+  return AvoidCollisions(moved, reach, heading, duration_s);
 }
 
 }  // namespace
@@ -133,8 +152,14 @@ std::string TransportParams::Validate() const {
     return Problem("leader_slowdown", "in (0, 1)", leader_slowdown);
   }
   if (leader_tries < 0) return Problem("leader_tries", ">= 0", leader_tries);
+  if (!(leader_reach_m >= 0.0) || !std::isfinite(leader_reach_m)) {
+    return Problem("leader_reach_m", "finite and >= 0", leader_reach_m);
+  }
   if (!(approach_radius_m >= 0.0) || !std::isfinite(approach_radius_m)) {
     return Problem("approach_radius_m", "finite and >= 0", approach_radius_m);
+  }
+  if (!(formation_slack_m >= 0.0) || !std::isfinite(formation_slack_m)) {
+    return Problem("formation_slack_m", "finite and >= 0", formation_slack_m);
   }
   if (!(formation_speed_fraction > 0.0 && formation_speed_fraction <= 1.0)) {
     return Problem("formation_speed_fraction", "in (0, 1]", formation_speed_fraction);
@@ -172,6 +197,14 @@ MoveDecision CarryStep(const Perception& in, const FlockingParams& p, const Tran
       safety.inverted = true;
       kept.zones.push_back(safety);
       return FlockingStep(kept, p, rng, duration_s);
+    }
+    // Hold: inside, it goes on straight for the centre while nothing is in its way and stands
+    // once something is, so that robots do not wall off the rim against late-comers.
+    const double to_centre = Distance(position, carry.centre);
+    const Angle inward = Bearing(position, carry.centre);
+    const double step = std::min(p.speed_m_per_tick, to_centre);
+    if (step > kInPlaceM && IsMoveValid(in, p, inward, step, duration_s)) {
+      return Drive(inward, inward, step, MoveOutcome::kStraight);
     }
     return Stand(in.self.heading, in.self.heading);
   }

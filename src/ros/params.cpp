@@ -191,6 +191,7 @@ bool ConfigFromXmlRpc(XmlRpc::XmlRpcValue& dict, SwarmConfig* config, std::strin
                        core::ParseGatherMode) &&
             ReadBool(dict, "leaders_bound", &c.transport.leaders_bound, error) &&
             ReadDouble(dict, "approach_radius_m", &c.transport.approach_radius_m, error) &&
+            ReadDouble(dict, "leader_reach_m", &c.transport.leader_reach_m, error) &&
             ReadDouble(dict, "formation_speed_fraction", &c.transport.formation_speed_fraction,
                        error);
   if (!ok) return false;

@@ -140,10 +140,16 @@ TEST(CarryStepTest, APassiveRobotKeepsItsLookAheadPointInside) {
             std::acos(0.1 / 0.15) * 180.0 / M_PI - 1.0);
 }
 
-TEST(CarryStepTest, GatheringHoldsOnEntryOrFillsTheObject) {
+TEST(CarryStepTest, GatheringHoldsInsideOnceBlockedOrFillsTheObject) {
   Scene s = Carrying(6.5, 7.0, 0.0, {7.0, 7.0}, false);
   s.carry.transport = false;
   Rng rng(1, 1);
+  // Inside and free: straight on for the centre (the rim stays free for late-comers).
+  const MoveDecision in = CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick);
+  EXPECT_EQ(in.outcome, MoveOutcome::kStraight);
+  EXPECT_NEAR(in.heading.degrees(), 0.0, 1e-9);
+  // Blocked on the way: it holds, it does not swerve.
+  s.in.others = {Robot(2, 6.65, 7.0)};
   EXPECT_EQ(CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick).outcome,
             MoveOutcome::kStand);
   TransportParams fill;
@@ -192,6 +198,23 @@ TEST(CarryStepTest, FormationRobotsHoldTheirOffsetsAndMoveAsOneBody) {
     EXPECT_NEAR(moved.x, -step / std::sqrt(2.0), 1e-9) << i;
     EXPECT_NEAR(moved.y, -step / std::sqrt(2.0), 1e-9) << i;
   }
+}
+
+TEST(CarryStepTest, FormationRobotsPushedApartDoNotFightThePush) {
+  // Two members anchored 0.1 apart (under the 0.11 separation) and pushed 5 mm off their
+  // places by the simulator: each moves exactly the body's step, not back into the other.
+  Scene s = Carrying(7.005, 7.0, 0.0, {7.0, 7.0}, false);
+  s.carry.mode = TransportMode::kFormation;
+  s.carry.formation_offset = {0.0, 0.0};
+  s.carry.peers = {2};
+  s.in.others = {Robot(2, 7.1, 7.0)};
+  Rng rng(1, 1);
+  TransportParams tp;
+  const MoveDecision d = CarryStep(s.in, Params(), tp, s.carry, rng, kTick);
+  const Vec2 moved = Destination(s.in, d) - s.in.self.position;
+  const double step = 0.1 * tp.formation_speed_fraction / std::sqrt(2.0);
+  EXPECT_NEAR(moved.x, -step, 1e-9);
+  EXPECT_NEAR(moved.y, -step, 1e-9);
 }
 
 TEST(CarryStepTest, AFormationRobotOutOfPlaceRejoinsAtFullSpeed) {

@@ -13,8 +13,9 @@
 namespace swarm_transport {
 namespace core {
 
-// Gathering: hold (drive for the object's centre, stand the moment it is inside: the thesis's
-// evaluated code) or fill (flee in by the shortest way, then flock inside to make room for
+// Gathering: hold (drive for the object's centre; inside, go on straight for it while nothing is
+// in the way and stand once something is - the thesis's evaluated code stood the moment it was
+// inside, which walls off the rim: a late robot of 24 could not get in) or fill (flee in by the shortest way, then flock inside to make room for
 // late-comers: the thesis's text [T5.4]).
 enum class GatherMode { kHold, kFill };
 bool ParseGatherMode(const std::string& name, GatherMode* out);
@@ -45,7 +46,9 @@ struct TransportParams {
   double approach_radius_m = 0.5;
   // Formation: the body moves at this fraction of the speed; a robot out of place drives up to
   // the full speed to rejoin its place.
-  double formation_speed_fraction = 0.95;
+  double formation_speed_fraction = 0.98;
+  // Formation: a robot this close to its place (m) moves exactly with the body.
+  double formation_slack_m = 0.02;
 
   // Empty when valid, else one sentence naming the first bad field.
   std::string Validate() const;
