@@ -35,6 +35,9 @@ def parse_args(argv):
     p.add_argument('--group', type=int, default=12,
                    help='mission: robots [0, group) carry the object (default 12)')
     p.add_argument('--leaders', type=int, default=3, help='mission: leaders (default 3)')
+    p.add_argument('--mode', choices=['swarm', 'formation'], default='swarm',
+                   help='mission: transport mode (default swarm, the thesis\'s; formation '
+                   'carries the object as one body)')
     p.add_argument('--timeout', type=float, default=600.0,
                    help='mission: give up after this many wall seconds (default 600)')
     a = p.parse_args(argv)
@@ -84,9 +87,13 @@ def main(argv):
         from swarm_transport.msg import Robot_Positions
         rospy.init_node('demo', anonymous=True, disable_signals=True)
         local_range = rospy.get_param('/swarm/local_range_m', 1.0) if _wait_param() else 1.0
-        state = {'last': None, 'first_tick_wall': None, 'first': None, 'counts': []}
+        state = {'last': None, 'first_tick_wall': None, 'first': None, 'counts': [],
+                 'group': {}}
 
         def on_positions(msg):
+            # The mission's robots at every tick, for the transport's slip.
+            state['group'][msg.tick] = {r.robot_id: (r.pos_x, r.pos_y) for r in msg.robots
+                                        if r.type == 0 and r.robot_id < a.group}
             if state['first'] is None:
                 state['first'] = msg
                 state['first_tick_wall'] = time.time()
@@ -166,7 +173,9 @@ def _run_mission(a, ros, state, observe):
     m = New_Mission(robot_index_from=0, robot_index_to=a.group, leader_number=a.leaders,
                     mission_id=MISSION_ID, object_position_x=OBJECT[0],
                     object_position_y=OBJECT[1], object_size_x=OBJECT[2],
-                    object_size_y=OBJECT[3], target_x=TARGET[0], target_y=TARGET[1])
+                    object_size_y=OBJECT[3], target_x=TARGET[0], target_y=TARGET[1],
+                    transport_mode=(New_Mission.MODE_FORMATION if a.mode == 'formation'
+                                    else New_Mission.MODE_SWARM))
     sent = time.time()
     answer = submit(m)
     st_ros.log('[demo] submitted: %s' % answer.message)
@@ -213,6 +222,34 @@ def _screenshot(ros, path):
     st_ros.log('[demo] screenshot: %s' % path)
 
 
+def _report_transport(a, state, phases):
+    """Transport ticks and slip (the recorder's definitions) against the ideal: the straight
+    distance at full speed with no slip, what a group of all leaders comes close to."""
+    import rospy
+    ticks = {code: tick for code, tick, _, _ in phases}
+    if 3 not in ticks or 4 not in ticks:
+        return
+    start, end = ticks[3], ticks[4]
+    frames = [state['group'].get(t) for t in range(start, end + 1)]
+    if any(f is None for f in frames) or not frames[0]:
+        st_ros.log('transport: frames missing, no slip computed')
+        return
+    slip = 0.0
+    for before, after in zip(frames, frames[1:]):
+        cb = [sum(p[k] for p in before.values()) / len(before) for k in (0, 1)]
+        ca = [sum(p[k] for p in after.values()) / len(after) for k in (0, 1)]
+        for rid, p in after.items():
+            q = before[rid]
+            slip += math.hypot((ca[0] - p[0]) - (cb[0] - q[0]), (ca[1] - p[1]) - (cb[1] - q[1]))
+    slip /= len(frames[0])
+    speed = rospy.get_param('/swarm/speed_m_per_tick', 0.1)
+    tolerance = rospy.get_param('/swarm/goal_tolerance_m', 0.05)
+    ideal = (math.hypot(OBJECT[0] - TARGET[0], OBJECT[1] - TARGET[1]) - tolerance) / speed
+    st_ros.log('transport (%s mode)  %d ticks, slip %.3f m per robot; ideal (straight at full '
+               'speed, no slip) %.1f ticks: %.2fx' % (a.mode, end - start, slip, ideal,
+                                                      (end - start) / ideal))
+
+
 def _report(a, state, local_range, wall):
     first, last = state['first'], state['last']
     if last is None:
@@ -248,6 +285,7 @@ def _report(a, state, local_range, wall):
         end = phases[-1][3]
         err = math.hypot(end.object_position_x - TARGET[0], end.object_position_y - TARGET[1])
         st_ros.log('object error at the end %.4f m (tolerance 0.05)' % err)
+        _report_transport(a, state, phases)
         st_ros.log('mission wall time      %.2f s (submit to %s)'
                    % (phases[-1][2] - state['sent'], PHASES.get(phases[-1][0], '?')))
     moved = sum(1 for p, q in zip(pts0, pts) if math.hypot(p[0] - q[0], p[1] - q[1]) > 1e-3)
