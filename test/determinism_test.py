@@ -33,7 +33,7 @@ def mission_run(seed, robots, ticks, timeout):
     log = None
     try:
         why = st.submit_before_first_tick(
-            pub, status, st.mission(9, 0, 12, 3, (7.0, 7.0, 2.0, 2.0), (3.0, 3.0)), timeout)
+            pub, st.mission(9, 0, 12, 3, (7.0, 7.0, 2.0, 2.0), (3.0, 3.0)), timeout)
         if why:
             raise AssertionError(why)
         log = st.PositionLog()

@@ -29,7 +29,7 @@ class Transport(unittest.TestCase):
             # (the simulator waits for this test's position log): the run is the same every
             # time, whatever the machine's load.
             why = st.submit_before_first_tick(
-                pub, status, st.mission(7, frm, to, leaders, obj, target), timeout)
+                pub, st.mission(7, frm, to, leaders, obj, target), timeout)
             self.assertEqual(why, '')
             log = st.PositionLog()
             self.assertTrue(log.wait_tick(3, timeout), 'the swarm never ticked')
