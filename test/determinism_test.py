@@ -39,7 +39,7 @@ def mission_run(seed, robots, ticks, timeout):
         log = st.PositionLog()
         if not log.wait_tick(ticks, timeout):
             raise AssertionError('seed %d: the run stopped at tick %d' % (seed, log.latest_tick()))
-        phases = [(m.state, m.tick) for m in status.of(9) if m.state != 0]
+        phases = [(m.state, m.tick) for m in status.of(9)]
         return {t: log.at(t) for t in range(ticks + 1)}, phases
     finally:
         swarm.shutdown()

@@ -142,12 +142,9 @@ class StatusLog(object):
             return [m for m in self.items if m.mission_id == mission_id]
 
     def states(self, mission_id):
-        """The phases in order, repeats (progress reports) collapsed."""
-        seq = []
-        for m in self.of(mission_id):
-            if not seq or seq[-1] != NAMES[m.state]:
-                seq.append(NAMES[m.state])
-        return seq
+        """The states as they arrived (each phase is reported once, on entry; progress within
+        a phase goes to /flock/mission/progress)."""
+        return [NAMES.get(m.state, str(m.state)) for m in self.of(mission_id)]
 
     def first(self, mission_id, state):
         for m in self.of(mission_id):

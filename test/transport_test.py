@@ -47,8 +47,8 @@ class Transport(unittest.TestCase):
             if log:
                 log.close()
 
-        states = [s for s in status.states(7) if s != 'QUEUED']
-        self.assertEqual(states, ['GATHERING', 'LOADING', 'TRANSPORT', 'UNLOADING', 'DONE'])
+        self.assertEqual(status.states(7), ['QUEUED', 'GATHERING', 'LOADING', 'TRANSPORT',
+                                            'UNLOADING', 'DONE'])
         assigned = list(range(frm, to))
         gathering = status.first(7, 1).tick
         loading = status.first(7, 2)
