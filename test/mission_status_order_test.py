@@ -3,7 +3,8 @@
 and follows /flock/mission/status sees, for that mission id, exactly QUEUED, GATHERING,
 LOADING, TRANSPORT, UNLOADING, DONE: QUEUED first, every phase once, in order. Every status
 of the mission counts, whoever sent it; repeats are not collapsed. Lock-step (one process per
-robot, and robots and simulator in one process) and real time."""
+robot; robots and simulator in one process) and real time (one process per robot; all robots
+in one process)."""
 
 import sys
 import threading
@@ -98,6 +99,9 @@ class MissionStatusOrder(unittest.TestCase):
 
     def test_realtime_process(self):
         self.run_raw_mission(False, 'process')
+
+    def test_realtime_host(self):
+        self.run_raw_mission(False, 'host')
 
 
 if __name__ == '__main__':
