@@ -91,6 +91,13 @@ class Missions(unittest.TestCase):
         self.assertIsNotNone(self.status.first(32, 5), '32 ended %s' % self.status.states(32))
         self.assertGreaterEqual(gather32.tick, done31.tick,
                                 'mission 32 started gathering before 31 was done')
+        # Each reported once, in order; 32 is QUEUED as soon as its first leader has it, while
+        # it waits behind 31.
+        phases = ['QUEUED', 'GATHERING', 'LOADING', 'TRANSPORT', 'UNLOADING', 'DONE']
+        self.assertEqual(self.status.states(31), phases)
+        self.assertEqual(self.status.states(32), phases)
+        self.assertLess(self.status.first(32, 0).tick, done31.tick,
+                        'mission 32 was not QUEUED while 31 ran')
 
     def test_bad_missions_are_rejected_and_change_nothing(self):
         robots = rospy.get_param('~bad/robots')

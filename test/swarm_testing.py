@@ -90,16 +90,31 @@ def wait_connected(pub, timeout, at_least=1):
     return wait_for(connected, timeout)
 
 
-def submit_before_first_tick(pub, status, msg, timeout):
+def dispatcher_tracks(mission_id):
+    """True when the dispatcher's ~status table lists the mission."""
+    from std_srvs.srv import Trigger
+    try:
+        table = rospy.ServiceProxy('/mission_dispatcher/status', Trigger)().message
+    except (rospy.ServiceException, rospy.ROSException):
+        return False
+    return any(line.split()[:1] == [str(mission_id)] for line in table.splitlines()[1:])
+
+
+def submit_before_first_tick(pub, msg, timeout):
     """Publishes a raw New_Mission (as `rostopic pub` would) while a lock-step swarm waits for
-    its observers, and waits until the dispatcher reported it: create the PositionLog only
-    then, and the simulator relays the mission at tick 0, so a seed gives the same run on any
-    machine. Returns a reason on failure, else ''."""
+    its observers, and waits until the dispatcher took it in (its first status, QUEUED, comes
+    from the first leader at tick 0): create the PositionLog only then, and the simulator
+    relays the mission at tick 0, so a seed gives the same run on any machine. Returns a
+    reason on failure, else ''."""
     if not wait_connected(pub, timeout, at_least=2):
         return 'the simulator and the dispatcher never subscribed to %s' % pub.resolved_name
     pub.publish(msg)
-    if not wait_for(lambda: status.states(msg.mission_id), timeout):
-        return 'the dispatcher never reported mission %d' % msg.mission_id
+    try:
+        rospy.wait_for_service('/mission_dispatcher/status', timeout)
+    except rospy.ROSException:
+        return 'the dispatcher\'s ~status service never came up'
+    if not wait_for(lambda: dispatcher_tracks(msg.mission_id), timeout, period=0.05):
+        return 'the dispatcher never took in mission %d' % msg.mission_id
     return ''
 
 
@@ -127,12 +142,9 @@ class StatusLog(object):
             return [m for m in self.items if m.mission_id == mission_id]
 
     def states(self, mission_id):
-        """The phases in order, repeats (progress reports) collapsed."""
-        seq = []
-        for m in self.of(mission_id):
-            if not seq or seq[-1] != NAMES[m.state]:
-                seq.append(NAMES[m.state])
-        return seq
+        """The states as they arrived (each phase is reported once, on entry; progress within
+        a phase goes to /flock/mission/progress)."""
+        return [NAMES.get(m.state, str(m.state)) for m in self.of(mission_id)]
 
     def first(self, mission_id, state):
         for m in self.of(mission_id):

@@ -29,7 +29,7 @@ class Transport(unittest.TestCase):
             # (the simulator waits for this test's position log): the run is the same every
             # time, whatever the machine's load.
             why = st.submit_before_first_tick(
-                pub, status, st.mission(7, frm, to, leaders, obj, target), timeout)
+                pub, st.mission(7, frm, to, leaders, obj, target), timeout)
             self.assertEqual(why, '')
             log = st.PositionLog()
             self.assertTrue(log.wait_tick(3, timeout), 'the swarm never ticked')
@@ -47,8 +47,8 @@ class Transport(unittest.TestCase):
             if log:
                 log.close()
 
-        states = [s for s in status.states(7) if s != 'QUEUED']
-        self.assertEqual(states, ['GATHERING', 'LOADING', 'TRANSPORT', 'UNLOADING', 'DONE'])
+        self.assertEqual(status.states(7), ['QUEUED', 'GATHERING', 'LOADING', 'TRANSPORT',
+                                            'UNLOADING', 'DONE'])
         assigned = list(range(frm, to))
         gathering = status.first(7, 1).tick
         loading = status.first(7, 2)

@@ -277,10 +277,10 @@ def _report(a, state, local_range, wall):
         st_ros.log('  %-10s %8s %8s %10s' % ('phase', 'tick', 'ticks', 'wall s'))
         for i, (code, tick, at, _) in enumerate(phases):
             nxt = phases[i + 1] if i + 1 < len(phases) else None
-            # QUEUED comes from the dispatcher, which has no tick: its row shows wall time only.
-            ticks = '%d' % (nxt[1] - tick) if nxt and code != 0 else '-'
+            # Every phase, QUEUED included, is reported by the first leader with its tick.
+            ticks = '%d' % (nxt[1] - tick) if nxt else '-'
             st_ros.log('  %-10s %8s %8s %10s' % (
-                PHASES.get(code, '?'), tick if code != 0 else '-', ticks,
+                PHASES.get(code, '?'), tick, ticks,
                 '%.2f' % (nxt[2] - at) if nxt else '-'))
         end = phases[-1][3]
         err = math.hypot(end.object_position_x - TARGET[0], end.object_position_y - TARGET[1])

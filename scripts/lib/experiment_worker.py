@@ -217,8 +217,10 @@ def _run_mission(job, ros, state, lock, waiter, trace=None):
                 raise RunFailed('roslaunch ended before the mission dispatcher came up')
             if time.time() > up_by:
                 raise RunFailed('the mission dispatcher did not come up')
-    # The recorder must hear the QUEUED status (not latched): on a loaded machine it may
-    # subscribe after the dispatcher is up. The dispatcher then waits for the connection.
+    # The recorder must hear the order and every status, QUEUED included (statuses are not
+    # latched): on a loaded machine it may subscribe after the dispatcher is up. Once it is
+    # registered, the dispatcher waits for its connection before publishing the order, and the
+    # first leader for its connection before publishing a status.
     _wait_subscribed('/recorder', ('/flock/mission/status', '/flock/mission/new'), up_by, ros)
     msg = New_Mission(mission_id=mid, target_x=m['target'][0], target_y=m['target'][1],
                       transport_mode=int(m.get('mode', 0)))

@@ -280,6 +280,7 @@ bool MissionDispatcher::Initialize() {
   positions_sub_ = nh_.subscribe(names::kPositions, 1, &MissionDispatcher::OnPositions, this);
   new_sub_ = nh_.subscribe(names::kMissionNew, 100, &MissionDispatcher::OnNewMission, this);
   status_sub_ = nh_.subscribe(names::kMissionStatus, 100, &MissionDispatcher::OnStatus, this);
+  progress_sub_ = nh_.subscribe(names::kMissionProgress, 100, &MissionDispatcher::OnProgress, this);
   // Private names: with the default node name they are names::kSubmitMission and
   // names::kSignalMission.
   submit_srv_ = private_nh_.advertiseService("submit", &MissionDispatcher::OnSubmit, this);
@@ -385,6 +386,9 @@ MissionDispatcher::Verdict MissionDispatcher::Submit(core::MissionSpec spec,
   if (attach) {
     it->second.spec = spec;
     it->second.has_spec = true;
+    it->second.source = source;
+    ROS_INFO("%s: mission %u from %s: its first leader had reported it already", kNode, spec.id,
+             source.c_str());
     verdict.message = "mission " + std::to_string(spec.id) + " (already running) attached";
     return verdict;
   }
@@ -405,11 +409,13 @@ MissionDispatcher::Verdict MissionDispatcher::Submit(core::MissionSpec spec,
   m.phase = MissionPhase::kQueued;
   m.entered[static_cast<std::size_t>(MissionPhase::kQueued)] = ros::Time::now();
   m.reached = 1u << static_cast<unsigned>(MissionPhase::kQueued);
+  // No QUEUED status from here: the mission's first leader reports it when it holds the order,
+  // and every later phase too, so that a subscriber gets them in order over one connection (a
+  // QUEUED of the dispatcher's raced the first leader's GATHERING, issue 9).
   if (publish) {
     AwaitListeners();
     new_pub_.publish(ToNewMission(spec));
   }
-  PublishStatus(spec, MissionPhase::kQueued, "accepted from " + source);
   const std::string what = Describe(spec);
   ROS_INFO("%s: queued mission %u from %s: %s", kNode, spec.id, source.c_str(), what.c_str());
   verdict.message = "mission " + std::to_string(spec.id) + " queued: " + what;
@@ -493,6 +499,16 @@ void MissionDispatcher::OnStatus(const ros::MessageEvent<Mission_Status const>& 
   if (phase != m.phase || m.reached == 0) EnterPhase(msg.mission_id, &m, phase);
 }
 
+void MissionDispatcher::OnProgress(const Mission_Status::ConstPtr& msg) {
+  auto it = missions_.find(msg->mission_id);
+  if (it == missions_.end() || !it->second.Live()) return;
+  if (!std::isfinite(msg->distance_to_target)) return;
+  TrackedMission& m = it->second;
+  if (msg->robots_assigned > 0) m.robots_assigned = msg->robots_assigned;
+  m.robots_inside = msg->robots_inside;
+  m.distance_to_target_m = msg->distance_to_target;
+}
+
 void MissionDispatcher::EnterPhase(std::uint16_t id, TrackedMission* m, MissionPhase phase) {
   const auto index = static_cast<unsigned>(phase);
   m->phase = phase;
@@ -548,16 +564,14 @@ void MissionDispatcher::SendEvent(std::uint16_t id, core::MissionEventKind kind,
 }
 
 void MissionDispatcher::AwaitListeners() {
-  // A node that subscribed but is not connected yet (start-up, a loaded machine) would miss
-  // the QUEUED status (not latched) and get the latched order late: the recorder would lack
-  // the QUEUED tick and a lock-step run would not repeat. Connections are made by roscpp's
+  // A node that subscribed but is not connected yet (start-up, a loaded machine) would get
+  // the latched order late: a lock-step run would not repeat. Connections are made by roscpp's
   // own thread, so waiting here (briefly, in a service call) lets them complete.
   const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(kListenerWaitS);
   while (ros::ok()) {
     TopicNodeCounts graph;
     if (!QueryTopicNodeCounts(&graph)) return;
-    // This node subscribes to statuses itself (its own link counts like any other).
-    if (graph.AllConnected(new_pub_) && graph.AllConnected(status_pub_)) return;
+    if (graph.AllConnected(new_pub_)) return;
     if (ros::WallTime::now() >= until) {
       ROS_WARN(
           "%s: not every subscriber of the mission topics is connected after %.1f s; "

@@ -395,12 +395,10 @@ void Recorder::OnStatus(const Mission_Status::ConstPtr& msg) {
   }
   MissionRecord& m = it->second;
   if (m.final_state) return;  // late news of a finished mission
-  // The dispatcher reports (QUEUED; REJECTED was handled above) with tick 0: they take the
-  // newest frame's tick. A first leader's report carries its tick, 0 included: taking the
-  // newest frame for a GATHERING of tick 0 put it at tick 64 when frames came in first.
-  const bool from_dispatcher = phase == MissionPhase::kQueued;
-  const std::uint64_t tick =
-      msg->tick != 0 || !from_dispatcher || history_.empty() ? msg->tick : history_.back().tick;
+  // Every phase, QUEUED included, is reported by the mission's first leader with its tick, 0
+  // included (taking the newest frame instead put a GATHERING of tick 0 at tick 64 when frames
+  // came in first).
+  const std::uint64_t tick = msg->tick;
   auto& entered = m.entered[PhaseIndex(phase)];
   if (!entered) entered = tick;
   m.object = core::Vec2{msg->object_position_x, msg->object_position_y};

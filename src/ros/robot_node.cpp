@@ -24,6 +24,7 @@ constexpr double kStatsPeriodS = 1.0;
 constexpr double kLockstepOutletWaitS = 1.5;
 constexpr double kLockstepOutletPollS = 0.002;
 constexpr std::uint32_t kStatsQueue = 10;
+constexpr std::uint32_t kProgressQueue = 10;
 // Broadcast comm: every robot publishes once per tick, so the queue must hold a whole swarm's
 // tick (as the simulator's); a robot not heard for this many radio rounds is forgotten.
 constexpr std::uint32_t kBroadcastQueue = 10000;
@@ -294,8 +295,22 @@ void RobotNode::OnNewMission(const New_Mission::ConstPtr& msg) {
   context.live_missions = agent_.LiveIds();
   std::string why = core::ValidateMission(spec, context);
   if (why.empty() && agent_.OnNewMission(spec, &why)) {
-    if (spec.FirstLeader() == id_ && !status_pub_) AdvertiseMissionOutlets();
-    if (spec.FirstLeader() == id_ && expected_.subscribers.empty()) LearnExpectedSubscribers();
+    if (spec.FirstLeader() != id_) return;
+    if (!status_pub_) AdvertiseMissionOutlets();
+    if (!progress_pub_) {
+      progress_pub_ = nh_.advertise<Mission_Status>(names::kMissionProgress, kProgressQueue);
+    }
+    if (expected_.subscribers.empty()) LearnExpectedSubscribers();
+    // The mission's first status: this robot holds the order and queues it [T6.4]. Published
+    // with this tick's messages (before its GATHERING when it starts at once).
+    core::StatusReport queued;
+    queued.mission_id = spec.id;
+    queued.phase = core::MissionPhase::kQueued;
+    queued.assigned =
+        static_cast<std::uint16_t>(std::min<std::size_t>(spec.Assigned().size(), 65535));
+    queued.object = spec.object_centre;
+    queued.distance_to_target = core::Distance(spec.object_centre, spec.target);
+    queued_.push_back(queued);
     return;
   }
   // Only the robots concerned say so, so that one bad message does not log N lines.
@@ -421,21 +436,37 @@ void RobotNode::Publish(const core::MissionOutbox& outbox) {
     ++events_published_;
   }
   for (const core::StatusReport& r : outbox.statuses) {
-    Mission_Status m;
-    m.mission_id = r.mission_id;
-    m.state = static_cast<std::uint8_t>(r.phase);
-    m.reason = r.reason;
-    m.stamp = ros::Time::now();
-    m.tick = perception_->tick;
-    m.robots_assigned = r.assigned;
-    m.robots_inside = r.inside;
-    m.object_position_x = static_cast<float>(r.object.x);
-    m.object_position_y = static_cast<float>(r.object.y);
-    m.distance_to_target = static_cast<float>(r.distance_to_target);
-    status_pub_.publish(m);
+    // /flock/mission/status carries each phase once, when it is entered; the first leader's
+    // periodic report within a phase (robots inside, distance to go) is progress.
+    const auto last = published_phase_.find(r.mission_id);
+    if (last != published_phase_.end() && last->second == r.phase) {
+      if (progress_pub_) progress_pub_.publish(ToStatus(r));
+      continue;
+    }
+    status_pub_.publish(ToStatus(r));
     ++events_published_;
+    if (r.phase == core::MissionPhase::kDone || r.phase == core::MissionPhase::kAborted) {
+      published_phase_.erase(r.mission_id);  // its last word (the id may be used again)
+    } else {
+      published_phase_[r.mission_id] = r.phase;
+    }
     ROS_INFO("robot %u: mission %u %s", id_, r.mission_id, core::PhaseName(r.phase));
   }
+}
+
+Mission_Status RobotNode::ToStatus(const core::StatusReport& r) const {
+  Mission_Status m;
+  m.mission_id = r.mission_id;
+  m.state = static_cast<std::uint8_t>(r.phase);
+  m.reason = r.reason;
+  m.stamp = ros::Time::now();
+  m.tick = perception_->tick;
+  m.robots_assigned = r.assigned;
+  m.robots_inside = r.inside;
+  m.object_position_x = static_cast<float>(r.object.x);
+  m.object_position_y = static_cast<float>(r.object.y);
+  m.distance_to_target = static_cast<float>(r.distance_to_target);
+  return m;
 }
 
 Tick_Done RobotNode::TickDone() const {
@@ -511,6 +542,12 @@ void RobotNode::Tick() {
   // A stand may still turn (a carrying leader that holds faces its course).
   if (!frozen_) {
     command = core::CommandFor(in.self, move.heading, move.distance_m, config_.tick_period_s);
+  }
+  // A mission's QUEUED goes out before any other status of it (a leader-only mission may end
+  // in the tick it starts), as soon as this first leader can publish.
+  if (!queued_.empty() && (MissionOutletsReady() || !outbox.statuses.empty())) {
+    outbox.statuses.insert(outbox.statuses.begin(), queued_.begin(), queued_.end());
+    queued_.clear();
   }
   // Mission messages go out before the command: in lock-step the simulator steps only after
   // every command arrived, so the swarm hears them before its next tick.

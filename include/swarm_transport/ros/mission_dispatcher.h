@@ -48,7 +48,7 @@ bool MissionsFromXmlRpc(XmlRpc::XmlRpcValue& file, std::vector<core::MissionSpec
 struct TrackedMission {
   core::MissionSpec spec;
   bool has_spec = false;  // false for missions first seen through a status message
-  std::string source;     // service | file | topic | status
+  std::string source;     // service | missions_file | topic | status (order never heard)
   core::MissionPhase phase = core::MissionPhase::kQueued;
   std::string reason;
   std::uint16_t robots_assigned = 0;
@@ -67,10 +67,12 @@ struct TrackedMission {
 
 // Accepts missions from ~missions_file, the ~submit service and raw /flock/mission/new
 // messages, validates each (ValidateMission: arena, known robots, live ids), publishes the
-// accepted ones latched on /flock/mission/new with a QUEUED status (REJECTED + reason
-// otherwise), follows their phases on /flock/mission/status, and sends Mission_Event LOADED /
-// UNLOADED after the configured delays (ros::Time: simulated under /use_sim_time) or on request
-// through ~signal. ~status answers a text table. All callbacks run in the one ros::spin thread.
+// accepted ones latched on /flock/mission/new (a rejected one gets a REJECTED + reason status),
+// follows their phases on /flock/mission/status (each reported once by the mission's first
+// leader, from QUEUED on) and their progress on /flock/mission/progress, and sends
+// Mission_Event LOADED / UNLOADED after the configured delays (ros::Time: simulated under
+// /use_sim_time) or on request through ~signal. ~status answers a text table. All callbacks
+// run in the one ros::spin thread.
 class MissionDispatcher {
  public:
   MissionDispatcher(ros::NodeHandle nh, ros::NodeHandle private_nh);
@@ -104,7 +106,7 @@ class MissionDispatcher {
   void EnterPhase(std::uint16_t id, TrackedMission* mission, core::MissionPhase phase);
   void ScheduleSignal(std::uint16_t id, TrackedMission* mission, core::MissionEventKind kind);
   // Before a new order: waits (at most kListenerWaitS) until every registered subscriber of
-  // the order and status topics is connected.
+  // the order topic is connected.
   void AwaitListeners();
   void SendEvent(std::uint16_t id, core::MissionEventKind kind, std::uint64_t not_before_tick,
                  const char* why);
@@ -115,6 +117,8 @@ class MissionDispatcher {
   void OnPositions(const Robot_Positions::ConstPtr& msg);
   void OnNewMission(const ros::MessageEvent<New_Mission const>& event);
   void OnStatus(const ros::MessageEvent<Mission_Status const>& event);
+  // A first leader's report within a phase: robots inside, object, distance to go.
+  void OnProgress(const Mission_Status::ConstPtr& msg);
   void OnStartTimer(const ros::TimerEvent& event);
   bool OnSubmit(Submit_Mission::Request& req, Submit_Mission::Response& res);
   bool OnSignal(Mission_Signal::Request& req, Mission_Signal::Response& res);
@@ -133,6 +137,7 @@ class MissionDispatcher {
   ros::Subscriber positions_sub_;
   ros::Subscriber new_sub_;
   ros::Subscriber status_sub_;
+  ros::Subscriber progress_sub_;
   ros::ServiceServer submit_srv_;
   ros::ServiceServer signal_srv_;
   ros::ServiceServer status_srv_;
