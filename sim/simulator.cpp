@@ -733,11 +733,12 @@ void Simulator::PublishRadio() {
   }
 
   const auto lists = world_->NeighbourLists(params_.radio_range_m);
-  const int hops =
-      params_.swarm.flocking.neighbourhood == core::Neighbourhood::kChain ? params_.swarm.chain_hops : 1;
+  const bool chain = params_.swarm.flocking.neighbourhood == core::Neighbourhood::kChain;
+  const int hops = chain ? params_.swarm.chain_hops : 1;
   const double range2 = params_.radio_range_m * params_.radio_range_m;
   std::vector<char> heard(ids.size(), 0);
   std::vector<std::size_t> touched;
+  std::vector<std::size_t> ring;  // a chain's robots found so far, hop by hop (reused)
   awaiting_ = 0;
   std::size_t i = 0;
   for (auto robot = robots.begin(); robot != robots.end(); ++robot, ++i) {
@@ -764,8 +765,10 @@ void Simulator::PublishRadio() {
       heard[i] = 1;
       touched.push_back(i);
       std::size_t ring_begin = 0;
-      std::vector<std::size_t> ring;
-      for (std::uint16_t other : lists[i]) ring.push_back(static_cast<std::size_t>(index_of(other)));
+      ring.clear();
+      for (std::uint16_t other : lists[i]) {
+        ring.push_back(static_cast<std::size_t>(index_of(other)));
+      }
       for (int hop = 2; hop <= hops && ring_begin < ring.size(); ++hop) {
         const std::size_t ring_end = ring.size();
         for (std::size_t k = ring_begin; k < ring_end; ++k) {

@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+
+#include "swarm_transport/core/problem.h"
 
 namespace swarm_transport {
 namespace core {
@@ -16,12 +17,6 @@ constexpr double kCentroidTolerance = 1e-9;
 // one tick's length far less than a robot radius.
 // The avoidance search turns in whole degrees up to a step back [T5.2].
 constexpr int kMaxSwerveDeg = 180;
-
-std::string Problem(const std::string& field, const std::string& requirement, double value) {
-  std::ostringstream out;
-  out << field << " must be " << requirement << " but is " << value;
-  return out.str();
-}
 
 bool IsSelf(const Perception& in, const Neighbour& n) {
   return n.id == in.self_id && n.sub_id == 0 && n.type == kTypePhysical;
@@ -128,7 +123,8 @@ std::vector<Neighbour> NeighbourhoodOf(const Perception& in, const FlockingParam
   return neighbourhood;
 }
 
-Angle DesiredHeading(const Perception& in, const FlockingParams& p, Rng& rng, bool* fleeing) {
+Angle DesiredHeading(const Perception& in, const FlockingParams& p, Rng& rng, bool* fleeing,
+                     int* neighbourhood_size) {
   const double free_will = rng.Uniform(-p.free_will_deg / 2.0, p.free_will_deg / 2.0);
   const Vec2 position = in.self.position;
 
@@ -153,10 +149,14 @@ Angle DesiredHeading(const Perception& in, const FlockingParams& p, Rng& rng, bo
     for (const Vec2& escape : escapes) {
       if (allowed(escape) && (!allowed(target) || closer(escape, target))) target = escape;
     }
+    if (neighbourhood_size != nullptr) {
+      *neighbourhood_size = static_cast<int>(NeighbourhoodOf(in, p).size());
+    }
     return Bearing(position, target);
   }
 
   const std::vector<Neighbour> neighbourhood = NeighbourhoodOf(in, p);
+  if (neighbourhood_size != nullptr) *neighbourhood_size = static_cast<int>(neighbourhood.size());
   std::vector<Angle> headings;
   Vec2 sum;
   for (const Neighbour& n : neighbourhood) {
@@ -270,10 +270,11 @@ MoveDecision AvoidCollisions(const Perception& in, const FlockingParams& p, Angl
 MoveDecision FlockingStep(const Perception& in, const FlockingParams& p, Rng& rng,
                           double duration_s) {
   bool fleeing = false;
-  const Angle desired = DesiredHeading(in, p, rng, &fleeing);
+  int neighbourhood_size = 0;
+  const Angle desired = DesiredHeading(in, p, rng, &fleeing, &neighbourhood_size);
   MoveDecision decision = AvoidCollisions(in, p, desired, duration_s);
   decision.fleeing = fleeing;
-  decision.neighbours_in_range = static_cast<int>(NeighbourhoodOf(in, p).size());
+  decision.neighbours_in_range = neighbourhood_size;
   return decision;
 }
 

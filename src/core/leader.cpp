@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+
+#include "swarm_transport/core/problem.h"
 
 namespace swarm_transport {
 namespace core {
@@ -11,12 +12,6 @@ namespace {
 constexpr std::uint8_t kTypePhysical = 0;
 // Steering this close to the goal's bearing means heading for the goal: do not overshoot it.
 constexpr double kAtGoalBearingDeg = 1.0;
-
-std::string Problem(const std::string& field, const std::string& requirement, double value) {
-  std::ostringstream out;
-  out << field << " must be " << requirement << " but is " << value;
-  return out.str();
-}
 
 MoveDecision Stand(const Perception& in, Angle desired) {
   MoveDecision move;

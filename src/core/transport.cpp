@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+
+#include "swarm_transport/core/problem.h"
 
 namespace swarm_transport {
 namespace core {
@@ -12,12 +13,6 @@ namespace {
 constexpr int kMaxSwerveDeg = 180;
 // A formation robot this close to its place stands (nothing worth a move).
 constexpr double kInPlaceM = 1e-6;
-
-std::string Problem(const std::string& field, const std::string& requirement, double value) {
-  std::ostringstream out;
-  out << field << " must be " << requirement << " but is " << value;
-  return out.str();
-}
 
 MoveDecision Stand(Angle desired, Angle heading) {
   MoveDecision d;
@@ -39,9 +34,8 @@ MoveDecision Drive(Angle desired, Angle heading, double distance, MoveOutcome ou
 
 // A passive robot in transport: the +-180 degree search for a heading whose point `lookahead`
 // steps ahead lies inside the object and whose move is valid; slower after each failed search.
-MoveDecision BoundedSearch(const Perception& in, const FlockingParams& p,
-                           const TransportParams& tp, const Shape& object, Angle desired,
-                           double duration_s) {
+MoveDecision BoundedSearch(const Perception& in, const FlockingParams& p, const TransportParams& tp,
+                           const Shape& object, Angle desired, double duration_s) {
   double speed = p.speed_m_per_tick;
   for (int attempt = 0; attempt <= tp.passive_tries; ++attempt) {
     for (int swerve = 0; swerve <= kMaxSwerveDeg; ++swerve) {
@@ -74,7 +68,8 @@ MoveDecision LeaderCarry(const Perception& in, const FlockingParams& p, const Tr
     const Vec2 to = in.self.position + UnitVector(steer) * speed;
     const bool inside = !tp.leaders_bound || carry.object.DistanceTo(to) <= out_before;
     if (inside && IsMoveValid(in, p, steer, speed, duration_s)) {
-      return Drive(steer, steer, speed, attempt == 0 ? MoveOutcome::kStraight : MoveOutcome::kSlowed);
+      return Drive(steer, steer, speed,
+                   attempt == 0 ? MoveOutcome::kStraight : MoveOutcome::kSlowed);
     }
     speed *= tp.leader_slowdown;
   }
@@ -183,8 +178,8 @@ MoveDecision CarryStep(const Perception& in, const FlockingParams& p, const Tran
     return FormationCarry(in, p, tp, carry, duration_s);
   }
   const bool unbound_leader = carry.transport && carry.leader && !tp.leaders_bound;
-  const bool near_leader = carry.transport && carry.leader &&
-                           carry.object.DistanceTo(position) <= tp.leader_reach_m;
+  const bool near_leader =
+      carry.transport && carry.leader && carry.object.DistanceTo(position) <= tp.leader_reach_m;
   if (!carry.object.Contains(position) && !unbound_leader && !near_leader && !filling) {
     return AvoidCollisions(in, p, Bearing(position, carry.centre), duration_s);
   }
@@ -215,10 +210,11 @@ MoveDecision CarryStep(const Perception& in, const FlockingParams& p, const Tran
   }
   if (carry.leader) return LeaderCarry(in, approach, tp, carry, duration_s);
   bool fleeing = false;
-  const Angle desired = DesiredHeading(in, p, rng, &fleeing);
+  int neighbourhood_size = 0;
+  const Angle desired = DesiredHeading(in, p, rng, &fleeing, &neighbourhood_size);
   MoveDecision d = BoundedSearch(in, approach, tp, carry.object, desired, duration_s);
   d.fleeing = fleeing;
-  d.neighbours_in_range = static_cast<int>(NeighbourhoodOf(in, p).size());
+  d.neighbours_in_range = neighbourhood_size;
   return d;
 }
 

@@ -505,13 +505,12 @@ void RobotNode::Tick() {
   }
   // Mission peers and relayed robots are positions like any other: the flock group decides
   // whom the swarm runs over, and collisions count everyone.
-  const std::vector<core::Neighbour>& heard = in.others;
 
   core::MissionOutbox outbox;
   if (options_.clock == "lockstep") AwaitMissionOutlets();
   const core::MissionPlan plan = MissionOutletsReady()
-                                     ? agent_.Tick(in.self, heard, perception_->tick, &outbox)
-                                     : agent_.Tick(in.self, heard, perception_->tick, nullptr);
+                                     ? agent_.Tick(in.self, in.others, perception_->tick, &outbox)
+                                     : agent_.Tick(in.self, in.others, perception_->tick, nullptr);
   in.zones = config_.danger_zones;
   in.zones.insert(in.zones.end(), plan.zones.begin(), plan.zones.end());
   in.group = plan.group;

@@ -113,7 +113,9 @@ TEST(NeighbourhoodTest, DiscHoldsSelfOnceRobotsInRangeAndEveryStatist) {
 TEST(NeighbourhoodTest, ChainLinksRobotsHopByHopWithinRange) {
   // A line of robots 0.9 apart at range 1.0 is one swarm.
   Perception in = At(1.0, 5.0, 0.0);
-  for (int i = 1; i <= 8; ++i) in.others.push_back(Robot(static_cast<std::uint16_t>(1 + i), 1.0 + 0.9 * i, 5.0));
+  for (int i = 1; i <= 8; ++i) {
+    in.others.push_back(Robot(static_cast<std::uint16_t>(1 + i), 1.0 + 0.9 * i, 5.0));
+  }
   EXPECT_EQ(NeighbourhoodOf(in, Quiet()).size(), 9u);
   // A gap of 1.1 after the fourth robot splits it.
   for (std::size_t i = 4; i < in.others.size(); ++i) in.others[i].position.x += 0.2;
@@ -126,8 +128,7 @@ TEST(NeighbourhoodTest, ChainLinksRobotsHopByHopWithinRange) {
 
 TEST(NeighbourhoodTest, ChainRunsOnlyThroughTheRobotsItsGroupAdmits) {
   Perception in = At(1.0, 5.0, 0.0);
-  in.others = {Robot(2, 1.9, 5.0), Robot(3, 2.8, 5.0), Robot(4, 3.7, 5.0),
-               Robot(9, 1.0, 5.5)};
+  in.others = {Robot(2, 1.9, 5.0), Robot(3, 2.8, 5.0), Robot(4, 3.7, 5.0), Robot(9, 1.0, 5.5)};
   // On a mission with 1, 2 and 4: 4 is linked only through 3, which is not in the group; 9 is
   // near but not in the group either.
   in.group.only = true;

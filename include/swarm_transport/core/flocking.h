@@ -93,7 +93,9 @@ std::vector<Neighbour> NeighbourhoodOf(const Perception& in, const FlockingParam
 
 // Steps 1-4: the heading the robot wants. Draws exactly one free-will sample from `rng` every
 // call (also when fleeing) so the random sequence never depends on the branch taken.
-Angle DesiredHeading(const Perception& in, const FlockingParams& p, Rng& rng, bool* fleeing);
+// `neighbourhood_size` (optional) receives the size of NeighbourhoodOf(in, p), computed once.
+Angle DesiredHeading(const Perception& in, const FlockingParams& p, Rng& rng, bool* fleeing,
+                     int* neighbourhood_size = nullptr);
 
 // True when a move from `self` turning to `heading` and driving `distance_m` within
 // `duration_s` is valid: the destination keeps MinSeparation() to every other physical robot,

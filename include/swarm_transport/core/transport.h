@@ -15,8 +15,8 @@ namespace core {
 
 // Gathering: hold (drive for the object's centre; inside, go on straight for it while nothing is
 // in the way and stand once something is - the thesis's evaluated code stood the moment it was
-// inside, which walls off the rim: a late robot of 24 could not get in) or fill (flee in by the shortest way, then flock inside to make room for
-// late-comers: the thesis's text [T5.4]).
+// inside, which walls off the rim: a late robot of 24 could not get in) or fill (flee in by the
+// shortest way, then flock inside to make room for late-comers: the thesis's text [T5.4]).
 enum class GatherMode { kHold, kFill };
 bool ParseGatherMode(const std::string& name, GatherMode* out);
 
@@ -29,11 +29,11 @@ struct TransportParams {
   // Leaders' destinations stay inside the object like everyone's (thesis code); false lets a
   // carrying leader head for the target wherever the object is (only robots stop it).
   bool leaders_bound = true;
-  double lookahead = 1.5;          // passive: the point lookahead x its step ahead must be inside
-  double passive_slowdown = 0.9;   // passive: speed factor after a failed +-180 degree search
-  int passive_tries = 40;          // ... this many times at most (thesis: until legal), then stand
-  double leader_slowdown = 0.75;   // leader: speed factor after a blocked move
-  int leader_tries = 10;           // ... this many times at most, then it turns and holds
+  double lookahead = 1.5;         // passive: the point lookahead x its step ahead must be inside
+  double passive_slowdown = 0.9;  // passive: speed factor after a failed +-180 degree search
+  int passive_tries = 40;         // ... this many times at most (thesis: until legal), then stand
+  double leader_slowdown = 0.75;  // leader: speed factor after a blocked move
+  int leader_tries = 10;          // ... this many times at most, then it turns and holds
   // (ext) A leader up to this far outside its object keeps its course (moving no farther out,
   // else facing it) instead of driving for the centre: its heading keeps voting for the course
   // in its swarm's alignment (0: the thesis's code, every robot outside drives for the centre).
