@@ -35,7 +35,8 @@ class BenchSmoke(unittest.TestCase):
             [bench, '--no-build', '--robots', str(robots), '--clock', 'both',
              '--deploy', rospy.get_param('~deploy'), '--comm', 'local',
              '--seconds', str(rospy.get_param('~seconds')),
-             '--warmup', str(rospy.get_param('~warmup')), '--csv', out_csv],
+             '--warmup', str(rospy.get_param('~warmup')), '--csv', out_csv,
+             '--chain-hops', str(rospy.get_param('~chain_hops'))],
             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=env,
             timeout=rospy.get_param('~timeout_s'))
         out = p.stdout.decode(errors='replace')
@@ -48,6 +49,9 @@ class BenchSmoke(unittest.TestCase):
             self.assertIn(key, result, lines[-1])
         self.assertEqual(int(result['robots']), robots)
         self.assertEqual(result['clock'], 'both')
+        # The run used the configuration asked for (the option reaches the measured child).
+        self.assertEqual(result['neighbourhood'], 'chain', lines[-1])
+        self.assertEqual(int(result['chain_hops']), rospy.get_param('~chain_hops'), lines[-1])
         for key in PERCENTAGES:
             value = float(result[key])
             self.assertTrue(0.0 <= value <= 100.0, '%s=%s' % (key, value))

@@ -44,7 +44,8 @@ RESULT_KEYS = ('robots', 'clock', 'deploy', 'comm', 'tick_hz', 'late_pct', 'deli
                'cpu_pct', 'swarm_cpu_pct', 'background_cpu_pct', 'rss_mb_per_robot',
                'pss_mb_per_robot',
                'lockstep_ticks_per_s', 'startup_s', 'robots_ticking', 'max_period_ms',
-               'cpu_us_per_robot_tick', 'max_latency_ms', 'missed_rounds_pct', 'arena_m')
+               'cpu_us_per_robot_tick', 'max_latency_ms', 'missed_rounds_pct', 'arena_m',
+               'neighbourhood', 'chain_hops')
 COLUMNS = (('clock', '%-8s'), ('comm', '%-9s'), ('deploy', '%-8s'), ('robots', '%6d'),
            ('robots_ticking', '%7d'), ('tick_hz', '%8.2f'), ('late_pct', '%7.2f'),
            ('max_period_ms', '%8.1f'), ('delivered_pct', '%9.2f'),
@@ -87,6 +88,12 @@ def parse_args(argv):
                    help="room: the thesis's 11.09 m room for any N (crowded at large N); "
                         "density: the side grows with sqrt(N / 25), so every N has the "
                         "thesis's 25 robots per room area; or a side in m (default room)")
+    p.add_argument('--neighbourhood', choices=['chain', 'disc'], default='chain',
+                   help='whom a robot flocks with (config neighbourhood): chain relays '
+                   'positions hop by hop up to --chain-hops, disc hears only robots in range '
+                   '(default chain, the default config)')
+    p.add_argument('--chain-hops', type=int, default=16,
+                   help='hop limit of the chain relay (config chain_hops, default 16)')
     p.add_argument('--threads', type=int, default=1, help='host: callback threads (default 1)')
     p.add_argument('--startup-timeout', type=float, default=0.0,
                    help='s to wait for every robot to tick (default 60 + 0.5 s per robot)')
@@ -96,6 +103,8 @@ def parse_args(argv):
     a = p.parse_args(argv)
     if not 1 <= a.robots <= 65535:
         p.error('--robots must be in [1, 65535]')
+    if a.chain_hops < 1:
+        p.error('--chain-hops must be >= 1')
     if not a.seconds > 0 or a.warmup < 0 or not 1 <= a.threads <= 64:
         p.error('--seconds must be > 0, --warmup >= 0, --threads in [1, 64]')
     if a.startup_timeout <= 0:
@@ -200,7 +209,8 @@ def run_one(a):
     log_dir = tempfile.mkdtemp(prefix='st_bench_')
     result = {'robots': a.robots, 'clock': a.clock, 'deploy': a.deploy, 'comm': a.comm,
               'threads': a.threads, 'seconds': a.seconds, 'log_dir': log_dir,
-              'arena_m': a.arena_m}
+              'arena_m': a.arena_m, 'neighbourhood': a.neighbourhood,
+              'chain_hops': a.chain_hops}
     ok = False
     with st_ros.PrivateRos(log_dir=log_dir) as ros:
         import rosgraph.masterapi
@@ -242,7 +252,8 @@ def run_one(a):
         else:
             arena_yaml = os.path.join(log_dir, 'arena.yaml')
             with open(arena_yaml, 'w') as f:
-                f.write('world_size_m: %.6f\n' % a.arena_m)
+                f.write('world_size_m: %.6f\nneighbourhood: %s\nchain_hops: %d\n'
+                        % (a.arena_m, a.neighbourhood, a.chain_hops))
             launch = ros.launch('swarm.launch', {
                 'robots': a.robots, 'seed': a.seed, 'deploy': a.deploy,
                 'lockstep': 'true' if a.clock == 'lockstep' else 'false',
@@ -267,6 +278,8 @@ def set_host_sim_params(master, a):
         swarm = yaml.safe_load(f)
     swarm['seed'] = a.seed
     swarm['world_size_m'] = a.arena_m
+    swarm['neighbourhood'] = a.neighbourhood
+    swarm['chain_hops'] = a.chain_hops
     master.setParam('/swarm', swarm)
     master.setParam('/robot_host', {
         'from': 0, 'to': a.robots, 'clock': a.clock, 'comm': a.comm, 'diagnostics': True,
@@ -428,11 +441,12 @@ def child_run(a, clock, comm):
     args = [PYTHON, os.path.abspath(__file__), '--robots', str(a.robots), '--clock', clock,
             '--deploy', a.deploy, '--comm', comm, '--seconds', str(a.seconds),
             '--warmup', str(a.warmup), '--seed', str(a.seed), '--threads', str(a.threads),
-            '--startup-timeout', str(a.startup_timeout), '--arena', a.arena, '--child', out]
+            '--startup-timeout', str(a.startup_timeout), '--arena', a.arena,
+            '--neighbourhood', a.neighbourhood, '--chain-hops', str(a.chain_hops), '--child', out]
     if a.keep_logs:
         args.append('--keep-logs')
-    log('run: %d robots, %s clock, %s comm, deploy %s, arena %.2f m'
-        % (a.robots, clock, comm, a.deploy, a.arena_m))
+    log('run: %d robots, %s clock, %s comm, deploy %s, arena %.2f m, %s neighbourhood (%d hops)'
+        % (a.robots, clock, comm, a.deploy, a.arena_m, a.neighbourhood, a.chain_hops))
     p = subprocess.Popen(args)
     try:
         p.wait()
