@@ -118,6 +118,22 @@ void MissionAgent::EnterPhase(Live* live, MissionPhase phase, std::uint64_t tick
   outbox->statuses.push_back(Report(*live, inside));
 }
 
+bool MissionAgent::Group::OneChain(double range) const {
+  std::vector<Vec2> left;
+  for (const auto& kv : where) left.push_back(kv.second);
+  if (left.empty()) return true;
+  std::vector<Vec2> linked{left.back()};
+  left.pop_back();
+  for (std::size_t next = 0; next < linked.size() && !left.empty(); ++next) {
+    const Vec2 from = linked[next];
+    auto far = std::partition(left.begin(), left.end(),
+                              [&](const Vec2& p) { return Distance(from, p) > range; });
+    linked.insert(linked.end(), far, left.end());
+    left.erase(far, left.end());
+  }
+  return left.empty();
+}
+
 MissionAgent::Group MissionAgent::Locate(const Live& live, const Pose2& self,
                                          const std::vector<Neighbour>& heard) const {
   const MissionSpec& spec = live.spec;
@@ -139,7 +155,8 @@ void MissionAgent::UpdateCentre(Live* live, const Pose2& self, Group* group) con
   if (live->phase >= MissionPhase::kTransport && live->phase <= MissionPhase::kUnloading) {
     if (!live->anchored) {
       live->anchored = true;
-      live->offset = live->centre - group->centroid;
+      live->offset = params_.transport.object_at_centroid ? Vec2{} : live->centre - group->centroid;
+      live->centre = live->offset + group->centroid;
       live->place = self.position - live->centre;
     }
     live->centre = live->offset + group->centroid;
@@ -180,7 +197,8 @@ void MissionAgent::RunFirstLeader(Live* live, const Pose2& self, const Group& gr
 
   switch (live->phase) {
     case MissionPhase::kGathering:
-      if (inside == spec.Assigned().size()) {
+      if (inside == spec.Assigned().size() &&
+          (!params_.transport.gather_one_chain || group.OneChain(params_.local_range_m))) {
         outbox->freeze = spec.AssignedRuns();
         EnterPhase(live, MissionPhase::kLoading, tick, inside, outbox);
       } else if (periodic) {
@@ -251,6 +269,7 @@ MissionPlan MissionAgent::Tick(const Pose2& self, const std::vector<Neighbour>& 
       plan.group.ids = spec.Assigned();
       Carry carry;
       carry.transport = live.phase >= MissionPhase::kTransport && live.anchored;
+      carry.loading = live.phase == MissionPhase::kLoading;
       carry.mode = static_cast<TransportMode>(spec.transport_mode);
       carry.leader = spec.IsLeader(self_id_);
       carry.centre = live.centre;
@@ -258,6 +277,8 @@ MissionPlan MissionAgent::Tick(const Pose2& self, const std::vector<Neighbour>& 
       carry.target = spec.target;
       carry.goal_tolerance_m = params_.goal_tolerance_m;
       carry.formation_offset = live.place;
+      carry.leaders = spec.Leaders();
+      std::sort(carry.leaders.begin(), carry.leaders.end());
       for (std::uint16_t id : plan.group.ids) {
         if (id != self_id_) carry.peers.push_back(id);
       }

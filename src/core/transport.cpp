@@ -13,6 +13,8 @@ namespace {
 constexpr int kMaxSwerveDeg = 180;
 // A formation robot this close to its place stands (nothing worth a move).
 constexpr double kInPlaceM = 1e-6;
+// Virtual copies are told apart by their one-byte sub_id.
+constexpr int kMaxLeaderWeight = 255;
 
 MoveDecision Stand(Angle desired, Angle heading) {
   MoveDecision d;
@@ -147,6 +149,9 @@ std::string TransportParams::Validate() const {
     return Problem("leader_slowdown", "in (0, 1)", leader_slowdown);
   }
   if (leader_tries < 0) return Problem("leader_tries", ">= 0", leader_tries);
+  if (transport_leader_weight < 1 || transport_leader_weight > kMaxLeaderWeight) {
+    return Problem("transport_leader_weight", "in [1, 255]", transport_leader_weight);
+  }
   if (!(leader_reach_m >= 0.0) || !std::isfinite(leader_reach_m)) {
     return Problem("leader_reach_m", "finite and >= 0", leader_reach_m);
   }
@@ -193,6 +198,9 @@ MoveDecision CarryStep(const Perception& in, const FlockingParams& p, const Tran
       kept.zones.push_back(safety);
       return FlockingStep(kept, p, rng, duration_s);
     }
+    const Angle course = Bearing(carry.centre, carry.target);
+    const bool face = carry.leader && tp.leaders_face_course;
+    if (face && carry.loading) return Stand(course, course);
     // Hold: inside, it goes on straight for the centre while nothing is in its way and stands
     // once something is, so that robots do not wall off the rim against late-comers.
     const double to_centre = Distance(position, carry.centre);
@@ -201,6 +209,7 @@ MoveDecision CarryStep(const Perception& in, const FlockingParams& p, const Tran
     if (step > kInPlaceM && IsMoveValid(in, p, inward, step, duration_s)) {
       return Drive(inward, inward, step, MoveOutcome::kStraight);
     }
+    if (face) return Stand(course, course);
     return Stand(in.self.heading, in.self.heading);
   }
   FlockingParams approach = p;
@@ -211,10 +220,29 @@ MoveDecision CarryStep(const Perception& in, const FlockingParams& p, const Tran
   if (carry.leader) return LeaderCarry(in, approach, tp, carry, duration_s);
   bool fleeing = false;
   int neighbourhood_size = 0;
-  const Angle desired = DesiredHeading(in, p, rng, &fleeing, &neighbourhood_size);
+  // The leaders' virtual copies (stacking) for its alignment; collisions see only the robots.
+  Perception weighted = in;
+  if (tp.transport_leader_weight > 1) {
+    for (const Neighbour& n : in.others) {
+      if (n.type != 0 || n.sub_id != 0 ||
+          !std::binary_search(carry.leaders.begin(), carry.leaders.end(), n.id)) {
+        continue;
+      }
+      for (int k = 1; k < tp.transport_leader_weight; ++k) {
+        Neighbour copy = n;
+        copy.type = 1;
+        copy.sub_id = static_cast<std::uint8_t>(k);
+        weighted.others.push_back(copy);
+      }
+    }
+  }
+  const Angle desired = DesiredHeading(weighted, p, rng, &fleeing, &neighbourhood_size);
   MoveDecision d = BoundedSearch(in, approach, tp, carry.object, desired, duration_s);
   d.fleeing = fleeing;
-  d.neighbours_in_range = neighbourhood_size;
+  // Robots, not copies.
+  d.neighbours_in_range = weighted.others.size() == in.others.size()
+                              ? neighbourhood_size
+                              : static_cast<int>(NeighbourhoodOf(in, p).size());
   return d;
 }
 

@@ -192,6 +192,10 @@ bool ConfigFromXmlRpc(XmlRpc::XmlRpcValue& dict, SwarmConfig* config, std::strin
             ReadBool(dict, "leaders_bound", &c.transport.leaders_bound, error) &&
             ReadDouble(dict, "approach_radius_m", &c.transport.approach_radius_m, error) &&
             ReadDouble(dict, "leader_reach_m", &c.transport.leader_reach_m, error) &&
+            ReadBool(dict, "object_at_centroid", &c.transport.object_at_centroid, error) &&
+            ReadInt(dict, "transport_leader_weight", &c.transport.transport_leader_weight, error) &&
+            ReadBool(dict, "leaders_face_course", &c.transport.leaders_face_course, error) &&
+            ReadBool(dict, "gather_one_chain", &c.transport.gather_one_chain, error) &&
             ReadDouble(dict, "formation_speed_fraction", &c.transport.formation_speed_fraction,
                        error);
   if (!ok) return false;

@@ -76,6 +76,7 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
   mission_params.goal_tolerance_m = config_.leader.goal_tolerance_m;
   mission_params.object_update_ticks = config_.object_update_ticks;
   mission_params.transport = config_.transport;
+  mission_params.local_range_m = config_.flocking.local_range_m;
   agent_ = core::MissionAgent(id_, mission_params);
 
   position_pub_ = nh_.advertise<Robot_Position>(names::kPosition, 10);
@@ -541,6 +542,8 @@ void RobotNode::Tick() {
   // A stand may still turn (a carrying leader that holds faces its course).
   if (!frozen_) {
     command = core::CommandFor(in.self, move.heading, move.distance_m, config_.tick_period_s);
+  } else if (plan.carry && plan.carry->leader && move.distance_m == 0.0) {
+    command = core::CommandFor(in.self, move.heading, 0.0, config_.tick_period_s);
   }
   // A mission's QUEUED goes out before any other status of it (a leader-only mission may end
   // in the tick it starts), as soon as this first leader can publish.

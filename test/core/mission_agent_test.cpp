@@ -166,6 +166,53 @@ TEST(MissionAgentTest, EveryMemberAnchorsTheObjectToTheSameCentroid) {
   EXPECT_NEAR(plan.carry->centre.y, 7.0, 1e-9);
 }
 
+TEST(MissionAgentTest, GatheringEndsWhenEveryoneIsInsideAndTheGroupIsOneChain) {
+  // All three inside, but robot 2 stopped at the rim 1.34 from the others (local range 1.0):
+  // starting now would leave it out of its group's reach, so gathering goes on.
+  MissionAgent leader(0, MissionAgentParams());
+  std::string why;
+  ASSERT_TRUE(leader.OnNewMission(Thesis(), &why));
+  MissionOutbox out;
+  leader.Tick(PoseAt(7.0, 7.0), {At(1, 7.5, 7.5), At(2, 6.05, 6.05)}, 1, &out);
+  EXPECT_EQ(Phases(out), std::vector<std::string>{"GATHERING"});
+  EXPECT_TRUE(out.freeze.empty());
+  // It closed up: one chain, LOADING; the plan says so (a leader then faces its course).
+  out = MissionOutbox();
+  const MissionPlan plan =
+      leader.Tick(PoseAt(7.0, 7.0), {At(1, 7.5, 7.5), At(2, 6.3, 6.3)}, 2, &out);
+  EXPECT_EQ(Phases(out), std::vector<std::string>{"LOADING"});
+  ASSERT_TRUE(plan.carry.has_value());
+  EXPECT_TRUE(plan.carry->loading);
+  // The evaluated code's rule: everyone inside is enough.
+  MissionAgentParams thesis;
+  thesis.transport.gather_one_chain = false;
+  MissionAgent old(0, thesis);
+  ASSERT_TRUE(old.OnNewMission(Thesis(), &why));
+  out = MissionOutbox();
+  old.Tick(PoseAt(7.0, 7.0), {At(1, 7.5, 7.5), At(2, 6.05, 6.05)}, 1, &out);
+  EXPECT_EQ(Phases(out), (std::vector<std::string>{"GATHERING", "LOADING"}));
+}
+
+TEST(MissionAgentTest, TheObjectCanJumpOntoTheCentroidAtTransportStart) {
+  // The robots' centroid is (7.2, 7.1) when transport starts: by default the object keeps its
+  // centre (7, 7) and moves with the centroid; with object_at_centroid it is the centroid.
+  for (const bool at_centroid : {false, true}) {
+    MissionAgentParams params;
+    params.transport.object_at_centroid = at_centroid;
+    MissionAgent passive(1, params);
+    std::string why;
+    ASSERT_TRUE(passive.OnNewMission(Thesis(), &why));
+    const std::vector<Neighbour> others = {At(0, 7.1, 7.5), At(2, 7.0, 6.8)};
+    passive.Tick(PoseAt(7.5, 7.0), others, 10, nullptr);
+    passive.OnStatus(7, MissionPhase::kTransport);
+    const MissionPlan plan = passive.Tick(PoseAt(7.5, 7.0), others, 11, nullptr);
+    ASSERT_TRUE(plan.carry.has_value());
+    EXPECT_NEAR(plan.carry->centre.x, at_centroid ? 7.2 : 7.0, 1e-9) << at_centroid;
+    EXPECT_NEAR(plan.carry->centre.y, at_centroid ? 7.1 : 7.0, 1e-9) << at_centroid;
+    EXPECT_NEAR(plan.carry->formation_offset.x, at_centroid ? 0.3 : 0.5, 1e-9) << at_centroid;
+  }
+}
+
 TEST(MissionAgentTest, FormationRobotsKnowTheirMode) {
   MissionAgent passive(1, MissionAgentParams());
   std::string why;

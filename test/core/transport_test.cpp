@@ -167,6 +167,54 @@ TEST(CarryStepTest, EveryBranchDrawsOneSample) {
   EXPECT_EQ(a.Uniform(0.0, 1.0), b.Uniform(0.0, 1.0));
 }
 
+TEST(CarryStepTest, ALeaderUnderItsObjectFacesItsCourseWhenItStands) {
+  // Gathering, blocked on its way to the centre: it stands facing the course (225 degrees),
+  // not where it came from; while loading (frozen) it turns to the course even with the way
+  // free.
+  Scene s = Carrying(6.5, 7.0, 0.0, {7.0, 7.0}, true);
+  s.carry.transport = false;
+  s.in.others = {Robot(2, 6.65, 7.0)};
+  Rng rng(1, 1);
+  MoveDecision d = CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick);
+  EXPECT_EQ(d.outcome, MoveOutcome::kStand);
+  EXPECT_NEAR(d.heading.degrees(), 225.0, 1e-9);
+  s.in.others.clear();
+  s.carry.loading = true;
+  d = CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick);
+  EXPECT_EQ(d.outcome, MoveOutcome::kStand);
+  EXPECT_NEAR(d.heading.degrees(), 225.0, 1e-9);
+  // A passive robot keeps its heading; so does a leader with the option off.
+  TransportParams off;
+  off.leaders_face_course = false;
+  s.in.others = {Robot(2, 6.65, 7.0)};
+  s.carry.loading = false;
+  EXPECT_NEAR(CarryStep(s.in, Params(), off, s.carry, rng, kTick).heading.degrees(), 0.0, 1e-9);
+  s.carry.leader = false;
+  EXPECT_NEAR(CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick).heading.degrees(),
+              0.0, 1e-9);
+}
+
+TEST(CarryStepTest, APassiveRobotWeighsItsLeadersHeadingsKTimes) {
+  // Itself heading 0, leader 2 heading 180, passive 3 heading 90 (no free will, no cohesion):
+  // alone the vectors sum to (0, 1) -> 90 degrees; with the leader counted 3 times to (-2, 1)
+  // -> 153.4 degrees. Only the robots count as its neighbourhood.
+  Scene s = Carrying(7.0, 7.0, 0.0, {7.0, 7.0}, false);
+  s.carry.leaders = {2};
+  s.in.others = {Robot(2, 7.3, 7.0, 180.0), Robot(3, 6.7, 7.0, 90.0)};
+  Rng rng(1, 1);
+  TransportParams one;
+  one.transport_leader_weight = 1;
+  EXPECT_NEAR(CarryStep(s.in, Params(), one, s.carry, rng, kTick).desired_heading.degrees(), 90.0,
+              1e-9);
+  const MoveDecision d = CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick);
+  EXPECT_EQ(TransportParams().transport_leader_weight, 3);
+  EXPECT_NEAR(d.desired_heading.degrees(), std::atan2(1.0, -2.0) * 180.0 / M_PI, 1e-9);
+  EXPECT_EQ(d.neighbours_in_range, 3);
+  TransportParams bad;
+  bad.transport_leader_weight = 0;
+  EXPECT_EQ(bad.Validate(), "transport_leader_weight must be in [1, 255] but is 0");
+}
+
 TEST(CarryStepTest, ArrivedRobotsStand) {
   Scene s = Carrying(3.2, 3.0, 0.0, {3.02, 3.03}, false);
   Rng rng(1, 1);

@@ -27,6 +27,7 @@ struct MissionAgentParams {
   int progress_every_ticks = 50;     // first leader repeats its status with progress every N
   std::uint64_t phase_timeout_ticks = 20000;  // a phase that lasts longer aborts the mission
   TransportParams transport;        // gathering and carrying (leaders bound or not)
+  double local_range_m = 1.0;       // the flocking's: whether the gathered group is one chain
 };
 
 // A status report the first leader publishes.
@@ -121,6 +122,7 @@ class MissionAgent {
     std::map<std::uint16_t, Vec2> where;  // itself and every assigned robot heard
     Vec2 centroid;
     std::uint16_t inside = 0;  // of them inside the object at its current centre
+    bool OneChain(double range) const;  // every robot linked to every other within range
   };
   void Drop(std::uint16_t mission_id);
   Group Locate(const Live& live, const Pose2& self, const std::vector<Neighbour>& heard) const;

@@ -38,6 +38,24 @@ struct TransportParams {
   // else facing it) instead of driving for the centre: its heading keeps voting for the course
   // in its swarm's alignment (0: the thesis's code, every robot outside drives for the centre).
   double leader_reach_m = 0.5;
+  // The object's centre during transport: the mission robots' current centroid (the evaluated
+  // code: the rectangle jumps onto the robots when transport starts) or, false, that centroid
+  // plus the offset object centre - centroid fixed at the start (the object does not jump).
+  bool object_at_centroid = false;
+  // (ext) A leader under its object faces its course whenever it stands there (gathering, and
+  // loading: a turn in place, which a freeze allows), so that its heading shows the way from
+  // the transport's first tick on - the thesis's leader is a lighthouse that permanently shows
+  // a direction (5.2). false: it faces where it came from until its first transport tick.
+  bool leaders_face_course = true;
+  // (ext) Gathering ends when every robot is under the object and the group is one chain at the
+  // local range. At the evaluated code's range 4.0 that is the same as "all inside"; at 1.0 a
+  // last robot stopping at the rim can start the transport out of its group's reach.
+  bool gather_one_chain = true;
+  // (ext) In a swarm transport each leader's heading counts this many times in a passive
+  // robot's alignment: the thesis's stacking (outlook, 8.2.1), k - 1 virtual copies at the
+  // leader's pose, as its group sees them. 1 = the evaluated code, where n passive robots
+  // whose headings happen to agree outvote their leaders at the first tick.
+  int transport_leader_weight = 3;
   // Swarm transport (ext): within this distance of the target (m; 0: never) every mission
   // robot's speed shrinks in proportion to the object's distance to go, so that the swarm's
   // alignment, which lags its leaders' course by a few ticks, does not carry the object past
@@ -57,6 +75,7 @@ struct TransportParams {
 // What a mission robot knows of its object this tick (MissionAgent fills it).
 struct Carry {
   bool transport = false;  // false: gathering (or loading)
+  bool loading = false;    // the group is frozen under the object, waiting for LOADED
   TransportMode mode = TransportMode::kSwarm;
   bool leader = false;
   Shape object;  // at `centre`
@@ -65,6 +84,7 @@ struct Carry {
   double goal_tolerance_m = 0.05;
   Vec2 formation_offset;  // formation: its place relative to the centre, fixed at the start
   std::vector<std::uint16_t> peers;  // the mission's other robots, ascending
+  std::vector<std::uint16_t> leaders;  // the mission's leaders, ascending
 
   bool Arrived() const { return transport && Distance(centre, target) <= goal_tolerance_m; }
 };
