@@ -47,7 +47,7 @@ std::string RobotNodeOptions::Validate() const {
 }
 
 RobotNode::RobotNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
-    : nh_(nh), private_nh_(private_nh), agent_(0, core::MissionAgentParams()) {}
+    : nh_(nh), private_nh_(private_nh) {}
 
 bool RobotNode::Initialize() {
   RobotNodeOptions options;
@@ -71,13 +71,15 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
     return false;
   }
   id_ = static_cast<std::uint16_t>(options_.id);
-  rng_ = std::make_unique<core::Rng>(config_.seed, id_);
-  core::MissionAgentParams mission_params;
-  mission_params.goal_tolerance_m = config_.leader.goal_tolerance_m;
-  mission_params.object_update_ticks = config_.object_update_ticks;
-  mission_params.transport = config_.transport;
-  mission_params.local_range_m = config_.flocking.local_range_m;
-  agent_ = core::MissionAgent(id_, mission_params);
+  core::RobotBrainParams brain;
+  brain.flocking = config_.flocking;
+  brain.leader = config_.leader;
+  brain.transport = config_.transport;
+  brain.danger_zones = config_.danger_zones;
+  brain.tick_period_s = config_.tick_period_s;
+  brain.seed = config_.seed;
+  brain.object_update_ticks = config_.object_update_ticks;
+  brain_.emplace(id_, brain);
 
   position_pub_ = nh_.advertise<Robot_Position>(names::kPosition, 10);
   if (options_.direct == nullptr) {
@@ -237,45 +239,38 @@ void RobotNode::RecordTick() {
   stats_pub_.publish(line);
 }
 
-bool RobotNode::InRange(std::uint16_t from, std::uint16_t to) const {
-  return from <= id_ && id_ < to;
-}
-
 void RobotNode::OnFreeze(const Robot_Freeze::ConstPtr& msg) {
-  if (msg->robot_index_from >= msg->robot_index_to) {
-    ROS_WARN("robot %u: rejected Robot_Freeze [%u, %u): the range is empty or inverted", id_,
-             msg->robot_index_from, msg->robot_index_to);
-    return;
-  }
-  if (InRange(msg->robot_index_from, msg->robot_index_to)) frozen_ = true;
+  const std::string why = brain_->OnFreeze(msg->robot_index_from, msg->robot_index_to);
+  if (!why.empty()) ROS_WARN("robot %u: rejected %s", id_, why.c_str());
 }
 
 void RobotNode::OnContinue(const Robot_Continue::ConstPtr& msg) {
-  if (msg->robot_index_from >= msg->robot_index_to) {
-    ROS_WARN("robot %u: rejected Robot_Continue [%u, %u): the range is empty or inverted", id_,
-             msg->robot_index_from, msg->robot_index_to);
-    return;
-  }
-  if (InRange(msg->robot_index_from, msg->robot_index_to)) frozen_ = false;
+  const std::string why = brain_->OnContinue(msg->robot_index_from, msg->robot_index_to);
+  if (!why.empty()) ROS_WARN("robot %u: rejected %s", id_, why.c_str());
 }
 
 bool RobotNode::OnDescribe(std_srvs::Trigger::Request& /*req*/,
                            std_srvs::Trigger::Response& res) {
   std::ostringstream os;
-  os << "id=" << id_ << " ticks=" << ticks_ << " frozen=" << (frozen_ ? 1 : 0)
-     << " role=" << (last_plan_.lead ? "leader" : "passive") << " active=";
-  if (last_plan_.active) {
-    os << *last_plan_.active;
+  const core::RobotBrain& brain = *brain_;
+  const core::MissionPlan& plan = brain.last_plan();
+  const core::MoveDecision& move = brain.last_move();
+  os << "id=" << id_ << " ticks=" << ticks_ << " frozen=" << (brain.frozen() ? 1 : 0)
+     << " role=" << (plan.lead ? "leader" : "passive") << " active=";
+  if (plan.active) {
+    os << *plan.active;
   } else {
     os << "none";
   }
   os << " missions=[";
-  for (std::uint16_t m : agent_.LiveIds()) os << m << ":" << core::PhaseName(agent_.PhaseOf(m)) << " ";
+  for (std::uint16_t m : brain.missions().LiveIds()) {
+    os << m << ":" << core::PhaseName(brain.missions().PhaseOf(m)) << " ";
+  }
   os << "] zones=[";
-  for (const core::Zone& z : last_plan_.zones) os << z.id << (z.inverted ? ":safety " : ":danger ");
-  os << "] heard=" << last_heard_ << " desired=" << last_move_.desired_heading.degrees()
-     << " heading=" << last_move_.heading.degrees() << " distance=" << last_move_.distance_m
-     << " fleeing=" << (last_move_.fleeing ? 1 : 0);
+  for (const core::Zone& z : plan.zones) os << z.id << (z.inverted ? ":safety " : ":danger ");
+  os << "] heard=" << brain.last_heard() << " desired=" << move.desired_heading.degrees()
+     << " heading=" << move.heading.degrees() << " distance=" << move.distance_m
+     << " fleeing=" << (move.fleeing ? 1 : 0);
   res.success = true;
   res.message = os.str();
   return true;
@@ -290,28 +285,17 @@ void RobotNode::OnRobots(const Robot_Positions::ConstPtr& msg) {
 
 void RobotNode::OnNewMission(const New_Mission::ConstPtr& msg) {
   const core::MissionSpec spec = ToMissionSpec(*msg);
-  core::MissionContext context;
-  context.world_size_m = config_.flocking.world_size_m;
-  context.known_robots = known_robots_;
-  context.live_missions = agent_.LiveIds();
-  std::string why = core::ValidateMission(spec, context);
-  if (why.empty() && agent_.OnNewMission(spec, &why)) {
-    if (spec.FirstLeader() != id_) return;
+  core::MissionTaken taken;
+  const std::string why = brain_->OnNewMission(spec, known_robots_, &taken);
+  if (why.empty()) {
+    if (!taken.first_leader) return;
     if (!status_pub_) AdvertiseMissionOutlets();
     if (!progress_pub_) {
       progress_pub_ = nh_.advertise<Mission_Status>(names::kMissionProgress, kProgressQueue);
     }
     if (expected_.subscribers.empty()) LearnExpectedSubscribers();
-    // The mission's first status: this robot holds the order and queues it [T6.4]. Published
-    // with this tick's messages (before its GATHERING when it starts at once).
-    core::StatusReport queued;
-    queued.mission_id = spec.id;
-    queued.phase = core::MissionPhase::kQueued;
-    queued.assigned =
-        static_cast<std::uint16_t>(std::min<std::size_t>(spec.Assigned().size(), 65535));
-    queued.object = spec.object_centre;
-    queued.distance_to_target = core::Distance(spec.object_centre, spec.target);
-    queued_.push_back(queued);
+    // Published with this tick's messages (before its GATHERING when it starts at once).
+    queued_.push_back(taken.queued);
     return;
   }
   // Only the robots concerned say so, so that one bad message does not log N lines.
@@ -321,39 +305,24 @@ void RobotNode::OnNewMission(const New_Mission::ConstPtr& msg) {
 }
 
 void RobotNode::OnObjectUpdate(const Update_Object::ConstPtr& msg) {
-  if (!std::isfinite(msg->object_position_x) || !std::isfinite(msg->object_position_y)) {
-    ROS_WARN("robot %u: rejected Update_Object %u: non-finite position", id_, msg->mission_id);
-    return;
-  }
-  std::string why;
-  if (!agent_.OnObjectUpdate(msg->mission_id,
-                             {msg->object_position_x, msg->object_position_y}, &why)) {
-    ROS_DEBUG("robot %u: ignored: %s", id_, why.c_str());
-  }
+  const std::string why =
+      brain_->OnObjectUpdate(msg->mission_id, {msg->object_position_x, msg->object_position_y});
+  if (!why.empty()) ROS_DEBUG("robot %u: ignored: %s", id_, why.c_str());
 }
 
 void RobotNode::OnObjectDelete(const Delete_Object::ConstPtr& msg) {
-  std::string why;
-  if (!agent_.OnObjectDelete(msg->mission_id, &why)) ROS_DEBUG("robot %u: %s", id_, why.c_str());
+  const std::string why = brain_->OnObjectDelete(msg->mission_id);
+  if (!why.empty()) ROS_DEBUG("robot %u: %s", id_, why.c_str());
 }
 
 void RobotNode::OnMissionEvent(const Mission_Event::ConstPtr& msg) {
-  if (msg->event != Mission_Event::LOADED && msg->event != Mission_Event::UNLOADED) {
-    ROS_WARN("robot %u: rejected Mission_Event %u: event must be 1 (LOADED) or 2 (UNLOADED)",
-             id_, msg->mission_id);
-    return;
-  }
-  std::string why;
-  if (!agent_.OnEvent(msg->mission_id, static_cast<core::MissionEventKind>(msg->event),
-                     msg->not_before_tick, &why)) {
-    ROS_WARN("robot %u: rejected %s", id_, why.c_str());
-  }
+  const std::string why = brain_->OnEvent(
+      msg->mission_id, static_cast<core::MissionEventKind>(msg->event), msg->not_before_tick);
+  if (!why.empty()) ROS_WARN("robot %u: rejected %s", id_, why.c_str());
 }
 
 void RobotNode::OnMissionStatus(const Mission_Status::ConstPtr& msg) {
-  if (msg->state <= Mission_Status::REJECTED) {
-    agent_.OnStatus(msg->mission_id, static_cast<core::MissionPhase>(msg->state));
-  }
+  brain_->OnStatus(msg->mission_id, static_cast<core::MissionPhase>(msg->state));
 }
 
 void RobotNode::AdvertiseMissionOutlets() {
@@ -507,44 +476,11 @@ void RobotNode::Tick() {
   // Mission peers and relayed robots are positions like any other: the flock group decides
   // whom the swarm runs over, and collisions count everyone.
 
-  core::MissionOutbox outbox;
   if (options_.clock == "lockstep") AwaitMissionOutlets();
-  const core::MissionPlan plan = MissionOutletsReady()
-                                     ? agent_.Tick(in.self, in.others, perception_->tick, &outbox)
-                                     : agent_.Tick(in.self, in.others, perception_->tick, nullptr);
-  in.zones = config_.danger_zones;
-  in.zones.insert(in.zones.end(), plan.zones.begin(), plan.zones.end());
-  in.group = plan.group;
-  last_plan_ = plan;
-
-  core::MoveDecision move;
-  if (plan.carry) {
-    move = core::CarryStep(in, config_.flocking, config_.transport, *plan.carry, *rng_,
-                           config_.tick_period_s);
-  } else if (plan.lead) {
-    if (leader_memory_mission_ != plan.active) {
-      leader_memory_ = core::LeaderMemory();
-      leader_memory_mission_ = plan.active;
-    }
-    core::LeaderParams leader = config_.leader;
-    leader.keep_flock = leader.keep_flock && plan.keep_flock;
-    const core::LeaderDecision d =
-        core::LeaderStep(in, config_.flocking, leader, plan.goal, plan.steer, *rng_,
-                         config_.tick_period_s, &leader_memory_);
-    move = d.move;
-    if (d.arrived) agent_.LeaderArrived(*plan.active, &outbox);
-  } else {
-    move = core::FlockingStep(in, config_.flocking, *rng_, config_.tick_period_s);
-  }
-  last_move_ = move;
-  last_heard_ = in.others.size();
-  core::Velocity command;
-  // A stand may still turn (a carrying leader that holds faces its course).
-  if (!frozen_) {
-    command = core::CommandFor(in.self, move.heading, move.distance_m, config_.tick_period_s);
-  } else if (plan.carry && plan.carry->leader && move.distance_m == 0.0) {
-    command = core::CommandFor(in.self, move.heading, 0.0, config_.tick_period_s);
-  }
+  const core::Pose2 before = in.self;
+  core::BrainTick step = brain_->Tick(std::move(in), perception_->tick, MissionOutletsReady());
+  core::MissionOutbox& outbox = step.outbox;
+  const core::Velocity command = step.command;
   // A mission's QUEUED goes out before any other status of it (a leader-only mission may end
   // in the tick it starts), as soon as this first leader can publish.
   if (!queued_.empty() && (MissionOutletsReady() || !outbox.statuses.empty())) {
@@ -554,7 +490,6 @@ void RobotNode::Tick() {
   // Mission messages go out before the command: in lock-step the simulator steps only after
   // every command arrived, so the swarm hears them before its next tick.
   Publish(outbox);
-  // A frozen robot keeps computing (its random sequence stays aligned) but sends zero.
   // Direct links get the same content as the topics would carry, in the same order.
   SendCommand(ToTwist(command));
   if (options_.direct != nullptr && options_.clock == "lockstep") {
@@ -562,7 +497,7 @@ void RobotNode::Tick() {
   } else if (tick_done_pub_) {
     tick_done_pub_.publish(TickDone());
   }
-  const core::Pose2 after = core::TurnThenDrive(in.self, command, config_.tick_period_s);
+  const core::Pose2 after = core::TurnThenDrive(before, command, config_.tick_period_s);
   // By shared pointer: roscpp hands it to subscribers in this process (the simulator of a
   // robot_host) without serialising it and without waking its poll thread; a message
   // published by reference is serialised, and signals that thread, even for them.

@@ -25,9 +25,7 @@
 #include "swarm_transport/Robot_Positions.h"
 #include "swarm_transport/Tick_Done.h"
 #include "swarm_transport/Update_Object.h"
-#include "swarm_transport/core/leader.h"
-#include "swarm_transport/core/mission_agent.h"
-#include "swarm_transport/core/random.h"
+#include "swarm_transport/core/robot_brain.h"
 #include "swarm_transport/core/tick_stats.h"
 #include "swarm_transport/ros/direct_link.h"
 #include "swarm_transport/ros/graph.h"
@@ -103,7 +101,7 @@ class RobotNode {
   void SendCommand(const geometry_msgs::Twist& command);
   // Lock-step: this tick's Tick_Done (mission messages sent so far).
   Tick_Done TickDone() const;
-  // Computes and executes one tick on `perception_`.
+  // Computes and executes one tick on `perception_` (the brain decides, the node sends).
   void Tick();
   // Publishes what the first leader of a mission decided this tick: a phase it entered on
   // /flock/mission/status (once), a report within the phase on /flock/mission/progress.
@@ -118,14 +116,14 @@ class RobotNode {
   void LearnExpectedSubscribers();
   // Lock-step: blocks the tick (at most kLockstepOutletWaitS) until MissionOutletsReady().
   void AwaitMissionOutlets();
-  bool InRange(std::uint16_t from, std::uint16_t to) const;
 
   ros::NodeHandle nh_;
   ros::NodeHandle private_nh_;
   RobotNodeOptions options_;
   SwarmConfig config_;
   std::uint16_t id_ = 0;
-  std::unique_ptr<core::Rng> rng_;
+  // Its behaviour and state (set by Initialize).
+  std::optional<core::RobotBrain> brain_;
   ros::Publisher cmd_pub_;
   ros::Publisher position_pub_;
   ros::Subscriber neighbors_sub_;
@@ -160,15 +158,8 @@ class RobotNode {
   ros::Publisher tick_done_pub_;
   std::uint32_t events_published_ = 0;  // mission messages sent so far (tick_done)
   ros::WallTimer timer_;
-  core::MissionAgent agent_;
-  core::LeaderMemory leader_memory_;
-  std::optional<std::uint16_t> leader_memory_mission_;
   std::set<std::uint16_t> known_robots_;
-  core::MissionPlan last_plan_;
-  core::MoveDecision last_move_;
-  std::size_t last_heard_ = 0;
   Neighbors::ConstPtr perception_;
-  bool frozen_ = false;
   std::uint64_t ticks_ = 0;
   // Broadcast comm: what each (robot_id, sub_id) last sent, and when (wall s, radio round).
   struct Heard {

@@ -1,0 +1,102 @@
+// One robot's whole behaviour, pure: the mission messages it takes in, the freeze state, its
+// random generator and leader memory, and one tick from a perception to a velocity command, the
+// mission messages a first leader must send and a typed state. The robot node only moves bytes
+// between ROS and this class [issue 10].
+#ifndef SWARM_TRANSPORT_CORE_ROBOT_BRAIN_H_
+#define SWARM_TRANSPORT_CORE_ROBOT_BRAIN_H_
+
+#include <cstdint>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "swarm_transport/core/flocking.h"
+#include "swarm_transport/core/kinematics.h"
+#include "swarm_transport/core/leader.h"
+#include "swarm_transport/core/mission.h"
+#include "swarm_transport/core/mission_agent.h"
+#include "swarm_transport/core/random.h"
+#include "swarm_transport/core/transport.h"
+
+namespace swarm_transport {
+namespace core {
+
+// The behaviour every robot of a swarm shares (the /swarm keys a robot uses).
+struct RobotBrainParams {
+  FlockingParams flocking;
+  LeaderParams leader;
+  TransportParams transport;
+  std::vector<Zone> danger_zones;  // static danger zones
+  double tick_period_s = 0.1;
+  std::uint64_t seed = 1;          // base seed; each robot's generator is (seed, id)
+  int object_update_ticks = 1;     // a first leader publishes Update_Object every N ticks
+};
+
+// A New_Mission the brain took.
+struct MissionTaken {
+  bool first_leader = false;  // it runs the mission's phases and publishes its messages
+  // Its first leader's first status (QUEUED, with the object and the robots assigned).
+  StatusReport queued;
+};
+
+// The outcome of one tick.
+struct BrainTick {
+  Velocity command;     // zero while frozen (a leader under its object may turn in place)
+  MoveDecision move;    // what its behaviour decided (also while frozen)
+  MissionOutbox outbox;  // what a first leader must send before the command
+  // A leader-only mission's leader arrived this tick (its outbox holds the DONE).
+  bool arrived = false;
+};
+
+class RobotBrain {
+ public:
+  RobotBrain(std::uint16_t id, const RobotBrainParams& params);
+
+  // Inbox. Each returns an empty string when taken, else the reason it was not (its state is
+  // then unchanged). Freeze / continue apply to robots in [from, to), an empty or inverted
+  // range is rejected.
+  std::string OnFreeze(std::uint16_t from, std::uint16_t to);
+  std::string OnContinue(std::uint16_t from, std::uint16_t to);
+  // `known_robots`: the physical robots the swarm has now (a mission must name only those).
+  std::string OnNewMission(const MissionSpec& mission, const std::set<std::uint16_t>& known_robots,
+                           MissionTaken* taken);
+  std::string OnObjectUpdate(std::uint16_t mission_id, Vec2 centre);
+  std::string OnObjectDelete(std::uint16_t mission_id);
+  std::string OnEvent(std::uint16_t mission_id, MissionEventKind event,
+                      std::uint64_t not_before_tick);
+  // A status published by a mission's first leader (how members learn its phase); a value
+  // beyond kRejected is ignored.
+  void OnStatus(std::uint16_t mission_id, MissionPhase phase);
+
+  // One tick on `in` (its own pose, what it hears; zones and group are the brain's to set).
+  // `publish`: whether its mission messages can go out now (a first leader whose subscribers
+  // are not connected yet holds its phase machine and sends nothing).
+  BrainTick Tick(Perception in, std::uint64_t tick, bool publish);
+
+  std::uint16_t id() const { return id_; }
+  bool frozen() const { return frozen_; }
+  const MissionAgent& missions() const { return agent_; }
+  const MissionPlan& last_plan() const { return last_plan_; }
+  const MoveDecision& last_move() const { return last_move_; }
+  std::size_t last_heard() const { return last_heard_; }
+
+ private:
+  bool InRange(std::uint16_t from, std::uint16_t to) const { return from <= id_ && id_ < to; }
+
+  std::uint16_t id_;
+  RobotBrainParams params_;
+  Rng rng_;
+  MissionAgent agent_;
+  LeaderMemory leader_memory_;
+  std::optional<std::uint16_t> leader_memory_mission_;
+  bool frozen_ = false;
+  MissionPlan last_plan_;
+  MoveDecision last_move_;
+  std::size_t last_heard_ = 0;
+};
+
+}  // namespace core
+}  // namespace swarm_transport
+
+#endif  // SWARM_TRANSPORT_CORE_ROBOT_BRAIN_H_

@@ -1,0 +1,139 @@
+#include "swarm_transport/core/robot_brain.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace swarm_transport {
+namespace core {
+namespace {
+
+MissionAgentParams MissionParams(const RobotBrainParams& p) {
+  MissionAgentParams m;
+  m.goal_tolerance_m = p.leader.goal_tolerance_m;
+  m.object_update_ticks = p.object_update_ticks;
+  m.transport = p.transport;
+  m.local_range_m = p.flocking.local_range_m;
+  return m;
+}
+
+std::string BadRange(const char* what, std::uint16_t from, std::uint16_t to) {
+  std::ostringstream os;
+  os << what << " [" << from << ", " << to << "): the range is empty or inverted";
+  return os.str();
+}
+
+}  // namespace
+
+RobotBrain::RobotBrain(std::uint16_t id, const RobotBrainParams& params)
+    : id_(id), params_(params), rng_(params.seed, id), agent_(id, MissionParams(params)) {}
+
+std::string RobotBrain::OnFreeze(std::uint16_t from, std::uint16_t to) {
+  if (from >= to) return BadRange("Robot_Freeze", from, to);
+  if (InRange(from, to)) frozen_ = true;
+  return "";
+}
+
+std::string RobotBrain::OnContinue(std::uint16_t from, std::uint16_t to) {
+  if (from >= to) return BadRange("Robot_Continue", from, to);
+  if (InRange(from, to)) frozen_ = false;
+  return "";
+}
+
+std::string RobotBrain::OnNewMission(const MissionSpec& mission,
+                                     const std::set<std::uint16_t>& known_robots,
+                                     MissionTaken* taken) {
+  MissionContext context;
+  context.world_size_m = params_.flocking.world_size_m;
+  context.known_robots = known_robots;
+  context.live_missions = agent_.LiveIds();
+  std::string why = ValidateMission(mission, context);
+  if (!why.empty() || !agent_.OnNewMission(mission, &why)) return why;
+  if (taken != nullptr) {
+    *taken = MissionTaken();
+    taken->first_leader = mission.FirstLeader() == id_;
+    // The mission's first status: its first leader holds the order and queues it [T6.4].
+    StatusReport& queued = taken->queued;
+    queued.mission_id = mission.id;
+    queued.phase = MissionPhase::kQueued;
+    queued.assigned =
+        static_cast<std::uint16_t>(std::min<std::size_t>(mission.Assigned().size(), 65535));
+    queued.object = mission.object_centre;
+    queued.distance_to_target = Distance(mission.object_centre, mission.target);
+  }
+  return "";
+}
+
+std::string RobotBrain::OnObjectUpdate(std::uint16_t mission_id, Vec2 centre) {
+  if (!std::isfinite(centre.x) || !std::isfinite(centre.y)) {
+    std::ostringstream os;
+    os << "Update_Object " << mission_id << ": non-finite position";
+    return os.str();
+  }
+  std::string why;
+  return agent_.OnObjectUpdate(mission_id, centre, &why) ? "" : why;
+}
+
+std::string RobotBrain::OnObjectDelete(std::uint16_t mission_id) {
+  std::string why;
+  return agent_.OnObjectDelete(mission_id, &why) ? "" : why;
+}
+
+std::string RobotBrain::OnEvent(std::uint16_t mission_id, MissionEventKind event,
+                                std::uint64_t not_before_tick) {
+  if (event != MissionEventKind::kLoaded && event != MissionEventKind::kUnloaded) {
+    std::ostringstream os;
+    os << "Mission_Event " << mission_id << ": event must be 1 (LOADED) or 2 (UNLOADED)";
+    return os.str();
+  }
+  std::string why;
+  return agent_.OnEvent(mission_id, event, not_before_tick, &why) ? "" : why;
+}
+
+void RobotBrain::OnStatus(std::uint16_t mission_id, MissionPhase phase) {
+  if (phase <= MissionPhase::kRejected) agent_.OnStatus(mission_id, phase);
+}
+
+BrainTick RobotBrain::Tick(Perception in, std::uint64_t tick, bool publish) {
+  BrainTick out;
+  in.self_id = id_;
+  const MissionPlan plan = agent_.Tick(in.self, in.others, tick, publish ? &out.outbox : nullptr);
+  in.zones = params_.danger_zones;
+  in.zones.insert(in.zones.end(), plan.zones.begin(), plan.zones.end());
+  in.group = plan.group;
+  last_plan_ = plan;
+
+  const double dt = params_.tick_period_s;
+  if (plan.carry) {
+    out.move = CarryStep(in, params_.flocking, params_.transport, *plan.carry, rng_, dt);
+  } else if (plan.lead) {
+    if (leader_memory_mission_ != plan.active) {
+      leader_memory_ = LeaderMemory();
+      leader_memory_mission_ = plan.active;
+    }
+    LeaderParams leader = params_.leader;
+    leader.keep_flock = leader.keep_flock && plan.keep_flock;
+    const LeaderDecision d = LeaderStep(in, params_.flocking, leader, plan.goal, plan.steer, rng_,
+                                        dt, &leader_memory_);
+    out.move = d.move;
+    if (d.arrived) {
+      agent_.LeaderArrived(*plan.active, &out.outbox);
+      out.arrived = true;
+    }
+  } else {
+    out.move = FlockingStep(in, params_.flocking, rng_, dt);
+  }
+  last_move_ = out.move;
+  last_heard_ = in.others.size();
+  // A frozen robot keeps computing (its random sequence stays aligned) but does not drive; a
+  // leader under its object may still turn in place to face its course.
+  if (!frozen_) {
+    out.command = CommandFor(in.self, out.move.heading, out.move.distance_m, dt);
+  } else if (plan.carry && plan.carry->leader && out.move.distance_m == 0.0) {
+    out.command = CommandFor(in.self, out.move.heading, 0.0, dt);
+  }
+  return out;
+}
+
+}  // namespace core
+}  // namespace swarm_transport

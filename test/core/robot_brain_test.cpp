@@ -1,0 +1,177 @@
+// One robot's behaviour without ROS: its inbox (validation, freeze), one tick from perception
+// to command, and the mission messages a first leader must send.
+#include "swarm_transport/core/robot_brain.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace swarm_transport {
+namespace core {
+namespace {
+
+RobotBrainParams Params() {
+  RobotBrainParams p;
+  p.flocking.local_range_m = 1.0;
+  p.flocking.speed_m_per_tick = 0.1;
+  p.flocking.free_will_deg = 90.0;
+  p.tick_period_s = 1.0;
+  p.seed = 3;
+  return p;
+}
+
+// Robots [0, 3), 1 leader (robot 0), a 2 x 2 object at (7, 7) carried to (3, 3).
+MissionSpec Thesis(std::uint16_t id = 7) {
+  MissionSpec m;
+  m.id = id;
+  m.range_from = 0;
+  m.range_to = 3;
+  m.leader_number = 1;
+  m.object_centre = {7.0, 7.0};
+  m.object_size = {2.0, 2.0};
+  m.target = {3.0, 3.0};
+  return m;
+}
+
+Neighbour At(std::uint16_t id, double x, double y, double heading_deg = 0.0) {
+  Neighbour n;
+  n.id = id;
+  n.position = {x, y};
+  n.heading = Angle(heading_deg);
+  return n;
+}
+
+Perception Sees(double x, double y, double heading_deg, std::vector<Neighbour> others) {
+  Perception in;
+  in.self = {{x, y}, Angle(heading_deg)};
+  in.others = std::move(others);
+  return in;
+}
+
+TEST(RobotBrainTest, FreezeHoldsTheRobotButNotItsBehaviour) {
+  RobotBrain free(4, Params());
+  RobotBrain held(4, Params());
+  EXPECT_EQ(held.OnFreeze(0, 4), "");  // not its range
+  EXPECT_FALSE(held.frozen());
+  EXPECT_EQ(held.OnFreeze(3, 5), "");
+  EXPECT_TRUE(held.frozen());
+  const Perception in = Sees(5.0, 5.0, 30.0, {At(1, 5.5, 5.0, 90.0)});
+  for (std::uint64_t tick = 0; tick < 3; ++tick) {
+    const BrainTick a = free.Tick(in, tick, true);
+    const BrainTick b = held.Tick(in, tick, true);
+    // Same decision (its random sequence stays aligned), but it does not move.
+    EXPECT_DOUBLE_EQ(a.move.heading.degrees(), b.move.heading.degrees());
+    EXPECT_GT(a.command.linear, 0.0);
+    EXPECT_EQ(b.command.linear, 0.0);
+    EXPECT_EQ(b.command.angular, 0.0);
+  }
+  EXPECT_EQ(held.OnContinue(4, 5), "");
+  EXPECT_FALSE(held.frozen());
+  EXPECT_GT(held.Tick(in, 3, true).command.linear, 0.0);
+}
+
+TEST(RobotBrainTest, AnEmptyOrInvertedRangeIsRejectedAndChangesNothing) {
+  RobotBrain brain(4, Params());
+  EXPECT_EQ(brain.OnFreeze(5, 3), "Robot_Freeze [5, 3): the range is empty or inverted");
+  EXPECT_EQ(brain.OnFreeze(4, 4), "Robot_Freeze [4, 4): the range is empty or inverted");
+  EXPECT_FALSE(brain.frozen());
+  ASSERT_EQ(brain.OnFreeze(4, 5), "");
+  EXPECT_NE(brain.OnContinue(9, 0), "");
+  EXPECT_TRUE(brain.frozen());
+}
+
+TEST(RobotBrainTest, BadOrdersAreRejectedWithAReasonAndChangeNothing) {
+  RobotBrain brain(0, Params());
+  MissionSpec nan = Thesis();
+  nan.target.x = std::nan("");
+  MissionTaken taken;
+  EXPECT_NE(brain.OnNewMission(nan, {}, &taken), "");
+  MissionSpec unknown = Thesis();
+  EXPECT_NE(brain.OnNewMission(unknown, {0, 1}, &taken), "");  // robot 2 does not exist
+  EXPECT_TRUE(brain.missions().LiveIds().empty());
+  ASSERT_EQ(brain.OnNewMission(Thesis(), {0, 1, 2}, &taken), "");
+  EXPECT_TRUE(taken.first_leader);
+  EXPECT_EQ(taken.queued.phase, MissionPhase::kQueued);
+  EXPECT_EQ(taken.queued.assigned, 3);
+  EXPECT_NEAR(taken.queued.distance_to_target, std::hypot(4.0, 4.0), 1e-12);
+  MissionSpec again = Thesis();
+  again.object_centre = {2.0, 9.0};
+  EXPECT_NE(brain.OnNewMission(again, {}, &taken), "");  // a live id
+  EXPECT_NE(brain.OnObjectUpdate(7, {std::nan(""), 1.0}), "");
+  EXPECT_NE(brain.OnEvent(7, static_cast<MissionEventKind>(9), 0), "");
+  EXPECT_NE(brain.OnObjectDelete(99), "");
+  // The mission stands as ordered: robot 0 outside its object drives for the object at (7, 7).
+  const BrainTick t = brain.Tick(Sees(5.0, 7.0, 0.0, {}), 0, true);
+  EXPECT_NEAR(t.move.heading.degrees(), 0.0, 1e-9);
+  // A passive robot takes it without being its first leader.
+  RobotBrain passive(1, Params());
+  ASSERT_EQ(passive.OnNewMission(Thesis(), {}, &taken), "");
+  EXPECT_FALSE(taken.first_leader);
+}
+
+TEST(RobotBrainTest, AFirstLeaderRunsItsMissionAndAFrozenLeaderFacesItsCourse) {
+  RobotBrain leader(0, Params());
+  MissionTaken taken;
+  ASSERT_EQ(leader.OnNewMission(Thesis(), {}, &taken), "");
+  // Everyone inside and one chain: LOADING, freeze [0, 3).
+  const std::vector<Neighbour> group = {At(1, 7.4, 7.0), At(2, 7.0, 7.4)};
+  BrainTick t = leader.Tick(Sees(7.0, 7.0, 45.0, group), 1, true);
+  ASSERT_EQ(t.outbox.statuses.size(), 2u);
+  EXPECT_EQ(t.outbox.statuses[0].phase, MissionPhase::kGathering);
+  EXPECT_EQ(t.outbox.statuses[1].phase, MissionPhase::kLoading);
+  ASSERT_EQ(t.outbox.freeze.size(), 1u);
+  ASSERT_EQ(leader.OnFreeze(t.outbox.freeze[0].first, t.outbox.freeze[0].second), "");
+  // Frozen under its object it turns in place to its course (225 degrees) and does not drive.
+  t = leader.Tick(Sees(7.0, 7.0, 45.0, group), 2, true);
+  EXPECT_EQ(t.command.linear, 0.0);
+  EXPECT_NEAR(std::fabs(t.command.angular), M_PI, 1e-9);  // 180 degrees in a 1 s tick
+  // A first leader that cannot publish yet holds its phase machine and sends nothing.
+  RobotBrain waiting(0, Params());
+  ASSERT_EQ(waiting.OnNewMission(Thesis(), {}, &taken), "");
+  EXPECT_TRUE(waiting.Tick(Sees(7.0, 7.0, 45.0, group), 1, false).outbox.empty());
+  EXPECT_EQ(waiting.missions().PhaseOf(7), MissionPhase::kQueued);
+}
+
+TEST(RobotBrainTest, ALeaderOnlyMissionEndsWhenItsLeaderArrives) {
+  RobotBrainParams p = Params();
+  p.leader.keep_flock = false;
+  RobotBrain brain(4, p);
+  MissionSpec lead;
+  lead.id = 21;
+  lead.range_from = 4;
+  lead.range_to = 5;
+  lead.leader_number = 1;
+  lead.object_centre = {5.0, 4.9};
+  lead.target = {5.0, 5.05};
+  MissionTaken taken;
+  ASSERT_EQ(brain.OnNewMission(lead, {}, &taken), "");
+  BrainTick t = brain.Tick(Sees(5.0, 4.9, 0.0, {}), 0, true);
+  EXPECT_FALSE(t.arrived);
+  EXPECT_NEAR(t.move.heading.degrees(), 90.0, 1e-9);  // no free will: straight for the goal
+  EXPECT_NEAR(t.command.linear, 0.1, 1e-12);
+  t = brain.Tick(Sees(5.0, 5.0, 90.0, {}), 1, true);
+  EXPECT_TRUE(t.arrived);
+  ASSERT_FALSE(t.outbox.statuses.empty());
+  EXPECT_EQ(t.outbox.statuses.back().phase, MissionPhase::kDone);
+}
+
+TEST(RobotBrainTest, TheSameSeedAndIdGiveTheSameRun) {
+  RobotBrain a(2, Params());
+  RobotBrain b(2, Params());
+  RobotBrain other(3, Params());
+  const Perception in = Sees(5.0, 5.0, 0.0, {});
+  bool differs = false;
+  for (std::uint64_t tick = 0; tick < 5; ++tick) {
+    const BrainTick x = a.Tick(in, tick, true);
+    const BrainTick y = b.Tick(in, tick, true);
+    EXPECT_DOUBLE_EQ(x.command.angular, y.command.angular);
+    differs = differs || other.Tick(in, tick, true).command.angular != x.command.angular;
+  }
+  EXPECT_TRUE(differs);  // each robot draws its own free will
+}
+
+}  // namespace
+}  // namespace core
+}  // namespace swarm_transport
