@@ -221,8 +221,9 @@ MoveDecision CarryStep(const Perception& in, const FlockingParams& p, const Tran
   bool fleeing = false;
   int neighbourhood_size = 0;
   // The leaders' virtual copies (stacking) for its alignment; collisions see only the robots.
-  Perception weighted = in;
+  Perception weighted;
   if (tp.transport_leader_weight > 1) {
+    weighted = in;
     for (const Neighbour& n : in.others) {
       if (n.type != 0 || n.sub_id != 0 ||
           !std::binary_search(carry.leaders.begin(), carry.leaders.end(), n.id)) {
@@ -236,11 +237,12 @@ MoveDecision CarryStep(const Perception& in, const FlockingParams& p, const Tran
       }
     }
   }
-  const Angle desired = DesiredHeading(weighted, p, rng, &fleeing, &neighbourhood_size);
+  const Perception& aligned = tp.transport_leader_weight > 1 ? weighted : in;
+  const Angle desired = DesiredHeading(aligned, p, rng, &fleeing, &neighbourhood_size);
   MoveDecision d = BoundedSearch(in, approach, tp, carry.object, desired, duration_s);
   d.fleeing = fleeing;
   // Robots, not copies.
-  d.neighbours_in_range = weighted.others.size() == in.others.size()
+  d.neighbours_in_range = aligned.others.size() == in.others.size()
                               ? neighbourhood_size
                               : static_cast<int>(NeighbourhoodOf(in, p).size());
   return d;

@@ -167,6 +167,28 @@ TEST(CarryStepTest, EveryBranchDrawsOneSample) {
   EXPECT_EQ(a.Uniform(0.0, 1.0), b.Uniform(0.0, 1.0));
 }
 
+TEST(CarryStepTest, ALeaderJustOutsideKeepsItsCourseOnlyWithinItsReach) {
+  // 0.2 m west of the object (7, 7), course 180 (straight further out): by default (the
+  // evaluated code) it drives for the centre; with a reach of 0.5 m it faces its course and
+  // holds (its course would take it farther out).
+  Scene s = Carrying(5.8, 7.0, 90.0, {7.0, 7.0}, true);
+  s.carry.target = {3.0, 7.0};
+  Rng rng(1, 1);
+  const MoveDecision in = CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick);
+  EXPECT_NEAR(in.heading.degrees(), 0.0, 1e-9);
+  EXPECT_DOUBLE_EQ(in.distance_m, 0.1);
+  TransportParams reach;
+  reach.leader_reach_m = 0.5;
+  const MoveDecision held = CarryStep(s.in, Params(), reach, s.carry, rng, kTick);
+  EXPECT_EQ(held.outcome, MoveOutcome::kStand);
+  EXPECT_NEAR(held.heading.degrees(), 180.0, 1e-9);
+  // A course about along the border, slightly inwards (80.5 degrees): it drives on.
+  s.carry.target = {7.5, 10.0};
+  const MoveDecision along = CarryStep(s.in, Params(), reach, s.carry, rng, kTick);
+  EXPECT_GT(along.distance_m, 0.0);
+  EXPECT_LE(s.carry.object.DistanceTo(Destination(s.in, along)), 0.2 + 1e-9);
+}
+
 TEST(CarryStepTest, ALeaderUnderItsObjectFacesItsCourseWhenItStands) {
   // Gathering, blocked on its way to the centre: it stands facing the course (225 degrees),
   // not where it came from; while loading (frozen) it turns to the course even with the way
