@@ -4,31 +4,15 @@
 #include <string>
 #include <vector>
 
+#include "fixtures.h"
 #include "swarm_transport/core/mission_agent.h"
 
 namespace swarm_transport {
 namespace core {
 namespace {
 
-// Robots [0, 3), 1 leader, a 2x2 object at (7, 7) carried to (3, 3).
-MissionSpec Thesis(std::uint16_t id = 7) {
-  MissionSpec m;
-  m.id = id;
-  m.range_from = 0;
-  m.range_to = 3;
-  m.leader_number = 1;
-  m.object_centre = {7.0, 7.0};
-  m.object_size = {2.0, 2.0};
-  m.target = {3.0, 3.0};
-  return m;
-}
-
-Neighbour At(std::uint16_t id, double x, double y) {
-  Neighbour n;
-  n.id = id;
-  n.position = {x, y};
-  return n;
-}
+using fixtures::At;
+using fixtures::Thesis;
 
 Pose2 PoseAt(double x, double y) { return Pose2{{x, y}, Angle(0.0)}; }
 

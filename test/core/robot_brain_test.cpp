@@ -8,9 +8,14 @@
 #include <string>
 #include <vector>
 
+#include "fixtures.h"
+
 namespace swarm_transport {
 namespace core {
 namespace {
+
+using fixtures::At;
+using fixtures::Thesis;
 
 RobotBrainParams Params() {
   RobotBrainParams p;
@@ -20,27 +25,6 @@ RobotBrainParams Params() {
   p.tick_period_s = 1.0;
   p.seed = 3;
   return p;
-}
-
-// Robots [0, 3), 1 leader (robot 0), a 2 x 2 object at (7, 7) carried to (3, 3).
-MissionSpec Thesis(std::uint16_t id = 7) {
-  MissionSpec m;
-  m.id = id;
-  m.range_from = 0;
-  m.range_to = 3;
-  m.leader_number = 1;
-  m.object_centre = {7.0, 7.0};
-  m.object_size = {2.0, 2.0};
-  m.target = {3.0, 3.0};
-  return m;
-}
-
-Neighbour At(std::uint16_t id, double x, double y, double heading_deg = 0.0) {
-  Neighbour n;
-  n.id = id;
-  n.position = {x, y};
-  n.heading = Angle(heading_deg);
-  return n;
 }
 
 Perception Sees(double x, double y, double heading_deg, std::vector<Neighbour> others) {

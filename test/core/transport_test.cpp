@@ -6,11 +6,14 @@
 
 #include <cmath>
 
+#include "fixtures.h"
 #include "swarm_transport/core/kinematics.h"
 
 namespace swarm_transport {
 namespace core {
 namespace {
+
+using fixtures::At;
 
 constexpr double kTick = 1.0;
 
@@ -22,14 +25,6 @@ FlockingParams Params() {
   p.cohesion = 0.0;
   p.robot_radius_m = 0.05;
   return p;
-}
-
-Neighbour Robot(std::uint16_t id, double x, double y, double heading_deg = 0.0) {
-  Neighbour n;
-  n.id = id;
-  n.position = {x, y};
-  n.heading = Angle(heading_deg);
-  return n;
 }
 
 // Robot 1 at (x, y) heading `deg` carrying a 2x2 object centred at `centre` to (3, 3).
@@ -105,7 +100,7 @@ TEST(CarryStepTest, ARobotWedgedAtTheRimGoesRoundToGetIn) {
   // along or away from the rim (no safety zone holds it) rather than stand for good.
   Scene s = Carrying(6.226, 5.963, 172.0, {7.0, 7.0}, false);
   s.carry.transport = false;
-  s.in.others = {Robot(4, 6.161, 6.052), Robot(7, 6.313, 6.050)};
+  s.in.others = {At(4, 6.161, 6.052), At(7, 6.313, 6.050)};
   Rng rng(1, 1);
   const MoveDecision d = CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick);
   EXPECT_EQ(d.outcome, MoveOutcome::kSwerved);
@@ -115,7 +110,7 @@ TEST(CarryStepTest, ARobotWedgedAtTheRimGoesRoundToGetIn) {
 TEST(CarryStepTest, AnyRobotOutsideDrivesStraightForTheCentre) {
   for (const bool leader : {false, true}) {
     Scene s = Carrying(9.0, 7.0, 0.0, {7.0, 7.0}, leader);
-    s.in.others = {Robot(2, 7.0, 7.3, 90.0)};  // a heading to align with: it must not
+    s.in.others = {At(2, 7.0, 7.3, 90.0)};  // a heading to align with: it must not
     Rng rng(1, 1);
     FlockingParams p = Params();
     p.free_will_deg = 90.0;
@@ -129,7 +124,7 @@ TEST(CarryStepTest, APassiveRobotKeepsItsLookAheadPointInside) {
   // Heading east (its chain's mean) 0.1 from the east border: 1.5 steps ahead is outside, so
   // it swerves until the point 0.15 ahead is inside: cos(h) * 0.15 <= 0.1.
   Scene s = Carrying(7.9, 7.0, 0.0, {7.0, 7.0}, false);
-  s.in.others = {Robot(2, 7.6, 7.0, 0.0)};
+  s.in.others = {At(2, 7.6, 7.0, 0.0)};
   Rng rng(1, 1);
   const MoveDecision d = CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick);
   EXPECT_EQ(d.outcome, MoveOutcome::kSwerved);
@@ -149,7 +144,7 @@ TEST(CarryStepTest, GatheringHoldsInsideOnceBlockedOrFillsTheObject) {
   EXPECT_EQ(in.outcome, MoveOutcome::kStraight);
   EXPECT_NEAR(in.heading.degrees(), 0.0, 1e-9);
   // Blocked on the way: it holds, it does not swerve.
-  s.in.others = {Robot(2, 6.65, 7.0)};
+  s.in.others = {At(2, 6.65, 7.0)};
   EXPECT_EQ(CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick).outcome,
             MoveOutcome::kStand);
   TransportParams fill;
@@ -195,7 +190,7 @@ TEST(CarryStepTest, ALeaderUnderItsObjectFacesItsCourseWhenItStands) {
   // free.
   Scene s = Carrying(6.5, 7.0, 0.0, {7.0, 7.0}, true);
   s.carry.transport = false;
-  s.in.others = {Robot(2, 6.65, 7.0)};
+  s.in.others = {At(2, 6.65, 7.0)};
   Rng rng(1, 1);
   MoveDecision d = CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick);
   EXPECT_EQ(d.outcome, MoveOutcome::kStand);
@@ -208,7 +203,7 @@ TEST(CarryStepTest, ALeaderUnderItsObjectFacesItsCourseWhenItStands) {
   // A passive robot keeps its heading; so does a leader with the option off.
   TransportParams off;
   off.leaders_face_course = false;
-  s.in.others = {Robot(2, 6.65, 7.0)};
+  s.in.others = {At(2, 6.65, 7.0)};
   s.carry.loading = false;
   EXPECT_NEAR(CarryStep(s.in, Params(), off, s.carry, rng, kTick).heading.degrees(), 0.0, 1e-9);
   s.carry.leader = false;
@@ -222,7 +217,7 @@ TEST(CarryStepTest, APassiveRobotWeighsItsLeadersHeadingsKTimes) {
   // -> 153.4 degrees. Only the robots count as its neighbourhood.
   Scene s = Carrying(7.0, 7.0, 0.0, {7.0, 7.0}, false);
   s.carry.leaders = {2};
-  s.in.others = {Robot(2, 7.3, 7.0, 180.0), Robot(3, 6.7, 7.0, 90.0)};
+  s.in.others = {At(2, 7.3, 7.0, 180.0), At(3, 6.7, 7.0, 90.0)};
   Rng rng(1, 1);
   TransportParams one;
   one.transport_leader_weight = 1;
@@ -259,7 +254,7 @@ TEST(CarryStepTest, FormationRobotsHoldTheirOffsetsAndMoveAsOneBody) {
     s.carry.peers.clear();
     for (std::size_t j = 0; j < places.size(); ++j) {
       if (j == i) continue;
-      s.in.others.push_back(Robot(static_cast<std::uint16_t>(j + 1), places[j].x, places[j].y));
+      s.in.others.push_back(At(static_cast<std::uint16_t>(j + 1), places[j].x, places[j].y));
       s.carry.peers.push_back(static_cast<std::uint16_t>(j + 1));
     }
     Rng rng(1, 1);
@@ -277,7 +272,7 @@ TEST(CarryStepTest, FormationRobotsPushedApartDoNotFightThePush) {
   s.carry.mode = TransportMode::kFormation;
   s.carry.formation_offset = {0.0, 0.0};
   s.carry.peers = {2};
-  s.in.others = {Robot(2, 7.1, 7.0)};
+  s.in.others = {At(2, 7.1, 7.0)};
   Rng rng(1, 1);
   TransportParams tp;
   const MoveDecision d = CarryStep(s.in, Params(), tp, s.carry, rng, kTick);

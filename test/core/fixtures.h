@@ -1,0 +1,40 @@
+// Scenes the core's tests share: the thesis's transport mission and a neighbour at a pose.
+#ifndef SWARM_TRANSPORT_TEST_CORE_FIXTURES_H_
+#define SWARM_TRANSPORT_TEST_CORE_FIXTURES_H_
+
+#include <cstdint>
+
+#include "swarm_transport/core/flocking.h"
+#include "swarm_transport/core/mission.h"
+
+namespace swarm_transport {
+namespace core {
+namespace fixtures {
+
+// Robots [0, 3), 1 leader (robot 0), a 2 x 2 object at (7, 7) carried to (3, 3).
+inline MissionSpec Thesis(std::uint16_t id = 7) {
+  MissionSpec m;
+  m.id = id;
+  m.range_from = 0;
+  m.range_to = 3;
+  m.leader_number = 1;
+  m.object_centre = {7.0, 7.0};
+  m.object_size = {2.0, 2.0};
+  m.target = {3.0, 3.0};
+  return m;
+}
+
+// A physical robot `id` at (x, y) heading `heading_deg`.
+inline Neighbour At(std::uint16_t id, double x, double y, double heading_deg = 0.0) {
+  Neighbour n;
+  n.id = id;
+  n.position = {x, y};
+  n.heading = Angle(heading_deg);
+  return n;
+}
+
+}  // namespace fixtures
+}  // namespace core
+}  // namespace swarm_transport
+
+#endif  // SWARM_TRANSPORT_TEST_CORE_FIXTURES_H_
