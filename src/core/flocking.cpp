@@ -10,6 +10,7 @@ namespace core {
 namespace {
 
 constexpr std::uint8_t kTypePhysical = 0;
+constexpr std::uint8_t kTypeVirtual = 1;
 constexpr std::uint8_t kTypeStatist = 2;
 // Closer than this the centroid gives no direction to turn to.
 constexpr double kCentroidTolerance = 1e-9;
@@ -123,6 +124,11 @@ std::vector<Neighbour> NeighbourhoodOf(const Perception& in, const FlockingParam
   return neighbourhood;
 }
 
+int NeighbourhoodSize(const std::vector<Neighbour>& neighbourhood) {
+  return static_cast<int>(std::count_if(neighbourhood.begin(), neighbourhood.end(),
+                                        [](const Neighbour& n) { return n.type != kTypeVirtual; }));
+}
+
 Angle DesiredHeading(const Perception& in, const FlockingParams& p, Rng& rng, bool* fleeing,
                      int* neighbourhood_size) {
   const double free_will = rng.Uniform(-p.free_will_deg / 2.0, p.free_will_deg / 2.0);
@@ -150,13 +156,13 @@ Angle DesiredHeading(const Perception& in, const FlockingParams& p, Rng& rng, bo
       if (allowed(escape) && (!allowed(target) || closer(escape, target))) target = escape;
     }
     if (neighbourhood_size != nullptr) {
-      *neighbourhood_size = static_cast<int>(NeighbourhoodOf(in, p).size());
+      *neighbourhood_size = NeighbourhoodSize(NeighbourhoodOf(in, p));
     }
     return Bearing(position, target);
   }
 
   const std::vector<Neighbour> neighbourhood = NeighbourhoodOf(in, p);
-  if (neighbourhood_size != nullptr) *neighbourhood_size = static_cast<int>(neighbourhood.size());
+  if (neighbourhood_size != nullptr) *neighbourhood_size = NeighbourhoodSize(neighbourhood);
   std::vector<Angle> headings;
   Vec2 sum;
   for (const Neighbour& n : neighbourhood) {

@@ -45,7 +45,7 @@ LeaderDecision LeaderStep(const Perception& in, const FlockingParams& p, const L
   const Vec2 position = in.self.position;
   LeaderDecision decision;
   decision.move = Stand(in, steer);
-  decision.move.neighbours_in_range = static_cast<int>(neighbourhood.size());
+  decision.move.neighbours_in_range = NeighbourhoodSize(neighbourhood);
 
   const double to_goal = Distance(position, goal);
   if (to_goal <= lp.goal_tolerance_m) {

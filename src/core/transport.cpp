@@ -241,10 +241,7 @@ MoveDecision CarryStep(const Perception& in, const FlockingParams& p, const Tran
   const Angle desired = DesiredHeading(aligned, p, rng, &fleeing, &neighbourhood_size);
   MoveDecision d = BoundedSearch(in, approach, tp, carry.object, desired, duration_s);
   d.fleeing = fleeing;
-  // Robots, not copies.
-  d.neighbours_in_range = aligned.others.size() == in.others.size()
-                              ? neighbourhood_size
-                              : static_cast<int>(NeighbourhoodOf(in, p).size());
+  d.neighbours_in_range = neighbourhood_size;
   return d;
 }
 

@@ -1,4 +1,5 @@
-// Scenes the core's tests share: the thesis's transport mission and a neighbour at a pose.
+// Scenes the core's tests share: quiet flocking parameters, the thesis's transport mission and
+// a neighbour at a pose.
 #ifndef SWARM_TRANSPORT_TEST_CORE_FIXTURES_H_
 #define SWARM_TRANSPORT_TEST_CORE_FIXTURES_H_
 
@@ -10,6 +11,22 @@
 namespace swarm_transport {
 namespace core {
 namespace fixtures {
+
+// Deterministic flocking: no free will, no cohesion, range 1.0, 0.1 per tick, MinSeparation()
+// = 0.11.
+inline FlockingParams Quiet() {
+  FlockingParams p;
+  p.local_range_m = 1.0;
+  p.speed_m_per_tick = 0.1;
+  p.free_will_deg = 0.0;
+  p.cohesion = 0.0;
+  p.robot_radius_m = 0.05;
+  p.collision_margin = 0.1;
+  p.speed_reduction = 0.5;
+  p.speed_retries = 2;
+  p.zone_margin_m = 0.02;
+  return p;
+}
 
 // Robots [0, 3), 1 leader (robot 0), a 2 x 2 object at (7, 7) carried to (3, 3).
 inline MissionSpec Thesis(std::uint16_t id = 7) {

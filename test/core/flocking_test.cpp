@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "fixtures.h"
+
 namespace swarm_transport {
 namespace core {
 namespace {
@@ -12,20 +14,7 @@ namespace {
 constexpr double kTolerance = 1e-9;
 constexpr double kTick = 1.0;
 
-// Deterministic parameters: no free will, no cohesion, MinSeparation() = 0.11.
-FlockingParams Quiet() {
-  FlockingParams p;
-  p.local_range_m = 1.0;
-  p.speed_m_per_tick = 0.1;
-  p.free_will_deg = 0.0;
-  p.cohesion = 0.0;
-  p.robot_radius_m = 0.05;
-  p.collision_margin = 0.1;
-  p.speed_reduction = 0.5;
-  p.speed_retries = 2;
-  p.zone_margin_m = 0.02;
-  return p;
-}
+using fixtures::Quiet;
 
 Neighbour Robot(std::uint16_t id, double x, double y, double heading_deg = 0.0,
                 std::uint8_t type = 0) {

@@ -14,18 +14,9 @@ namespace core {
 namespace {
 
 using fixtures::At;
+using fixtures::Quiet;
 
 constexpr double kTick = 1.0;
-
-FlockingParams Params() {
-  FlockingParams p;
-  p.local_range_m = 1.0;
-  p.speed_m_per_tick = 0.1;
-  p.free_will_deg = 0.0;
-  p.cohesion = 0.0;
-  p.robot_radius_m = 0.05;
-  return p;
-}
 
 // Robot 1 at (x, y) heading `deg` carrying a 2x2 object centred at `centre` to (3, 3).
 struct Scene {
@@ -71,7 +62,7 @@ TEST(CarryStepTest, ALeaderIsBoundToTheCurrentObject) {
   // at 0.75^2 x 0.1 (0.040 per axis) it stays inside.
   Scene s = Carrying(6.05, 6.05, 0.0, {7.0, 7.0}, true);
   Rng rng(1, 1);
-  const MoveDecision d = CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick);
+  const MoveDecision d = CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick);
   EXPECT_EQ(d.outcome, MoveOutcome::kSlowed);
   EXPECT_NEAR(d.heading.degrees(), 225.0, 1e-9);
   EXPECT_NEAR(d.distance_m, 0.1 * 0.75 * 0.75, 1e-12);
@@ -83,14 +74,14 @@ TEST(CarryStepTest, ABlockedLeaderTurnsToItsCourseAndHolds) {
   Scene s = Carrying(6.0, 7.0, 90.0, {7.0, 7.0}, true);
   s.carry.target = {3.0, 7.0};  // course 180: straight out of the west border
   Rng rng(1, 1);
-  const MoveDecision d = CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick);
+  const MoveDecision d = CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick);
   EXPECT_EQ(d.outcome, MoveOutcome::kStand);
   EXPECT_DOUBLE_EQ(d.distance_m, 0.0);
   EXPECT_NEAR(d.heading.degrees(), 180.0, 1e-9);
   // Unbound, it drives on.
   TransportParams unbound;
   unbound.leaders_bound = false;
-  const MoveDecision free = CarryStep(s.in, Params(), unbound, s.carry, rng, kTick);
+  const MoveDecision free = CarryStep(s.in, Quiet(), unbound, s.carry, rng, kTick);
   EXPECT_EQ(free.outcome, MoveOutcome::kStraight);
   EXPECT_DOUBLE_EQ(free.distance_m, 0.1);
 }
@@ -102,7 +93,7 @@ TEST(CarryStepTest, ARobotWedgedAtTheRimGoesRoundToGetIn) {
   s.carry.transport = false;
   s.in.others = {At(4, 6.161, 6.052), At(7, 6.313, 6.050)};
   Rng rng(1, 1);
-  const MoveDecision d = CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick);
+  const MoveDecision d = CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick);
   EXPECT_EQ(d.outcome, MoveOutcome::kSwerved);
   EXPECT_GT(d.distance_m, 0.0);
 }
@@ -112,7 +103,7 @@ TEST(CarryStepTest, AnyRobotOutsideDrivesStraightForTheCentre) {
     Scene s = Carrying(9.0, 7.0, 0.0, {7.0, 7.0}, leader);
     s.in.others = {At(2, 7.0, 7.3, 90.0)};  // a heading to align with: it must not
     Rng rng(1, 1);
-    FlockingParams p = Params();
+    FlockingParams p = Quiet();
     p.free_will_deg = 90.0;
     const MoveDecision d = CarryStep(s.in, p, TransportParams(), s.carry, rng, kTick);
     EXPECT_NEAR(d.heading.degrees(), 180.0, 1e-9) << leader;
@@ -126,7 +117,7 @@ TEST(CarryStepTest, APassiveRobotKeepsItsLookAheadPointInside) {
   Scene s = Carrying(7.9, 7.0, 0.0, {7.0, 7.0}, false);
   s.in.others = {At(2, 7.6, 7.0, 0.0)};
   Rng rng(1, 1);
-  const MoveDecision d = CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick);
+  const MoveDecision d = CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick);
   EXPECT_EQ(d.outcome, MoveOutcome::kSwerved);
   EXPECT_NEAR(d.distance_m, 0.1, 1e-12);
   const Vec2 ahead = s.in.self.position + UnitVector(d.heading) * 0.15;
@@ -140,16 +131,16 @@ TEST(CarryStepTest, GatheringHoldsInsideOnceBlockedOrFillsTheObject) {
   s.carry.transport = false;
   Rng rng(1, 1);
   // Inside and free: straight on for the centre (the rim stays free for late-comers).
-  const MoveDecision in = CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick);
+  const MoveDecision in = CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick);
   EXPECT_EQ(in.outcome, MoveOutcome::kStraight);
   EXPECT_NEAR(in.heading.degrees(), 0.0, 1e-9);
   // Blocked on the way: it holds, it does not swerve.
   s.in.others = {At(2, 6.65, 7.0)};
-  EXPECT_EQ(CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick).outcome,
+  EXPECT_EQ(CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick).outcome,
             MoveOutcome::kStand);
   TransportParams fill;
   fill.gathering = GatherMode::kFill;
-  EXPECT_GT(CarryStep(s.in, Params(), fill, s.carry, rng, kTick).distance_m, 0.0);
+  EXPECT_GT(CarryStep(s.in, Quiet(), fill, s.carry, rng, kTick).distance_m, 0.0);
 }
 
 TEST(CarryStepTest, EveryBranchDrawsOneSample) {
@@ -157,8 +148,8 @@ TEST(CarryStepTest, EveryBranchDrawsOneSample) {
   Scene outside = Carrying(9.0, 9.0, 0.0, {7.0, 7.0}, true);
   Rng a(5, 5);
   Rng b(5, 5);
-  CarryStep(inside.in, Params(), TransportParams(), inside.carry, a, kTick);
-  CarryStep(outside.in, Params(), TransportParams(), outside.carry, b, kTick);
+  CarryStep(inside.in, Quiet(), TransportParams(), inside.carry, a, kTick);
+  CarryStep(outside.in, Quiet(), TransportParams(), outside.carry, b, kTick);
   EXPECT_EQ(a.Uniform(0.0, 1.0), b.Uniform(0.0, 1.0));
 }
 
@@ -169,17 +160,17 @@ TEST(CarryStepTest, ALeaderJustOutsideKeepsItsCourseOnlyWithinItsReach) {
   Scene s = Carrying(5.8, 7.0, 90.0, {7.0, 7.0}, true);
   s.carry.target = {3.0, 7.0};
   Rng rng(1, 1);
-  const MoveDecision in = CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick);
+  const MoveDecision in = CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick);
   EXPECT_NEAR(in.heading.degrees(), 0.0, 1e-9);
   EXPECT_DOUBLE_EQ(in.distance_m, 0.1);
   TransportParams reach;
   reach.leader_reach_m = 0.5;
-  const MoveDecision held = CarryStep(s.in, Params(), reach, s.carry, rng, kTick);
+  const MoveDecision held = CarryStep(s.in, Quiet(), reach, s.carry, rng, kTick);
   EXPECT_EQ(held.outcome, MoveOutcome::kStand);
   EXPECT_NEAR(held.heading.degrees(), 180.0, 1e-9);
   // A course about along the border, slightly inwards (80.5 degrees): it drives on.
   s.carry.target = {7.5, 10.0};
-  const MoveDecision along = CarryStep(s.in, Params(), reach, s.carry, rng, kTick);
+  const MoveDecision along = CarryStep(s.in, Quiet(), reach, s.carry, rng, kTick);
   EXPECT_GT(along.distance_m, 0.0);
   EXPECT_LE(s.carry.object.DistanceTo(Destination(s.in, along)), 0.2 + 1e-9);
 }
@@ -192,12 +183,12 @@ TEST(CarryStepTest, ALeaderUnderItsObjectFacesItsCourseWhenItStands) {
   s.carry.transport = false;
   s.in.others = {At(2, 6.65, 7.0)};
   Rng rng(1, 1);
-  MoveDecision d = CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick);
+  MoveDecision d = CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick);
   EXPECT_EQ(d.outcome, MoveOutcome::kStand);
   EXPECT_NEAR(d.heading.degrees(), 225.0, 1e-9);
   s.in.others.clear();
   s.carry.loading = true;
-  d = CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick);
+  d = CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick);
   EXPECT_EQ(d.outcome, MoveOutcome::kStand);
   EXPECT_NEAR(d.heading.degrees(), 225.0, 1e-9);
   // A passive robot keeps its heading; so does a leader with the option off.
@@ -205,9 +196,9 @@ TEST(CarryStepTest, ALeaderUnderItsObjectFacesItsCourseWhenItStands) {
   off.leaders_face_course = false;
   s.in.others = {At(2, 6.65, 7.0)};
   s.carry.loading = false;
-  EXPECT_NEAR(CarryStep(s.in, Params(), off, s.carry, rng, kTick).heading.degrees(), 0.0, 1e-9);
+  EXPECT_NEAR(CarryStep(s.in, Quiet(), off, s.carry, rng, kTick).heading.degrees(), 0.0, 1e-9);
   s.carry.leader = false;
-  EXPECT_NEAR(CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick).heading.degrees(),
+  EXPECT_NEAR(CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick).heading.degrees(),
               0.0, 1e-9);
 }
 
@@ -221,9 +212,9 @@ TEST(CarryStepTest, APassiveRobotWeighsItsLeadersHeadingsKTimes) {
   Rng rng(1, 1);
   TransportParams one;
   one.transport_leader_weight = 1;
-  EXPECT_NEAR(CarryStep(s.in, Params(), one, s.carry, rng, kTick).desired_heading.degrees(), 90.0,
+  EXPECT_NEAR(CarryStep(s.in, Quiet(), one, s.carry, rng, kTick).desired_heading.degrees(), 90.0,
               1e-9);
-  const MoveDecision d = CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick);
+  const MoveDecision d = CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick);
   EXPECT_EQ(TransportParams().transport_leader_weight, 3);
   EXPECT_NEAR(d.desired_heading.degrees(), std::atan2(1.0, -2.0) * 180.0 / M_PI, 1e-9);
   EXPECT_EQ(d.neighbours_in_range, 3);
@@ -235,7 +226,7 @@ TEST(CarryStepTest, APassiveRobotWeighsItsLeadersHeadingsKTimes) {
 TEST(CarryStepTest, ArrivedRobotsStand) {
   Scene s = Carrying(3.2, 3.0, 0.0, {3.02, 3.03}, false);
   Rng rng(1, 1);
-  EXPECT_EQ(CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick).outcome,
+  EXPECT_EQ(CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick).outcome,
             MoveOutcome::kStand);
 }
 
@@ -258,7 +249,7 @@ TEST(CarryStepTest, FormationRobotsHoldTheirOffsetsAndMoveAsOneBody) {
       s.carry.peers.push_back(static_cast<std::uint16_t>(j + 1));
     }
     Rng rng(1, 1);
-    const MoveDecision d = CarryStep(s.in, Params(), tp, s.carry, rng, kTick);
+    const MoveDecision d = CarryStep(s.in, Quiet(), tp, s.carry, rng, kTick);
     const Vec2 moved = Destination(s.in, d) - places[i];
     EXPECT_NEAR(moved.x, -step / std::sqrt(2.0), 1e-9) << i;
     EXPECT_NEAR(moved.y, -step / std::sqrt(2.0), 1e-9) << i;
@@ -275,7 +266,7 @@ TEST(CarryStepTest, FormationRobotsPushedApartDoNotFightThePush) {
   s.in.others = {At(2, 7.1, 7.0)};
   Rng rng(1, 1);
   TransportParams tp;
-  const MoveDecision d = CarryStep(s.in, Params(), tp, s.carry, rng, kTick);
+  const MoveDecision d = CarryStep(s.in, Quiet(), tp, s.carry, rng, kTick);
   const Vec2 moved = Destination(s.in, d) - s.in.self.position;
   const double step = 0.1 * tp.formation_speed_fraction / std::sqrt(2.0);
   EXPECT_NEAR(moved.x, -step, 1e-9);
@@ -287,7 +278,7 @@ TEST(CarryStepTest, AFormationRobotOutOfPlaceRejoinsAtFullSpeed) {
   s.carry.mode = TransportMode::kFormation;
   s.carry.formation_offset = {0.0, 0.5};  // its place is 0.5 m north-west of where it is
   Rng rng(1, 1);
-  const MoveDecision d = CarryStep(s.in, Params(), TransportParams(), s.carry, rng, kTick);
+  const MoveDecision d = CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick);
   EXPECT_DOUBLE_EQ(d.distance_m, 0.1);
   const Vec2 to = Destination(s.in, d);
   EXPECT_LT(Distance(to, Vec2{7.0, 7.5}), Distance(s.in.self.position, Vec2{7.0, 7.5}) - 0.09);

@@ -83,17 +83,20 @@ struct MoveDecision {
   double distance_m = 0.0;    // distance of the executed move (0 = stand)
   MoveOutcome outcome = MoveOutcome::kStand;
   bool fleeing = false;       // step 4 applied
-  int neighbours_in_range = 0;  // including itself
+  int neighbours_in_range = 0;  // its neighbourhood's robots and statists, itself included
 };
 
 // The robots (and copies / statists) alignment and cohesion run over, itself first: the
 // candidates `in.group` admits, linked to itself within local range - directly (disc) or hop
 // by hop (chain) - and every statist regardless of range.
 std::vector<Neighbour> NeighbourhoodOf(const Perception& in, const FlockingParams& p);
+// Its robots and statists: virtual copies weigh in alignment but are nobody to count.
+int NeighbourhoodSize(const std::vector<Neighbour>& neighbourhood);
 
 // Steps 1-4: the heading the robot wants. Draws exactly one free-will sample from `rng` every
 // call (also when fleeing) so the random sequence never depends on the branch taken.
-// `neighbourhood_size` (optional) receives the size of NeighbourhoodOf(in, p), computed once.
+// `neighbourhood_size` (optional) receives NeighbourhoodSize of NeighbourhoodOf(in, p),
+// computed once.
 Angle DesiredHeading(const Perception& in, const FlockingParams& p, Rng& rng, bool* fleeing,
                      int* neighbourhood_size = nullptr);
 
