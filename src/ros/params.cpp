@@ -294,4 +294,32 @@ bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, std::string*
                        });
 }
 
+namespace {
+
+// A private string parameter that must name one of a few modes.
+template <typename Mode, typename Parse>
+bool ReadPrivateMode(const ros::NodeHandle& nh, const std::string& key, const char* allowed,
+                     Mode* value, std::string* error, Parse parse) {
+  std::string name;
+  if (!nh.hasParam(key)) return true;
+  if (!ReadPrivate(nh, key, &name, error)) return false;
+  if (!parse(name, value)) {
+    *error = "~" + key + " must be " + allowed + " but is '" + name + "'";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, core::Clock* value,
+                 std::string* error) {
+  return ReadPrivateMode(nh, key, "'realtime' or 'lockstep'", value, error, core::ParseClock);
+}
+
+bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, core::Comm* value,
+                 std::string* error) {
+  return ReadPrivateMode(nh, key, "'local' or 'broadcast'", value, error, core::ParseComm);
+}
+
 }  // namespace swarm_transport

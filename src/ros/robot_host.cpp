@@ -30,10 +30,6 @@ std::string RobotHostOptions::Validate() const {
     os << "~from must be an id in [0, 65535] but is " << from;
   } else if (to <= from || to > kMaxRobots) {
     os << "~to must be in (~from, 65536] but is " << to << " (~from " << from << ")";
-  } else if (clock != "realtime" && clock != "lockstep") {
-    os << "~clock must be 'realtime' or 'lockstep' but is '" << clock << "'";
-  } else if (comm != "local" && comm != "broadcast") {
-    os << "~comm must be 'local' or 'broadcast' but is '" << comm << "'";
   } else if (threads < 1 || threads > kMaxThreads) {
     os << "~threads must be in [1, " << kMaxThreads << "] but is " << threads;
   }
@@ -147,14 +143,16 @@ RobotHost::~RobotHost() {
 }
 
 bool RobotHost::Initialize() {
-  private_nh_.param("from", options_.from, 0);
-  private_nh_.param("to", options_.to, 0);
-  private_nh_.param<std::string>("clock", options_.clock, "realtime");
-  private_nh_.param<std::string>("comm", options_.comm, "local");
-  private_nh_.param("diagnostics", options_.diagnostics, false);
-  private_nh_.param("threads", options_.threads, 1);
-  private_nh_.param("run_simulator", options_.run_simulator, false);
-  const std::string error = options_.Validate();
+  std::string error;
+  if (ReadPrivate(private_nh_, "from", &options_.from, &error) &&
+      ReadPrivate(private_nh_, "to", &options_.to, &error) &&
+      ReadPrivate(private_nh_, "clock", &options_.clock, &error) &&
+      ReadPrivate(private_nh_, "comm", &options_.comm, &error) &&
+      ReadPrivate(private_nh_, "diagnostics", &options_.diagnostics, &error) &&
+      ReadPrivate(private_nh_, "threads", &options_.threads, &error) &&
+      ReadPrivate(private_nh_, "run_simulator", &options_.run_simulator, &error)) {
+    error = options_.Validate();
+  }
   if (!error.empty()) {
     ROS_FATAL("robot_host: invalid parameters: %s", error.c_str());
     return false;
@@ -165,19 +163,20 @@ bool RobotHost::Initialize() {
     if (!simulator_->Initialize()) return false;
     // Direct links carry no clock: robots ticking on their own wall timers would answer
     // lock-step rounds out of turn, and lock-step robots would wait for rounds forever.
-    const std::string sim_clock = simulator_->lockstep() ? "lockstep" : "realtime";
+    const core::Clock sim_clock =
+        simulator_->lockstep() ? core::Clock::kLockstep : core::Clock::kRealtime;
     if (sim_clock != options_.clock) {
       ROS_FATAL(
           "robot_host: invalid parameters: ~clock is '%s' but ~simulator/clock is '%s'; "
           "with ~run_simulator both must be the same",
-          options_.clock.c_str(), sim_clock.c_str());
+          core::ClockName(options_.clock), core::ClockName(sim_clock));
       return false;
     }
   }
   for (int i = 0; i < options_.threads; ++i) {
     queues_.push_back(std::make_unique<ros::CallbackQueue>());
   }
-  const bool realtime = options_.clock == "realtime";
+  const bool realtime = options_.clock == core::Clock::kRealtime;
   const ros::WallTime started = ros::WallTime::now();
   for (int id = options_.from; id < options_.to; ++id) {
     ros::CallbackQueue* queue = queues_[robots_.size() % queues_.size()].get();
@@ -198,7 +197,7 @@ bool RobotHost::Initialize() {
   if (simulator_) inboxes_ = std::make_unique<Inbox[]>(robots_.size());
   ROS_INFO("robot_host: robots [%d, %d) up in %.1f s (%s clock, %s comm, %d threads)",
            options_.from, options_.to, (ros::WallTime::now() - started).toSec(),
-           options_.clock.c_str(), options_.comm.c_str(), options_.threads);
+           core::ClockName(options_.clock), core::CommName(options_.comm), options_.threads);
   // Callbacks start only now: a robot must not hear anything while it is being set up.
   // Lock-step with the simulator here: the simulator runs the queues (SpinRobots), so a tick
   // needs no thread hand-off and callbacks run in the same order every time.
@@ -236,7 +235,7 @@ void RobotHost::Deliver(std::uint16_t id, const Neighbors::ConstPtr& round) {
   ros::CallbackQueue* queue = queues_[index % queues_.size()].get();
   // On the robot's queue, like a neighbors message: never concurrently with its other
   // callbacks, and in real time on its own thread, not the simulator's.
-  if (options_.clock == "lockstep") {
+  if (options_.clock == core::Clock::kLockstep) {
     // Every round is a tick and is answered (the simulator sends the next one only then).
     queue->addCallback(
         boost::make_shared<QueuedCall>([robot, round]() { robot->OnNeighbors(round); }),
@@ -267,7 +266,7 @@ void RobotHost::Deliver(std::uint16_t id, const Neighbors::ConstPtr& round) {
 
 void RobotHost::SpinRobots() {
   // Real time: the spinner threads run the queues.
-  if (options_.clock != "lockstep" || !spinners_.empty()) return;
+  if (options_.clock != core::Clock::kLockstep || !spinners_.empty()) return;
   // Queue by queue: robot k's callbacks in arrival order, the robots of a queue in the order
   // their rounds were delivered (ascending id), so a run is the same every time.
   for (auto& queue : queues_) queue->callAvailable(ros::WallDuration());

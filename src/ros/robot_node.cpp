@@ -36,13 +36,7 @@ constexpr double kCurrentPositionM = 0.01;
 
 std::string RobotNodeOptions::Validate() const {
   std::ostringstream os;
-  if (id < 0 || id > 65535) {
-    os << "~id must be set to an integer in [0, 65535] but is " << id;
-  } else if (clock != "realtime" && clock != "lockstep") {
-    os << "~clock must be 'realtime' or 'lockstep' but is '" << clock << "'";
-  } else if (comm != "local" && comm != "broadcast") {
-    os << "~comm must be 'local' or 'broadcast' but is '" << comm << "'";
-  }
+  if (id < 0 || id > 65535) os << "~id must be set to an integer in [0, 65535] but is " << id;
   return os.str();
 }
 
@@ -51,10 +45,14 @@ RobotNode::RobotNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
 
 bool RobotNode::Initialize() {
   RobotNodeOptions options;
-  private_nh_.param("id", options.id, -1);
-  private_nh_.param<std::string>("clock", options.clock, "realtime");
-  private_nh_.param<std::string>("comm", options.comm, "local");
-  private_nh_.param("diagnostics", options.diagnostics, false);
+  std::string error;
+  if (!ReadPrivate(private_nh_, "id", &options.id, &error) ||
+      !ReadPrivate(private_nh_, "clock", &options.clock, &error) ||
+      !ReadPrivate(private_nh_, "comm", &options.comm, &error) ||
+      !ReadPrivate(private_nh_, "diagnostics", &options.diagnostics, &error)) {
+    ROS_FATAL("robot: invalid parameters: %s", error.c_str());
+    return false;
+  }
   return Initialize(options);
 }
 
@@ -88,7 +86,7 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
     neighbors_sub_ = nh_.subscribe(names::kNeighbors, 2, &RobotNode::OnNeighbors, this,
                                    ros::TransportHints().tcpNoDelay());
   }
-  if (options_.clock == "lockstep") {
+  if (options_.clock == core::Clock::kLockstep) {
     // Lock-step: mission messages arrive relayed inside `neighbors`, each at the tick after it
     // was sent, whatever the scheduling; the simulator waits for this robot's tick_done. Only
     // the simulator and observers subscribe to mission topics here, so every robot can
@@ -106,24 +104,24 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
     status_sub_ = nh_.subscribe(names::kMissionStatus, 50, &RobotNode::OnMissionStatus, this);
   }
   robots_sub_ = nh_.subscribe(names::kRobots, 2, &RobotNode::OnRobots, this);
-  if (options_.comm == "broadcast") {
+  if (options_.comm == core::Comm::kBroadcast) {
     position_sub_ = nh_.subscribe(names::kPosition, kBroadcastQueue, &RobotNode::OnPosition, this,
                                   ros::TransportHints().tcpNoDelay());
   }
   if (options_.diagnostics) {
-    stats_ = std::make_unique<core::TickStats>(config_.tick_period_s, options_.clock == "realtime");
+    stats_ = std::make_unique<core::TickStats>(config_.tick_period_s, options_.clock == core::Clock::kRealtime);
     stats_pub_ = nh_.advertise<std_msgs::String>(kStatsTopic, kStatsQueue);
   }
   describe_srv_ = private_nh_.advertiseService("describe", &RobotNode::OnDescribe, this);
-  if (options_.clock == "realtime" && !options_.external_timer) {
+  if (options_.clock == core::Clock::kRealtime && !options_.external_timer) {
     timer_ = nh_.createWallTimer(ros::WallDuration(config_.tick_period_s), &RobotNode::OnTimer,
                                  this);
   }
   ROS_INFO("robot %u: up (%s clock, tick %.3f s, range %.3f m, speed %.3f m/tick)", id_,
-           options_.clock.c_str(), config_.tick_period_s, config_.flocking.local_range_m,
+           core::ClockName(options_.clock), config_.tick_period_s, config_.flocking.local_range_m,
            config_.flocking.speed_m_per_tick);
-  if (options_.comm != "local" || options_.diagnostics) {
-    ROS_INFO("robot %u: %s comm, diagnostics %s", id_, options_.comm.c_str(),
+  if (options_.comm != core::Comm::kLocal || options_.diagnostics) {
+    ROS_INFO("robot %u: %s comm, diagnostics %s", id_, core::CommName(options_.comm),
              options_.diagnostics ? "on" : "off");
   }
   return true;
@@ -149,9 +147,9 @@ void RobotNode::OnNeighbors(const Neighbors::ConstPtr& msg) {
     return;
   }
   perception_ = msg;
-  if (options_.clock == "lockstep") ApplyRelayed(*msg);
+  if (options_.clock == core::Clock::kLockstep) ApplyRelayed(*msg);
   if (stats_) RecordRound(*msg);
-  if (options_.clock == "lockstep") Tick();
+  if (options_.clock == core::Clock::kLockstep) Tick();
 }
 
 template <typename Msg, typename Handler>
@@ -188,7 +186,7 @@ void RobotNode::OnPosition(const Robot_Position::ConstPtr& msg) {
 
 void RobotNode::RecordRound(const Neighbors& msg) {
   const double latency = stats_->OnRound(msg.tick, msg.sim_time, ros::WallTime::now().toSec());
-  if (options_.comm != "local") return;
+  if (options_.comm != core::Comm::kLocal) return;
   // Local comm: the round carries the in-range robots' updates, delivered within one tick
   // when it arrived within one period of being sampled; a round that never arrived lost as
   // many as this one carries.
@@ -207,7 +205,7 @@ void RobotNode::RecordTick() {
   // Broadcast comm: of the robots the radio says are in range this round, those whose own
   // latest position reached this robot in time (real time: it arrived within the last
   // kLateTickFactor periods, as they send one per tick; lock-step: it is their current one).
-  if (options_.comm == "broadcast") {
+  if (options_.comm == core::Comm::kBroadcast) {
     std::size_t expected = 0;
     std::size_t delivered = 0;
     for (const Robot_Position& r : perception_->robots) {
@@ -216,7 +214,7 @@ void RobotNode::RecordTick() {
       const auto it = broadcast_.find(std::make_pair(r.robot_id, std::uint8_t{0}));
       if (it == broadcast_.end()) continue;
       const bool current =
-          options_.clock == "realtime"
+          options_.clock == core::Clock::kRealtime
               ? now - it->second.wall_s <= core::kLateTickFactor * config_.tick_period_s
               : std::hypot(it->second.position->pos_x - r.pos_x,
                            it->second.position->pos_y - r.pos_y) <= kCurrentPositionM;
@@ -232,7 +230,8 @@ void RobotNode::RecordTick() {
   std::ostringstream os;
   os.setf(std::ios::fixed);
   os.precision(6);
-  os << "id=" << id_ << " clock=" << options_.clock << " comm=" << options_.comm << " wall=" << now
+  os << "id=" << id_ << " clock=" << core::ClockName(options_.clock)
+     << " comm=" << core::CommName(options_.comm) << " wall=" << now
      << " " << stats_->TakeLine();
   std_msgs::String line;
   line.data = os.str();
@@ -450,7 +449,7 @@ void RobotNode::Tick() {
   core::Perception in;
   in.self_id = id_;
   in.self = ToPose2(perception_->pose);
-  if (options_.comm == "broadcast") {
+  if (options_.comm == core::Comm::kBroadcast) {
     // The thesis's wiring: everything every robot sent (the step filters by range).
     in.others.reserve(broadcast_.size());
     for (auto it = broadcast_.begin(); it != broadcast_.end();) {
@@ -476,7 +475,7 @@ void RobotNode::Tick() {
   // Mission peers and relayed robots are positions like any other: the flock group decides
   // whom the swarm runs over, and collisions count everyone.
 
-  if (options_.clock == "lockstep") AwaitMissionOutlets();
+  if (options_.clock == core::Clock::kLockstep) AwaitMissionOutlets();
   const core::Pose2 before = in.self;
   core::BrainTick step = brain_->Tick(std::move(in), perception_->tick, MissionOutletsReady());
   core::MissionOutbox& outbox = step.outbox;
@@ -492,7 +491,7 @@ void RobotNode::Tick() {
   Publish(outbox);
   // Direct links get the same content as the topics would carry, in the same order.
   SendCommand(ToTwist(command));
-  if (options_.direct != nullptr && options_.clock == "lockstep") {
+  if (options_.direct != nullptr && options_.clock == core::Clock::kLockstep) {
     options_.direct->SendTickDone(id_, TickDone());
   } else if (tick_done_pub_) {
     tick_done_pub_.publish(TickDone());

@@ -12,6 +12,7 @@
 
 #include "swarm_transport/core/flocking.h"
 #include "swarm_transport/core/leader.h"
+#include "swarm_transport/core/modes.h"
 #include "swarm_transport/core/transport.h"
 
 namespace swarm_transport {
@@ -51,6 +52,13 @@ bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, int* value, 
 bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, bool* value,
                  std::string* error);
 bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, std::string* value,
+                 std::string* error);
+
+// ~clock (realtime | lockstep) and ~comm (local | broadcast): a missing key keeps `value`; any
+// other name is an error naming the key and the accepted values.
+bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, core::Clock* value,
+                 std::string* error);
+bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, core::Comm* value,
                  std::string* error);
 
 // Parses one zone dictionary {shape: rect|circle, x, y, size_x, size_y | radius}.

@@ -20,8 +20,8 @@ namespace swarm_transport {
 struct RobotHostOptions {
   int from = 0;                    // ~from: first robot id, [0, 65535]
   int to = 0;                      // ~to: one past the last id, (from, 65536]
-  std::string clock = "realtime";  // ~clock: realtime | lockstep, for every robot
-  std::string comm = "local";      // ~comm: local | broadcast, for every robot
+  core::Clock clock = core::Clock::kRealtime;  // ~clock: realtime | lockstep, every robot
+  core::Comm comm = core::Comm::kLocal;        // ~comm: local | broadcast, every robot
   bool diagnostics = false;        // ~diagnostics: every robot publishes /flock/robot_stats
   // ~threads: callback threads, [1, 64]. Robot k is served by thread k % threads only, so one
   // robot's callbacks never run concurrently; 1 (default) also keeps the order of callbacks

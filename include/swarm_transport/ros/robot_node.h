@@ -25,6 +25,7 @@
 #include "swarm_transport/Robot_Positions.h"
 #include "swarm_transport/Tick_Done.h"
 #include "swarm_transport/Update_Object.h"
+#include "swarm_transport/core/modes.h"
 #include "swarm_transport/core/robot_brain.h"
 #include "swarm_transport/core/tick_stats.h"
 #include "swarm_transport/ros/direct_link.h"
@@ -36,11 +37,12 @@ namespace swarm_transport {
 // Private parameters of a robot node (the shared behaviour comes from /swarm).
 struct RobotNodeOptions {
   int id = -1;                   // ~id, required, [0, 65535]
-  std::string clock = "realtime";  // ~clock: realtime (own wall timer) or lockstep (tick per
-                                   // Neighbors message from the simulator)
+  // ~clock: realtime (own wall timer) or lockstep (tick per Neighbors message from the
+  // simulator).
+  core::Clock clock = core::Clock::kRealtime;
   // ~comm: local (flock on the radio's in-range list, SPEC 7) or broadcast (the thesis's
   // all-to-all wiring: flock on every robot's /flock/position; for comparison benchmarks).
-  std::string comm = "local";
+  core::Comm comm = core::Comm::kLocal;
   // ~diagnostics: publish tick timing and delivery figures on /flock/robot_stats once per
   // wall second (benchmarks; off by default).
   bool diagnostics = false;

@@ -1,0 +1,27 @@
+// The deployment modes a node is started in, as types instead of strings.
+#ifndef SWARM_TRANSPORT_CORE_MODES_H_
+#define SWARM_TRANSPORT_CORE_MODES_H_
+
+#include <cstdint>
+#include <string>
+
+namespace swarm_transport {
+namespace core {
+
+// realtime: each robot ticks on its own wall timer; lockstep: one tick per radio round of the
+// simulator, which waits for every answer.
+enum class Clock : std::uint8_t { kRealtime, kLockstep };
+// local: a robot flocks on the radio's in-range list (SPEC 7); broadcast: on every robot's
+// /flock/position (the thesis's all-to-all wiring, for comparison benchmarks).
+enum class Comm : std::uint8_t { kLocal, kBroadcast };
+
+// False (and `out` untouched) for a name that is none of the modes.
+bool ParseClock(const std::string& name, Clock* out);
+bool ParseComm(const std::string& name, Comm* out);
+const char* ClockName(Clock clock);
+const char* CommName(Comm comm);
+
+}  // namespace core
+}  // namespace swarm_transport
+
+#endif  // SWARM_TRANSPORT_CORE_MODES_H_

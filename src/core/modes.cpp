@@ -1,0 +1,33 @@
+#include "swarm_transport/core/modes.h"
+
+namespace swarm_transport {
+namespace core {
+
+bool ParseClock(const std::string& name, Clock* out) {
+  if (name == "realtime") {
+    *out = Clock::kRealtime;
+  } else if (name == "lockstep") {
+    *out = Clock::kLockstep;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+bool ParseComm(const std::string& name, Comm* out) {
+  if (name == "local") {
+    *out = Comm::kLocal;
+  } else if (name == "broadcast") {
+    *out = Comm::kBroadcast;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+const char* ClockName(Clock clock) { return clock == Clock::kLockstep ? "lockstep" : "realtime"; }
+
+const char* CommName(Comm comm) { return comm == Comm::kBroadcast ? "broadcast" : "local"; }
+
+}  // namespace core
+}  // namespace swarm_transport

@@ -1,0 +1,32 @@
+// Clock and comm modes: every name parses to its mode and back; anything else is refused.
+#include "swarm_transport/core/modes.h"
+
+#include <gtest/gtest.h>
+
+namespace swarm_transport {
+namespace core {
+namespace {
+
+TEST(ModesTest, NamesRoundTripAndUnknownNamesChangeNothing) {
+  for (const Clock c : {Clock::kRealtime, Clock::kLockstep}) {
+    Clock parsed = c == Clock::kRealtime ? Clock::kLockstep : Clock::kRealtime;
+    ASSERT_TRUE(ParseClock(ClockName(c), &parsed));
+    EXPECT_EQ(parsed, c);
+  }
+  for (const Comm c : {Comm::kLocal, Comm::kBroadcast}) {
+    Comm parsed = c == Comm::kLocal ? Comm::kBroadcast : Comm::kLocal;
+    ASSERT_TRUE(ParseComm(CommName(c), &parsed));
+    EXPECT_EQ(parsed, c);
+  }
+  Clock clock = Clock::kLockstep;
+  EXPECT_FALSE(ParseClock("Lockstep", &clock));
+  EXPECT_FALSE(ParseClock("", &clock));
+  EXPECT_EQ(clock, Clock::kLockstep);
+  Comm comm = Comm::kBroadcast;
+  EXPECT_FALSE(ParseComm("shout", &comm));
+  EXPECT_EQ(comm, Comm::kBroadcast);
+}
+
+}  // namespace
+}  // namespace core
+}  // namespace swarm_transport
