@@ -306,7 +306,13 @@ void RobotNode::OnNewMission(const New_Mission::ConstPtr& msg) {
 void RobotNode::OnObjectUpdate(const Update_Object::ConstPtr& msg) {
   const std::string why =
       brain_->OnObjectUpdate(msg->mission_id, {msg->object_position_x, msg->object_position_y});
-  if (!why.empty()) ROS_DEBUG("robot %u: ignored: %s", id_, why.c_str());
+  if (why.empty()) return;
+  // A non-finite position is bad input; an update for a mission it does not hold is routine.
+  if (!std::isfinite(msg->object_position_x) || !std::isfinite(msg->object_position_y)) {
+    ROS_WARN("robot %u: rejected %s", id_, why.c_str());
+  } else {
+    ROS_DEBUG("robot %u: ignored: %s", id_, why.c_str());
+  }
 }
 
 void RobotNode::OnObjectDelete(const Delete_Object::ConstPtr& msg) {
