@@ -65,9 +65,16 @@ LeaderDecision LeaderStep(const Perception& in, const FlockingParams& p, const L
     if (swarm_size == 0) {
       // The swarm left its range entirely: waiting would not bring it back [T7.3].
       memory->gave_up = true;
-    } else if (Distance(position, sum * (1.0 / swarm_size)) > lp.wait_fraction * p.local_range_m) {
-      ++memory->swarm_waits;
-      return decision;
+    } else {
+      const Vec2 centroid = sum * (1.0 / swarm_size);
+      const bool far = Distance(position, centroid) > lp.wait_fraction * p.local_range_m;
+      const bool behind =
+          !lp.wait_behind ||
+          std::fabs(Angle::SignedDifference(Bearing(position, centroid), steer)) > 90.0;
+      if (far && behind) {
+        ++memory->swarm_waits;
+        return decision;
+      }
     }
   }
 

@@ -179,6 +179,7 @@ bool ConfigFromXmlRpc(XmlRpc::XmlRpcValue& dict, SwarmConfig* config, std::strin
             ReadDouble(dict, "goal_tolerance_m", &c.leader.goal_tolerance_m, error) &&
             ReadDouble(dict, "leader_wait_fraction", &c.leader.wait_fraction, error) &&
             ReadBool(dict, "leader_keep_flock", &c.leader.keep_flock, error) &&
+            ReadBool(dict, "leader_wait_behind", &c.leader.wait_behind, error) &&
             ReadDouble(dict, "tick_period_s", &c.tick_period_s, error) &&
             ReadInt(dict, "seed", &seed, error) &&
             ReadDouble(dict, "loaded_delay_s", &c.loaded_delay_s, error) &&

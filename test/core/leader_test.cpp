@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace swarm_transport {
 namespace core {
 namespace {
@@ -107,7 +109,7 @@ TEST(LeaderStepTest, SlowsDownWhenOnlyFullSpeedIsBlocked) {
 
 TEST(LeaderStepTest, WaitsWhileTheSwarmCentroidIsBeyondHalfTheRange) {
   Perception in = At(5.0, 5.0, 0.0);
-  in.others = {Robot(2, 5.6, 5.0), Robot(3, 5.8, 5.0)};  // centroid 0.7 away
+  in.others = {Robot(2, 4.4, 5.0), Robot(3, 4.2, 5.0)};  // centroid 0.7 behind
   Rng rng(1, 0);
   LeaderMemory memory;
   const LeaderDecision d =
@@ -116,6 +118,39 @@ TEST(LeaderStepTest, WaitsWhileTheSwarmCentroidIsBeyondHalfTheRange) {
   EXPECT_EQ(d.move.distance_m, 0.0);
   EXPECT_EQ(memory.swarm_waits, 1u);
   EXPECT_FALSE(memory.gave_up);
+}
+
+TEST(LeaderStepTest, WithWaitBehindWaitsOnlyForASwarmBehindIt) {
+  // The thesis's leader code waited only while its swarm's centroid was more than 90 deg off
+  // its course: a swarm ahead or beside it is led, not waited for.
+  const LeaderParams behind;  // the default
+  ASSERT_TRUE(behind.wait_behind);
+  const Vec2 goal{8.0, 5.0};  // course 0 deg
+  struct Case {
+    double x, y;
+    bool waits;
+  };
+  // Centroids 0.7 away (beyond half the range): ahead, beside (89 deg), behind (91 deg, 180).
+  const Case cases[] = {{5.7, 5.0, false},
+                        {5.0 + 0.7 * std::cos(89.0 * M_PI / 180.0), 5.7, false},
+                        {5.0 + 0.7 * std::cos(91.0 * M_PI / 180.0), 5.7, true},
+                        {4.3, 5.0, true}};
+  for (const Case& c : cases) {
+    Perception in = At(5.0, 5.0, 0.0);
+    in.others = {Robot(2, c.x, c.y)};
+    Rng rng(1, 0);
+    LeaderMemory memory;
+    const LeaderDecision d =
+        LeaderStep(in, Params(), behind, goal, Angle(0), rng, kTick, &memory);
+    EXPECT_EQ(memory.swarm_waits, c.waits ? 1u : 0u) << c.x << ", " << c.y;
+    EXPECT_EQ(d.move.outcome, c.waits ? MoveOutcome::kStand : MoveOutcome::kStraight);
+    // Without the option it waits for every one of them.
+    LeaderParams anywhere;
+    anywhere.wait_behind = false;
+    LeaderMemory plain;
+    LeaderStep(in, Params(), anywhere, goal, Angle(0), rng, kTick, &plain);
+    EXPECT_EQ(plain.swarm_waits, 1u);
+  }
 }
 
 TEST(LeaderStepTest, MovesWhileTheSwarmCentroidIsWithinHalfTheRange) {
@@ -139,8 +174,8 @@ TEST(LeaderStepTest, GivesUpWhenNoRobotIsInRange) {
       LeaderStep(in, Params(), LeaderParams(), {8.0, 5.0}, Angle(0), rng, kTick, &memory);
   EXPECT_TRUE(memory.gave_up);
   EXPECT_EQ(d.move.outcome, MoveOutcome::kStraight);
-  // Having given up, a far centroid no longer makes it wait.
-  in.others = {Robot(2, 5.8, 5.0)};
+  // Having given up, a far centroid behind it no longer makes it wait.
+  in.others = {Robot(2, 4.2, 5.0)};
   d = LeaderStep(in, Params(), LeaderParams(), {8.0, 5.0}, Angle(0), rng, kTick, &memory);
   EXPECT_EQ(d.move.outcome, MoveOutcome::kStraight);
   EXPECT_EQ(memory.swarm_waits, 0u);

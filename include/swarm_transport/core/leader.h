@@ -15,6 +15,8 @@ struct LeaderParams {
   double goal_tolerance_m = 0.05;  // within this of the goal the leader is done
   double wait_fraction = 0.5;      // wait while the swarm centroid is farther than this * range
   bool keep_flock = true;          // wait for / give up on the swarm (leader-only missions)
+  bool wait_behind = true;         // wait only while that centroid is behind (more than 90 deg off
+                                   // the course), as the thesis's leader code did
   std::string Validate() const;
 };
 
@@ -35,7 +37,8 @@ struct LeaderDecision {
 // goal; in transport the bearing object centre -> target). Never swerves: tries `steer` at
 // full speed, then at reduced speeds; stands otherwise (a blocked wait). With keep_flock, the
 // swarm is the physical neighbours in range (itself excluded): none left -> gave_up; centroid
-// farther than wait_fraction * range -> stand (a swarm wait). `rng` is advanced exactly as
+// farther than wait_fraction * range (and, with wait_behind, more than 90 deg off `steer`) ->
+// stand (a swarm wait). `rng` is advanced exactly as
 // FlockingStep advances it, so switching roles keeps the random sequence aligned.
 LeaderDecision LeaderStep(const Perception& in, const FlockingParams& p, const LeaderParams& lp,
                           Vec2 goal, Angle steer, Rng& rng, double duration_s,
