@@ -1,8 +1,6 @@
 #include "simulator.h"
 
-#include <geometry_msgs/TransformStamped.h>
 #include <rosgraph_msgs/Clock.h>
-#include <visualization_msgs/MarkerArray.h>
 
 #include <algorithm>
 #include <cmath>
@@ -38,7 +36,6 @@ constexpr std::uint32_t kPositionsQueue = 100;
 // later tick). Memory is used only while a subscriber lags.
 constexpr std::uint32_t kLockstepPositionsQueue = 10000;
 constexpr std::uint32_t kMissionQueue = 100;
-constexpr std::uint32_t kMarkersQueue = 2;
 // Polling period of the lock-step wait (s): also bounds a robot-less tick to ~1 ms.
 constexpr double kPollS = 0.001;
 // Period of the idle loop after the last lock-step tick and of the start wait (s).
@@ -48,71 +45,12 @@ constexpr double kSettleS = 0.2;
 // At most one warning of a kind per this many wall seconds (ROS_*_THROTTLE uses ros::Time,
 // which stands still at 0 under use_sim_time before /clock runs).
 constexpr double kWarnPeriodS = 5.0;
-// Marker look: z thickness of flat shapes (m), alpha of zones, objects and range circles.
-constexpr double kFlatM = 0.02;
-constexpr float kZoneAlpha = 0.35f;
-constexpr float kObjectAlpha = 0.6f;
-constexpr float kRangeAlpha = 0.08f;
-constexpr double kTargetDiameterM = 0.1;
-// 1 / golden ratio: consecutive ids get well separated hues.
-constexpr double kHueStep = 0.618033988749895;
-
 // True (and `last` updated) when `period_s` of wall time passed since the last true.
 bool WallThrottle(ros::WallTime* last, double period_s) {
   const ros::WallTime now = ros::WallTime::now();
   if (!last->isZero() && (now - *last).toSec() < period_s) return false;
   *last = now;
   return true;
-}
-
-// HSV (all in [0, 1]) plus alpha to a colour.
-std_msgs::ColorRGBA Hsv(double h, double s, double v, float alpha) {
-  const double i = std::floor(h * 6.0);
-  const double f = h * 6.0 - i;
-  const double p = v * (1.0 - s);
-  const double q = v * (1.0 - f * s);
-  const double t = v * (1.0 - (1.0 - f) * s);
-  const double rgb[6][3] = {{v, t, p}, {q, v, p}, {p, v, t}, {p, q, v}, {t, p, v}, {v, p, q}};
-  const int k = static_cast<int>(i) % 6;
-  const double r = rgb[k][0], g = rgb[k][1], b = rgb[k][2];
-  std_msgs::ColorRGBA c;
-  c.r = static_cast<float>(r);
-  c.g = static_cast<float>(g);
-  c.b = static_cast<float>(b);
-  c.a = alpha;
-  return c;
-}
-
-std_msgs::ColorRGBA Rgba(float r, float g, float b, float a) {
-  std_msgs::ColorRGBA c;
-  c.r = r;
-  c.g = g;
-  c.b = b;
-  c.a = a;
-  return c;
-}
-
-std_msgs::ColorRGBA RobotColour(std::uint16_t id, float alpha) {
-  return Hsv(std::fmod(id * kHueStep, 1.0), 0.8, 0.95, alpha);
-}
-
-geometry_msgs::Quaternion YawQuaternion(double yaw_rad) {
-  geometry_msgs::Quaternion q;
-  q.z = std::sin(0.5 * yaw_rad);
-  q.w = std::cos(0.5 * yaw_rad);
-  return q;
-}
-
-visualization_msgs::Marker MakeMarker(const std::string& ns, int id, int type, ros::Time stamp) {
-  visualization_msgs::Marker m;
-  m.header.frame_id = names::kWorldFrame;
-  m.header.stamp = stamp;
-  m.ns = ns;
-  m.id = id;
-  m.type = type;
-  m.action = visualization_msgs::Marker::ADD;
-  m.pose.orientation.w = 1.0;
-  return m;
 }
 
 // Reads an optional private parameter; a present value of the wrong type is an error.
@@ -261,14 +199,26 @@ bool Simulator::Initialize() {
     return false;
   }
   radio_rng_ = std::make_unique<core::Rng>(params_.swarm.seed, kRadioStream);
+  sim::RadioParams radio;
+  radio.range_m = params_.radio_range_m;
+  radio.hops = params_.swarm.flocking.neighbourhood == core::Neighbourhood::kChain
+                   ? params_.swarm.chain_hops
+                   : 1;
+  radio.loss = params_.radio_loss;
+  radio_ = std::make_unique<sim::Radio>(radio, radio_rng_.get());
 
   // Latched: a late subscriber (a test after the last lock-step tick) still gets the state.
   positions_pub_ = nh_.advertise<Robot_Positions>(
       names::kPositions, lockstep_ ? kLockstepPositionsQueue : kPositionsQueue, true);
   robots_pub_ = nh_.advertise<Robot_Positions>(names::kRobots, 1, true);
-  markers_pub_ = nh_.advertise<visualization_msgs::MarkerArray>(names::kMarkers, kMarkersQueue);
   if (lockstep_) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>(kClockTopic, 10);
-  if (params_.tf) tf_broadcaster_ = std::make_unique<tf2_ros::TransformBroadcaster>();
+  sim::VisualsParams visuals;
+  visuals.rate_hz = params_.markers_rate_hz;
+  visuals.tf = params_.tf;
+  visuals.range_circles = params_.range_circles;
+  visuals.local_range_m = params_.swarm.flocking.local_range_m;
+  visuals.danger_zones = params_.swarm.danger_zones;
+  visuals_ = std::make_unique<sim::Visuals>(nh_, std::move(visuals));
   spawn_srv_ = nh_.advertiseService(names::kSpawn, &Simulator::OnSpawn, this);
   kill_srv_ = nh_.advertiseService(names::kKill, &Simulator::OnKill, this);
   reset_srv_ = nh_.advertiseService(names::kReset, &Simulator::OnReset, this);
@@ -386,6 +336,7 @@ void Simulator::AddRobotIo(std::uint16_t id) {
             return OnTeleportRelative(id, req, res);
           });
   io_[id] = io;
+  barrier_.Add(id);
 }
 
 void Simulator::CountSubscriber(std::uint16_t id, std::uint64_t generation, int RobotIo::*field,
@@ -395,11 +346,11 @@ void Simulator::CountSubscriber(std::uint16_t id, std::uint64_t generation, int 
   it->second.*field = std::max(0, it->second.*field + delta);
 }
 
-bool Simulator::Ready(RobotIo* io) {
+bool Simulator::Ready(std::uint16_t id, RobotIo* io) {
   if (io->direct) {
     // Nothing to connect: a direct robot hears its first round and answers it for sure, and
     // in lock-step (the host runs its robots on the simulator's clock) it sends tick_done.
-    io->sends_tick_done = true;
+    barrier_.SendsTickDone(id);
     return true;
   }
   // Only checked until the robot is live: getNumPublishers() scans every subscription.
@@ -407,7 +358,7 @@ bool Simulator::Ready(RobotIo* io) {
   // A robot that publishes tick_done is waited for from its first tick on, not only from its
   // first tick_done (which may arrive after its first command).
   if (connected && io->tick_done && io->tick_done.getNumPublishers() > 0) {
-    io->sends_tick_done = true;
+    barrier_.SendsTickDone(id);
   }
   const ros::WallTime now = ros::WallTime::now();
   if (!connected) {
@@ -425,7 +376,6 @@ void Simulator::RemoveRobot(std::uint16_t id) {
   auto it = io_.find(id);
   if (it != io_.end()) {
     RobotIo& io = it->second;
-    if (io.live && !io.answered && awaiting_ > 0) --awaiting_;
     io.neighbors.shutdown();
     io.pose.shutdown();
     io.cmd_vel.shutdown();
@@ -433,6 +383,7 @@ void Simulator::RemoveRobot(std::uint16_t id) {
     io.teleport_relative.shutdown();
     io_.erase(it);
   }
+  barrier_.Remove(id);
   // Its virtual copies die with it.
   for (auto r = relayed_.begin(); r != relayed_.end();) {
     if (r->first.first == id && r->second.type == Robot_Position::TYPE_VIRTUAL) {
@@ -445,7 +396,7 @@ void Simulator::RemoveRobot(std::uint16_t id) {
 
 void Simulator::Run() {
   start_wall_ = ros::WallTime::now();
-  next_visuals_wall_ = start_wall_;
+  visuals_->Start(start_wall_);
   if (lockstep_) {
     RunLockstep();
   } else {
@@ -471,9 +422,8 @@ void Simulator::Shutdown() {
   kill_srv_.shutdown();
   reset_srv_.shutdown();
   positions_pub_.shutdown();
-  markers_pub_.shutdown();
   clock_pub_.shutdown();
-  tf_broadcaster_.reset();
+  if (visuals_) visuals_->Shutdown();
 }
 
 void Simulator::SpinOnce(double wait_s) {
@@ -527,7 +477,7 @@ void Simulator::WaitForRobots() {
   while (Running()) {
     connected = 0;
     for (auto& entry : io_) {
-      if (Ready(&entry.second)) ++connected;
+      if (Ready(entry.first, &entry.second)) ++connected;
     }
     const bool observed = params_.lockstep_observers == 0 ||
                           positions_pub_.getNumSubscribers() >=
@@ -564,26 +514,24 @@ void Simulator::WaitForRobots() {
 
 void Simulator::UpdateLiveness() {
   for (auto& entry : io_) {
+    const std::uint16_t id = entry.first;
     RobotIo& io = entry.second;
-    if (!io.live && Ready(&io)) {
-      io.live = true;
-      io.cmds_received = io.neighbors_sent;
-      io.answered = false;
-      io.stale = false;
+    const bool live = barrier_.Live(id);
+    if (!live && Ready(id, &io)) {
+      barrier_.MakeLive(id);
       if (tick_ > 0) {
-        ROS_INFO("lockstep: robot %u connected at tick %llu", entry.first,
+        ROS_INFO("lockstep: robot %u connected at tick %llu", id,
                  static_cast<unsigned long long>(tick_));
       }
-    } else if (io.live && !io.direct && io.neighbors_subscribers == 0) {
-      io.live = false;
+    } else if (live && !io.direct && io.neighbors_subscribers == 0) {
+      barrier_.MakeNotLive(id);
       io.connected_since = ros::WallTime();
-      ROS_WARN("lockstep: robot %u disconnected at tick %llu", entry.first,
+      ROS_WARN("lockstep: robot %u disconnected at tick %llu", id,
                static_cast<unsigned long long>(tick_));
-    } else if (io.live && !io.answered && io.stale) {
-      // It answered, but only older ticks: it must have missed a Neighbors message. Count
-      // its next answer as the answer to the next tick instead of lagging forever.
-      io.cmds_received = io.neighbors_sent;
-      ROS_WARN("lockstep: robot %u answers an old tick; resynchronised at tick %llu", entry.first,
+    } else if (live && barrier_.Resynchronise(id)) {
+      // It answered, but only older ticks: it must have missed a Neighbors message. Its next
+      // answer counts as the answer to the next tick instead of lagging forever.
+      ROS_WARN("lockstep: robot %u answers an old tick; resynchronised at tick %llu", id,
                static_cast<unsigned long long>(tick_));
     }
   }
@@ -598,40 +546,30 @@ void Simulator::WaitForAnswers() {
     // returns, their mission messages (ROS topics) on the global queue.
     SpinRobots();
     ros::spinOnce();
-    complete = awaiting_ == 0 && AllComplete();
+    complete = barrier_.AllAnswered();
     // Block for answers only while some are missing (with direct robots only: none are).
     cmd_queue_.callAvailable(ros::WallDuration(complete ? 0.0 : kPollS));
-    complete = awaiting_ == 0 && AllComplete();
+    complete = barrier_.AllAnswered();
     PublishVisualsIfDue();
   } while (!complete && Running() && ros::WallTime::now() < deadline);
   // Whatever robots sent together with their answers (virtual copies) is in before the next
   // radio round.
   ros::spinOnce();
-  if ((awaiting_ == 0 && AllComplete()) || !Running()) return;
-  std::size_t late = 0;
-  std::size_t live = 0;
-  int first_late = -1;
-  for (const auto& entry : io_) {
-    if (!entry.second.live) continue;
-    ++live;
-    if (!Complete(entry.second)) {
-      ++late;
-      if (first_late < 0) first_late = entry.first;
-    }
-  }
+  if (barrier_.AllAnswered() || !Running()) return;
+  const std::vector<std::uint16_t> late = barrier_.Late();
   if (WallThrottle(&last_late_warning_wall_, kWarnPeriodS)) {
     ROS_WARN(
         "lockstep tick %llu: %zu of %zu robots did not answer within %.2f s (first: robot "
         "%d); they stand this tick",
-        static_cast<unsigned long long>(tick_), late, live, params_.lockstep_timeout_s, first_late);
+        static_cast<unsigned long long>(tick_), late.size(), barrier_.LiveCount(),
+        params_.lockstep_timeout_s, late.empty() ? -1 : static_cast<int>(late.front()));
   }
 }
 
 void Simulator::ApplyAnswers() {
   for (const auto& entry : io_) {
-    const RobotIo& io = entry.second;
-    if (!io.live) continue;
-    world_->SetCommand(entry.first, io.answered ? io.answer : core::Velocity(), nullptr);
+    if (!barrier_.Live(entry.first)) continue;
+    world_->SetCommand(entry.first, barrier_.CommandOf(entry.first), nullptr);
   }
 }
 
@@ -663,8 +601,7 @@ void Simulator::RunLockstep() {
   // The final state at the final time, for the recorder and tests; then the world stands.
   finished_ = true;
   PublishClock();
-  awaiting_ = 0;
-  for (auto& entry : io_) entry.second.live = false;  // no Neighbors: nobody is asked to answer
+  barrier_.EndAll();  // no Neighbors: nobody is asked to answer
   PublishRadio();
   PublishPoses();
   Idle();
@@ -684,10 +621,6 @@ double Simulator::SimTime() const {
 
 ros::Time Simulator::Stamp() const { return lockstep_ ? ros::Time(SimTime()) : ros::Time::now(); }
 
-bool Simulator::Lost() {
-  return params_.radio_loss > 0.0 && radio_rng_->Uniform(0.0, 1.0) < params_.radio_loss;
-}
-
 void Simulator::PublishClock() {
   // By shared pointer: this process's own /clock subscription (roscpp's, under sim time) gets it
   // without serialisation (see RobotNode::Tick).
@@ -699,27 +632,26 @@ void Simulator::PublishClock() {
 void Simulator::PublishRadio() {
   const double sim_time = SimTime();
   const auto& robots = world_->robots();
-  std::vector<std::uint16_t> ids;
   std::vector<Robot_Position> truth;
-  ids.reserve(robots.size());
   truth.reserve(robots.size());
-  for (const auto& entry : robots) {
-    ids.push_back(entry.first);
-    truth.push_back(ToRobotPosition(entry.first, entry.second.pose));
+  for (const auto& entry : robots) truth.push_back(ToRobotPosition(entry.first, entry.second.pose));
+  std::vector<sim::RadioExtra> extras;
+  extras.reserve(relayed_.size());
+  for (const auto& entry : relayed_) {
+    sim::RadioExtra e;
+    e.virtual_copy = entry.second.type == Robot_Position::TYPE_VIRTUAL;
+    e.owner = entry.second.robot_id;
+    e.position = {entry.second.pos_x, entry.second.pos_y};
+    extras.push_back(e);
   }
-  // Index of a physical robot in `ids`, or -1.
-  auto index_of = [&ids](std::uint16_t id) -> long {
-    const auto it = std::lower_bound(ids.begin(), ids.end(), id);
-    return it != ids.end() && *it == id ? it - ids.begin() : -1;
-  };
-  // Virtual copies are stacked on their robot: they are relayed at its true pose (so what a
-  // neighbour hears does not depend on when the copy's message arrived); copies of robots
-  // not in the world, and statists, where they were announced.
+  radio_->Begin(*world_, extras, missions_);
+  // Virtual copies are relayed at their owner's true pose, the others where announced.
   std::vector<Robot_Position> relayed;
   relayed.reserve(relayed_.size());
+  std::size_t k = 0;
   for (const auto& entry : relayed_) {
     Robot_Position p = entry.second;
-    const long owner = p.type == Robot_Position::TYPE_VIRTUAL ? index_of(p.robot_id) : -1;
+    const long owner = radio_->extra_owner()[k++];
     if (owner >= 0) {
       p.pos_x = truth[static_cast<std::size_t>(owner)].pos_x;
       p.pos_y = truth[static_cast<std::size_t>(owner)].pos_y;
@@ -727,102 +659,36 @@ void Simulator::PublishRadio() {
     }
     relayed.push_back(p);
   }
-  std::map<std::uint16_t, std::vector<const Mission*>> missions_of;
-  for (const auto& entry : missions_) {
-    for (std::uint16_t member : entry.second.members) missions_of[member].push_back(&entry.second);
-  }
 
-  const auto lists = world_->NeighbourLists(params_.radio_range_m);
-  const bool chain = params_.swarm.flocking.neighbourhood == core::Neighbourhood::kChain;
-  const int hops = chain ? params_.swarm.chain_hops : 1;
-  const double range2 = params_.radio_range_m * params_.radio_range_m;
-  std::vector<char> heard(ids.size(), 0);
-  std::vector<std::size_t> touched;
-  std::vector<std::size_t> ring;  // a chain's robots found so far, hop by hop (reused)
-  awaiting_ = 0;
+  sim::RadioRound round;
+  barrier_.StartTick(tick_);
   std::size_t i = 0;
   for (auto robot = robots.begin(); robot != robots.end(); ++robot, ++i) {
-    const std::uint16_t id = robot->first;
-    auto io = io_.find(id);
+    auto io = io_.find(robot->first);
     if (io == io_.end()) continue;
     const bool deliver =
-        lockstep_ ? io->second.live : io->second.direct || io->second.neighbors_subscribers > 0;
+        lockstep_ ? barrier_.Live(robot->first)
+                  : io->second.direct || io->second.neighbors_subscribers > 0;
     if (!deliver) continue;
+    radio_->Hear(i, &round);
     Neighbors msg;
     msg.tick = tick_;
     msg.sim_time = sim_time;
     msg.pose = ToPoseMsg(robot->second.pose, robot->second.last_velocity);
-    msg.robots.reserve(lists[i].size() + relayed.size());
-    for (std::uint16_t other : lists[i]) {
-      if (Lost()) continue;
-      const std::size_t j = static_cast<std::size_t>(index_of(other));
-      msg.robots.push_back(truth[j]);
-      heard[j] = 1;
-      touched.push_back(j);
-    }
-    // A chain's far end: what the robots in range heard in range, passed on hop by hop.
-    if (hops > 1) {
-      heard[i] = 1;
-      touched.push_back(i);
-      std::size_t ring_begin = 0;
-      ring.clear();
-      for (std::uint16_t other : lists[i]) {
-        ring.push_back(static_cast<std::size_t>(index_of(other)));
-      }
-      for (int hop = 2; hop <= hops && ring_begin < ring.size(); ++hop) {
-        const std::size_t ring_end = ring.size();
-        for (std::size_t k = ring_begin; k < ring_end; ++k) {
-          for (std::uint16_t far : lists[ring[k]]) {
-            const std::size_t j = static_cast<std::size_t>(index_of(far));
-            if (heard[j]) continue;
-            heard[j] = 1;
-            touched.push_back(j);
-            ring.push_back(j);
-            if (!Lost()) msg.relayed.push_back(truth[j]);
-          }
-        }
-        ring_begin = ring_end;
-      }
-    }
-    const core::Vec2 self = robot->second.pose.position;
-    for (const Robot_Position& p : relayed) {
-      if (p.type == Robot_Position::TYPE_VIRTUAL) {
-        if (p.robot_id == id) continue;  // a robot does not hear its own copies
-        const double dx = p.pos_x - self.x;
-        const double dy = p.pos_y - self.y;
-        if (dx * dx + dy * dy > range2) continue;
-      }
-      if (Lost()) continue;
-      msg.robots.push_back(p);
-    }
-    // The mission channel: every other member of its missions, wherever it is.
-    const auto mine = missions_of.find(id);
-    if (mine != missions_of.end()) {
-      for (const Mission* mission : mine->second) {
-        for (std::uint16_t member : mission->members) {
-          const long j = index_of(member);
-          if (member == id || j < 0 || heard[static_cast<std::size_t>(j)]) continue;
-          heard[static_cast<std::size_t>(j)] = 1;
-          touched.push_back(static_cast<std::size_t>(j));
-          msg.mission_peers.push_back(truth[static_cast<std::size_t>(j)]);
-        }
-      }
-    }
-    for (std::size_t j : touched) heard[j] = 0;
-    touched.clear();
+    msg.robots.reserve(round.in_range.size() + round.extras.size());
+    for (std::size_t j : round.in_range) msg.robots.push_back(truth[j]);
+    for (std::size_t e : round.extras) msg.robots.push_back(relayed[e]);
+    msg.relayed.reserve(round.chain.size());
+    for (std::size_t j : round.chain) msg.relayed.push_back(truth[j]);
+    msg.mission_peers.reserve(round.peers.size());
+    for (std::size_t j : round.peers) msg.mission_peers.push_back(truth[j]);
     if (lockstep_) FillRelay(&msg);
     if (io->second.direct) {
-      direct_->Deliver(id, boost::make_shared<const Neighbors>(std::move(msg)));
+      direct_->Deliver(robot->first, boost::make_shared<const Neighbors>(std::move(msg)));
     } else {
       io->second.neighbors.publish(msg);
     }
-    if (lockstep_) {
-      ++io->second.neighbors_sent;
-      io->second.answered = false;
-      io->second.done = false;
-      io->second.stale = false;
-      ++awaiting_;
-    }
+    if (lockstep_) barrier_.Ask(robot->first);
   }
 
   ClearRelay();
@@ -836,7 +702,7 @@ void Simulator::PublishRadio() {
 template <typename M>
 void Simulator::Relay(const ros::MessageEvent<const M>& event, RelayList<M>* list, bool counted) {
   const std::string& from = event.getPublisherName();
-  if (counted) ++events_received_[from];
+  if (counted) barrier_.OnRobotMessage(from);
   list->emplace_back(from, *event.getConstMessage());
   if constexpr (std::is_same_v<M, Mission_Status>) NoteStatus(*event.getConstMessage());
   if constexpr (std::is_same_v<M, Mission_Event>) NoteEvent(*event.getConstMessage());
@@ -846,8 +712,7 @@ void Simulator::NoteStatus(const Mission_Status& status) {
   if (!params_.lockstep_dispatcher) return;
   const std::uint16_t id = status.mission_id;
   const auto awaits = [this, id](std::uint8_t kind, double delay_s) {
-    const auto key = std::make_pair(id, kind);
-    if (delay_s >= 0.0 && events_seen_.count(key) == 0) events_awaited_.insert(key);
+    if (delay_s >= 0.0) barrier_.Await({id, kind});
   };
   switch (status.state) {
     case Mission_Status::LOADING:
@@ -860,10 +725,7 @@ void Simulator::NoteStatus(const Mission_Status& status) {
     case Mission_Status::ABORTED:
     case Mission_Status::REJECTED:
       // The id may be used again by a later mission.
-      for (std::uint8_t kind : {Mission_Event::LOADED, Mission_Event::UNLOADED}) {
-        events_awaited_.erase({id, kind});
-        events_seen_.erase({id, kind});
-      }
+      barrier_.Forget(id);
       break;
     default:
       break;
@@ -872,28 +734,24 @@ void Simulator::NoteStatus(const Mission_Status& status) {
 
 void Simulator::NoteEvent(const Mission_Event& event) {
   if (!params_.lockstep_dispatcher) return;
-  const auto key = std::make_pair(event.mission_id, event.event);
-  events_seen_.insert(key);
-  events_awaited_.erase(key);
+  barrier_.Seen({event.mission_id, event.event});
 }
 
 void Simulator::WaitForEvents() {
-  if (events_awaited_.empty()) return;
+  if (!barrier_.EventsAwaited()) return;
   const ros::WallTime deadline =
       ros::WallTime::now() + ros::WallDuration(params_.lockstep_timeout_s);
-  while (!events_awaited_.empty() && Running() && ros::WallTime::now() < deadline) {
+  while (barrier_.EventsAwaited() && Running() && ros::WallTime::now() < deadline) {
     SpinOnce(kPollS);
   }
-  if (events_awaited_.empty() || !Running()) return;
-  for (const auto& key : events_awaited_) {
+  if (!barrier_.EventsAwaited() || !Running()) return;
+  for (const auto& key : barrier_.GiveUpEvents()) {
     ROS_WARN("lockstep tick %llu: no %s for mission %u from the dispatcher within %.2f s; "
              "not waiting for it any longer",
              static_cast<unsigned long long>(tick_),
              key.second == Mission_Event::LOADED ? "LOADED" : "UNLOADED", key.first,
              params_.lockstep_timeout_s);
-    events_seen_.insert(key);
   }
-  events_awaited_.clear();
 }
 
 namespace {
@@ -931,36 +789,7 @@ void Simulator::ClearRelay() {
 }
 
 void Simulator::OnTickDone(std::uint16_t id, const std::string& from, const Tick_Done& msg) {
-  auto it = io_.find(id);
-  if (it == io_.end()) return;
-  RobotIo& io = it->second;
-  if (io.publisher != from) {  // first word, or the robot came back in another process
-    if (!io.publisher.empty()) events_announced_[io.publisher] -= io.events_announced;
-    io.publisher = from;
-    io.events_announced = 0;
-  }
-  events_announced_[from] += msg.events_published - io.events_announced;
-  io.events_announced = msg.events_published;
-  io.sends_tick_done = true;
-  if (io.live && msg.tick == tick_) io.done = true;
-}
-
-bool Simulator::Complete(const RobotIo& io) const {
-  if (!io.answered) return false;
-  if (!io.sends_tick_done) return true;
-  if (!io.done) return false;
-  const auto announced = events_announced_.find(io.publisher);
-  const auto received = events_received_.find(io.publisher);
-  const std::uint64_t want = announced == events_announced_.end() ? 0 : announced->second;
-  const std::uint64_t have = received == events_received_.end() ? 0 : received->second;
-  return have >= want;
-}
-
-bool Simulator::AllComplete() const {
-  for (const auto& entry : io_) {
-    if (entry.second.live && !Complete(entry.second)) return false;
-  }
-  return true;
+  barrier_.OnTickDone(id, from, msg.tick, msg.events_published);
 }
 
 void Simulator::PublishRobotList() {
@@ -981,132 +810,7 @@ void Simulator::PublishPoses() {
 }
 
 void Simulator::PublishVisualsIfDue() {
-  if (!(params_.markers_rate_hz > 0.0)) return;
-  const ros::WallTime now = ros::WallTime::now();
-  if (now < next_visuals_wall_) return;
-  const ros::WallDuration period(1.0 / params_.markers_rate_hz);
-  next_visuals_wall_ += period;
-  if (next_visuals_wall_ < now) next_visuals_wall_ = now + period;
-  if (markers_pub_.getNumSubscribers() > 0) PublishMarkers();
-  if (tf_broadcaster_) PublishTransforms();
-}
-
-void Simulator::PublishMarkers() {
-  using visualization_msgs::Marker;
-  const ros::Time stamp = Stamp();
-  const double r = world_->params().robot_radius_m;
-  visualization_msgs::MarkerArray array;
-  std::set<std::pair<std::string, int>> shown;
-  auto add = [&array, &shown](const Marker& m) {
-    array.markers.push_back(m);
-    shown.emplace(m.ns, m.id);
-  };
-
-  for (const auto& entry : world_->robots()) {
-    const core::Pose2& pose = entry.second.pose;
-    const double yaw = pose.heading.radians();
-    // An arrow of 3 r through the robot's centre, pointing where it heads.
-    Marker arrow = MakeMarker("robots", entry.first, Marker::ARROW, stamp);
-    arrow.pose.position.x = pose.position.x - r * std::cos(yaw);
-    arrow.pose.position.y = pose.position.y - r * std::sin(yaw);
-    arrow.pose.orientation = YawQuaternion(yaw);
-    arrow.scale.x = 3.0 * r;
-    arrow.scale.y = r;
-    arrow.scale.z = r;
-    arrow.color = RobotColour(entry.first, 1.0f);
-    add(arrow);
-    if (params_.range_circles) {
-      Marker circle = MakeMarker("ranges", entry.first, Marker::CYLINDER, stamp);
-      circle.pose.position.x = pose.position.x;
-      circle.pose.position.y = pose.position.y;
-      circle.scale.x = circle.scale.y = 2.0 * params_.swarm.flocking.local_range_m;
-      circle.scale.z = 0.5 * kFlatM;
-      circle.color = RobotColour(entry.first, kRangeAlpha);
-      add(circle);
-    }
-  }
-
-  int zone_part = 0;
-  for (const core::Zone& zone : params_.swarm.danger_zones) {
-    for (const core::Primitive& part : zone.shape.parts()) {
-      const bool is_rect = part.kind == core::Primitive::Kind::kRect;
-      Marker m =
-          MakeMarker("danger_zones", zone_part++, is_rect ? Marker::CUBE : Marker::CYLINDER, stamp);
-      if (is_rect) {
-        m.pose.position.x = part.rect.centre.x;
-        m.pose.position.y = part.rect.centre.y;
-        m.scale.x = part.rect.size.x;
-        m.scale.y = part.rect.size.y;
-      } else {
-        m.pose.position.x = part.circle.centre.x;
-        m.pose.position.y = part.circle.centre.y;
-        m.scale.x = m.scale.y = 2.0 * part.circle.radius;
-      }
-      m.scale.z = kFlatM;
-      m.color = Rgba(0.9f, 0.1f, 0.1f, kZoneAlpha);
-      add(m);
-    }
-  }
-
-  for (const auto& entry : missions_) {
-    const Mission& mission = entry.second;
-    if (mission.object_size.x > 0.0 && mission.object_size.y > 0.0) {
-      Marker object = MakeMarker("objects", entry.first, Marker::CUBE, stamp);
-      object.pose.position.x = mission.object_position.x;
-      object.pose.position.y = mission.object_position.y;
-      object.scale.x = mission.object_size.x;
-      object.scale.y = mission.object_size.y;
-      object.scale.z = 2.0 * kFlatM;
-      object.color = Rgba(0.85f, 0.55f, 0.15f, kObjectAlpha);
-      add(object);
-    }
-    Marker target = MakeMarker("targets", entry.first, Marker::SPHERE, stamp);
-    target.pose.position.x = mission.target.x;
-    target.pose.position.y = mission.target.y;
-    target.scale.x = target.scale.y = target.scale.z = kTargetDiameterM;
-    target.color = Rgba(0.1f, 0.8f, 0.2f, 0.8f);
-    add(target);
-    // Leaders: a white disc under the robot's arrow.
-    for (std::uint16_t id : mission.leaders) {
-      const sim::Robot* robot = world_->Find(id);
-      if (robot == nullptr) continue;
-      Marker halo = MakeMarker("leaders", id, Marker::CYLINDER, stamp);
-      halo.pose.position.x = robot->pose.position.x;
-      halo.pose.position.y = robot->pose.position.y;
-      halo.scale.x = halo.scale.y = 4.0 * r;
-      halo.scale.z = kFlatM;
-      halo.color = Rgba(1.0f, 1.0f, 1.0f, 0.8f);
-      add(halo);
-    }
-  }
-
-  // Whatever was on screen and is gone now (killed robots, deleted objects) is deleted.
-  for (const auto& key : shown_markers_) {
-    if (shown.count(key) != 0) continue;
-    Marker gone = MakeMarker(key.first, key.second, Marker::ARROW, stamp);
-    gone.action = Marker::DELETE;
-    array.markers.push_back(gone);
-  }
-  shown_markers_ = std::move(shown);
-  markers_pub_.publish(array);
-}
-
-void Simulator::PublishTransforms() {
-  const ros::Time stamp = Stamp();
-  std::vector<geometry_msgs::TransformStamped> transforms;
-  transforms.reserve(world_->size());
-  for (const auto& entry : world_->robots()) {
-    geometry_msgs::TransformStamped t;
-    t.header.stamp = stamp;
-    t.header.frame_id = names::kWorldFrame;
-    // tf frame ids are not graph names: they cannot be resolved, so they are composed here.
-    t.child_frame_id = names::RobotNamespace(entry.first) + "/" + names::kBaseLink;
-    t.transform.translation.x = entry.second.pose.position.x;
-    t.transform.translation.y = entry.second.pose.position.y;
-    t.transform.rotation = YawQuaternion(entry.second.pose.heading.radians());
-    transforms.push_back(t);
-  }
-  if (!transforms.empty()) tf_broadcaster_->sendTransform(transforms);
+  if (visuals_->Due()) visuals_->Publish(*world_, missions_, Stamp());
 }
 
 void Simulator::OnSimulatorThread(std::function<void()> call) {
@@ -1130,31 +834,20 @@ void Simulator::SendTickDone(std::uint16_t id, const Tick_Done& done) {
 void Simulator::OnCmdVel(std::uint16_t id, const geometry_msgs::Twist& msg) {
   auto it = io_.find(id);
   if (it == io_.end() || finished_) return;
-  RobotIo& io = it->second;
   const bool finite = IsFinite(msg);
   if (!finite && WallThrottle(&last_bad_cmd_warning_wall_, kWarnPeriodS)) {
     ROS_WARN("simulator: robot %u sent a cmd_vel with a non-finite value; it stands instead", id);
   }
   const core::Velocity velocity = finite ? ToVelocity(msg) : core::Velocity();
-  if (!lockstep_ || !io.live) {
+  const auto answer =
+      lockstep_ ? barrier_.OnCommand(id, velocity) : sim::LockstepBarrier::Command::kOutside;
+  if (answer == sim::LockstepBarrier::Command::kOutside) {
     // Real time, or a robot outside the lock-step protocol: the command applies at once.
     if (finite) world_->SetCommand(id, velocity, nullptr);
-    return;
-  }
-  if (io.cmds_received >= io.neighbors_sent) {
-    if (WallThrottle(&last_unsolicited_warning_wall_, kWarnPeriodS)) {
-      ROS_WARN("lockstep: robot %u sent a cmd_vel it was not asked for (tick %llu); ignored", id,
-               static_cast<unsigned long long>(tick_));
-    }
-    return;
-  }
-  ++io.cmds_received;
-  if (io.cmds_received == io.neighbors_sent) {
-    io.answer = velocity;
-    io.answered = true;
-    if (awaiting_ > 0) --awaiting_;
-  } else {
-    io.stale = true;  // the late answer to an earlier tick: it stood then and stays ignored
+  } else if (answer == sim::LockstepBarrier::Command::kUnsolicited &&
+             WallThrottle(&last_unsolicited_warning_wall_, kWarnPeriodS)) {
+    ROS_WARN("lockstep: robot %u sent a cmd_vel it was not asked for (tick %llu); ignored", id,
+             static_cast<unsigned long long>(tick_));
   }
 }
 

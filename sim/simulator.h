@@ -6,7 +6,6 @@
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
-#include <tf2_ros/transform_broadcaster.h>
 
 #include <csignal>
 #include <cstdint>
@@ -37,6 +36,10 @@
 #include "swarm_transport/core/random.h"
 #include "swarm_transport/ros/direct_link.h"
 #include "swarm_transport/ros/params.h"
+#include "live_mission.h"
+#include "lockstep_barrier.h"
+#include "radio.h"
+#include "visuals.h"
 #include "world2d.h"
 
 namespace swarm_transport {
@@ -109,7 +112,7 @@ class Simulator : public RobotOutlet {
   static void RequestStop();
 
  private:
-  // The ROS side of one robot (or its direct link) and its lock-step bookkeeping.
+  // The ROS side of one robot (or its direct link); its lock-step bookkeeping is barrier_'s.
   struct RobotIo {
     bool direct = false;  // linked directly: no neighbors, cmd_vel or tick_done topics
     ros::Publisher neighbors;
@@ -123,27 +126,9 @@ class Simulator : public RobotOutlet {
     int pose_subscribers = 0;
     std::uint64_t generation = 0;      // tells this robot's callbacks from a killed namesake's
     ros::WallTime connected_since;     // lock-step: both links up since (zero: not connected)
-    bool live = false;                 // lock-step: connected, so it must answer every tick
-    std::uint64_t neighbors_sent = 0;  // while live
-    std::uint64_t cmds_received = 0;   // while live; == sent: the current tick is answered
-    bool answered = false;             // the current tick's command arrived
-    bool stale = false;                // an old tick's answer arrived during the current tick
-    core::Velocity answer;
-    // Lock-step barrier for mission messages (see Tick_Done.msg).
-    ros::Subscriber tick_done;
-    bool sends_tick_done = false;      // it publishes tick_done: every tick waits for it
-    bool done = false;                 // the current tick's tick_done arrived
-    std::string publisher;             // its node name (a host runs many robots in one node)
-    std::uint32_t events_announced = 0;
+    ros::Subscriber tick_done;         // lock-step: mission messages it sent (Tick_Done.msg)
   };
-  // What the simulator knows of a live mission: who is in it and where its object is.
-  struct Mission {
-    std::vector<std::uint16_t> members;  // ascending
-    std::vector<std::uint16_t> leaders;  // highlighted in rviz
-    core::Vec2 object_position;
-    core::Vec2 object_size;
-    core::Vec2 target;
-  };
+  using Mission = sim::LiveMission;
   using RelayKey = std::pair<std::uint16_t, std::uint8_t>;  // (robot_id, sub_id)
   // Lock-step: mission messages received this tick, with their publisher, to relay in the
   // next Neighbors (stable-sorted by publisher: per publisher and topic, arrival is FIFO).
@@ -158,7 +143,7 @@ class Simulator : public RobotOutlet {
   // Counts a (dis)connected subscriber of robot `id`'s `field` (+1 / -1).
   void CountSubscriber(std::uint16_t id, std::uint64_t generation, int RobotIo::*field, int delta);
   // Lock-step: the robot has listened to its Neighbors and published cmd_vel for kSettleS.
-  static bool Ready(RobotIo* io);
+  bool Ready(std::uint16_t id, RobotIo* io);
   void RemoveRobot(std::uint16_t id);
 
   void RunRealtime();
@@ -192,18 +177,12 @@ class Simulator : public RobotOutlet {
   void ClearRelay();
   // `publisher`: the node that sent it (the barrier counts mission messages per node).
   void OnTickDone(std::uint16_t id, const std::string& publisher, const Tick_Done& msg);
-  // A live robot's tick is complete: its cmd_vel, its tick_done, and every mission message it
-  // (or its process) announced have arrived.
-  bool Complete(const RobotIo& io) const;
-  bool AllComplete() const;
   // Latched /flock/robots: the robots that exist (robots check missions against it).
   void PublishRobotList();
   void PublishPoses();
   void PublishClock();
   // Markers and tf when their wall-clock period has passed.
   void PublishVisualsIfDue();
-  void PublishMarkers();
-  void PublishTransforms();
   // Spins the callback queues (and, lock-step, the directly linked robots) once, waiting up to
   // `wait_s` for the first command or tick_done when none is queued.
   void SpinOnce(double wait_s = 0.0);
@@ -211,7 +190,6 @@ class Simulator : public RobotOutlet {
   void SpinRobots();
   double SimTime() const;
   ros::Time Stamp() const;
-  bool Lost();
 
   void OnCmdVel(std::uint16_t id, const geometry_msgs::Twist& msg);
   // Runs `call` now on the simulator's thread, or queues it for its loop from another one.
@@ -237,6 +215,7 @@ class Simulator : public RobotOutlet {
   bool lockstep_ = false;
   std::unique_ptr<sim::World2D> world_;
   std::unique_ptr<core::Rng> radio_rng_;
+  std::unique_ptr<sim::Radio> radio_;
   DirectRobots* direct_ = nullptr;
   std::thread::id thread_;  // Initialize()'s and Run()'s
 
@@ -245,7 +224,7 @@ class Simulator : public RobotOutlet {
   ros::CallbackQueue cmd_queue_;
   std::map<std::uint16_t, RobotIo> io_;
   std::map<RelayKey, Robot_Position> relayed_;  // virtual copies (type 1) and statists (type 2)
-  std::map<std::uint16_t, Mission> missions_;
+  sim::LiveMissions missions_;
 
   ros::Publisher positions_pub_;
   ros::Publisher robots_pub_;
@@ -257,15 +236,9 @@ class Simulator : public RobotOutlet {
   RelayList<Robot_Continue> relay_continues_;
   RelayList<Mission_Event> relay_events_;
   RelayList<Mission_Status> relay_statuses_;
-  // Per publisher: mission messages received / announced in its robots' tick_done.
-  std::map<std::string, std::uint64_t> events_received_;
-  // (mission id, Mission_Event kind): awaited since its phase's status was relayed; received.
-  std::set<std::pair<std::uint16_t, std::uint8_t>> events_awaited_;
-  std::set<std::pair<std::uint16_t, std::uint8_t>> events_seen_;
-  std::map<std::string, std::uint64_t> events_announced_;
+  sim::LockstepBarrier barrier_;
   ros::Publisher clock_pub_;
-  ros::Publisher markers_pub_;
-  std::unique_ptr<tf2_ros::TransformBroadcaster> tf_broadcaster_;
+  std::unique_ptr<sim::Visuals> visuals_;
   ros::ServiceServer spawn_srv_;
   ros::ServiceServer kill_srv_;
   ros::ServiceServer reset_srv_;
@@ -277,15 +250,12 @@ class Simulator : public RobotOutlet {
 
   std::uint64_t next_generation_ = 0;
   std::uint64_t tick_ = 0;    // radio rounds so far (lock-step: ticks)
-  std::size_t awaiting_ = 0;  // lock-step: live robots that have not answered yet
   bool finished_ = false;     // lock-step: max ticks reached, the world is frozen
   ros::WallTime start_wall_;
-  ros::WallTime next_visuals_wall_;
   ros::WallTime last_late_warning_wall_;  // wall-clock throttles of repeated warnings
   ros::WallTime last_bad_cmd_warning_wall_;
   ros::WallTime last_unsolicited_warning_wall_;
   ros::WallTime last_bad_position_warning_wall_;
-  std::set<std::pair<std::string, int>> shown_markers_;  // (ns, id) on screen
 };
 
 }  // namespace swarm_transport

@@ -1,0 +1,29 @@
+// What the simulator knows of a live mission: who is in it and where its object is. The radio
+// gives its members their mission channel; the visuals draw its object, target and leaders.
+#ifndef SWARM_TRANSPORT_SIM_LIVE_MISSION_H_
+#define SWARM_TRANSPORT_SIM_LIVE_MISSION_H_
+
+#include <cstdint>
+#include <map>
+#include <vector>
+
+#include "swarm_transport/core/geometry.h"
+
+namespace swarm_transport {
+namespace sim {
+
+struct LiveMission {
+  std::vector<std::uint16_t> members;  // ascending
+  std::vector<std::uint16_t> leaders;  // highlighted in rviz
+  core::Vec2 object_position;
+  core::Vec2 object_size;              // 0 x 0: a leader-only mission
+  core::Vec2 target;
+};
+
+// By mission id.
+using LiveMissions = std::map<std::uint16_t, LiveMission>;
+
+}  // namespace sim
+}  // namespace swarm_transport
+
+#endif  // SWARM_TRANSPORT_SIM_LIVE_MISSION_H_

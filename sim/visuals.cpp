@@ -1,0 +1,223 @@
+#include "visuals.h"
+
+#include <geometry_msgs/TransformStamped.h>
+#include <std_msgs/ColorRGBA.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include <cmath>
+#include <utility>
+
+#include "swarm_transport/ros/names.h"
+
+namespace swarm_transport {
+namespace sim {
+namespace {
+
+constexpr std::uint32_t kMarkersQueue = 2;
+// Marker look: z thickness of flat shapes (m), alpha of zones, objects and range circles.
+constexpr double kFlatM = 0.02;
+constexpr float kZoneAlpha = 0.35f;
+constexpr float kObjectAlpha = 0.6f;
+constexpr float kRangeAlpha = 0.08f;
+constexpr double kTargetDiameterM = 0.1;
+// 1 / golden ratio: consecutive ids get well separated hues.
+constexpr double kHueStep = 0.618033988749895;
+
+
+// HSV (all in [0, 1]) plus alpha to a colour.
+std_msgs::ColorRGBA Hsv(double h, double s, double v, float alpha) {
+  const double i = std::floor(h * 6.0);
+  const double f = h * 6.0 - i;
+  const double p = v * (1.0 - s);
+  const double q = v * (1.0 - f * s);
+  const double t = v * (1.0 - (1.0 - f) * s);
+  const double rgb[6][3] = {{v, t, p}, {q, v, p}, {p, v, t}, {p, q, v}, {t, p, v}, {v, p, q}};
+  const int k = static_cast<int>(i) % 6;
+  const double r = rgb[k][0], g = rgb[k][1], b = rgb[k][2];
+  std_msgs::ColorRGBA c;
+  c.r = static_cast<float>(r);
+  c.g = static_cast<float>(g);
+  c.b = static_cast<float>(b);
+  c.a = alpha;
+  return c;
+}
+
+std_msgs::ColorRGBA Rgba(float r, float g, float b, float a) {
+  std_msgs::ColorRGBA c;
+  c.r = r;
+  c.g = g;
+  c.b = b;
+  c.a = a;
+  return c;
+}
+
+std_msgs::ColorRGBA RobotColour(std::uint16_t id, float alpha) {
+  return Hsv(std::fmod(id * kHueStep, 1.0), 0.8, 0.95, alpha);
+}
+
+geometry_msgs::Quaternion YawQuaternion(double yaw_rad) {
+  geometry_msgs::Quaternion q;
+  q.z = std::sin(0.5 * yaw_rad);
+  q.w = std::cos(0.5 * yaw_rad);
+  return q;
+}
+
+visualization_msgs::Marker MakeMarker(const std::string& ns, int id, int type, ros::Time stamp) {
+  visualization_msgs::Marker m;
+  m.header.frame_id = names::kWorldFrame;
+  m.header.stamp = stamp;
+  m.ns = ns;
+  m.id = id;
+  m.type = type;
+  m.action = visualization_msgs::Marker::ADD;
+  m.pose.orientation.w = 1.0;
+  return m;
+}
+
+}  // namespace
+
+Visuals::Visuals(ros::NodeHandle nh, VisualsParams params) : params_(std::move(params)) {
+  markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>(names::kMarkers, kMarkersQueue);
+  if (params_.tf) tf_broadcaster_ = std::make_unique<tf2_ros::TransformBroadcaster>();
+}
+
+void Visuals::Start(ros::WallTime now) { next_wall_ = now; }
+
+bool Visuals::Due() {
+  if (!(params_.rate_hz > 0.0)) return false;
+  const ros::WallTime now = ros::WallTime::now();
+  if (now < next_wall_) return false;
+  const ros::WallDuration period(1.0 / params_.rate_hz);
+  next_wall_ += period;
+  if (next_wall_ < now) next_wall_ = now + period;
+  return true;
+}
+
+void Visuals::Publish(const World2D& world, const LiveMissions& missions, ros::Time stamp) {
+  if (markers_pub_.getNumSubscribers() > 0) PublishMarkers(world, missions, stamp);
+  if (tf_broadcaster_) PublishTransforms(world, stamp);
+}
+
+void Visuals::Shutdown() {
+  markers_pub_.shutdown();
+  tf_broadcaster_.reset();
+}
+
+void Visuals::PublishMarkers(const World2D& world, const LiveMissions& missions, ros::Time stamp) {
+  using visualization_msgs::Marker;
+  const double r = world.params().robot_radius_m;
+  visualization_msgs::MarkerArray array;
+  std::set<std::pair<std::string, int>> shown;
+  auto add = [&array, &shown](const Marker& m) {
+    array.markers.push_back(m);
+    shown.emplace(m.ns, m.id);
+  };
+
+  for (const auto& entry : world.robots()) {
+    const core::Pose2& pose = entry.second.pose;
+    const double yaw = pose.heading.radians();
+    // An arrow of 3 r through the robot's centre, pointing where it heads.
+    Marker arrow = MakeMarker("robots", entry.first, Marker::ARROW, stamp);
+    arrow.pose.position.x = pose.position.x - r * std::cos(yaw);
+    arrow.pose.position.y = pose.position.y - r * std::sin(yaw);
+    arrow.pose.orientation = YawQuaternion(yaw);
+    arrow.scale.x = 3.0 * r;
+    arrow.scale.y = r;
+    arrow.scale.z = r;
+    arrow.color = RobotColour(entry.first, 1.0f);
+    add(arrow);
+    if (params_.range_circles) {
+      Marker circle = MakeMarker("ranges", entry.first, Marker::CYLINDER, stamp);
+      circle.pose.position.x = pose.position.x;
+      circle.pose.position.y = pose.position.y;
+      circle.scale.x = circle.scale.y = 2.0 * params_.local_range_m;
+      circle.scale.z = 0.5 * kFlatM;
+      circle.color = RobotColour(entry.first, kRangeAlpha);
+      add(circle);
+    }
+  }
+
+  int zone_part = 0;
+  for (const core::Zone& zone : params_.danger_zones) {
+    for (const core::Primitive& part : zone.shape.parts()) {
+      const bool is_rect = part.kind == core::Primitive::Kind::kRect;
+      Marker m =
+          MakeMarker("danger_zones", zone_part++, is_rect ? Marker::CUBE : Marker::CYLINDER, stamp);
+      if (is_rect) {
+        m.pose.position.x = part.rect.centre.x;
+        m.pose.position.y = part.rect.centre.y;
+        m.scale.x = part.rect.size.x;
+        m.scale.y = part.rect.size.y;
+      } else {
+        m.pose.position.x = part.circle.centre.x;
+        m.pose.position.y = part.circle.centre.y;
+        m.scale.x = m.scale.y = 2.0 * part.circle.radius;
+      }
+      m.scale.z = kFlatM;
+      m.color = Rgba(0.9f, 0.1f, 0.1f, kZoneAlpha);
+      add(m);
+    }
+  }
+
+  for (const auto& entry : missions) {
+    const LiveMission& mission = entry.second;
+    if (mission.object_size.x > 0.0 && mission.object_size.y > 0.0) {
+      Marker object = MakeMarker("objects", entry.first, Marker::CUBE, stamp);
+      object.pose.position.x = mission.object_position.x;
+      object.pose.position.y = mission.object_position.y;
+      object.scale.x = mission.object_size.x;
+      object.scale.y = mission.object_size.y;
+      object.scale.z = 2.0 * kFlatM;
+      object.color = Rgba(0.85f, 0.55f, 0.15f, kObjectAlpha);
+      add(object);
+    }
+    Marker target = MakeMarker("targets", entry.first, Marker::SPHERE, stamp);
+    target.pose.position.x = mission.target.x;
+    target.pose.position.y = mission.target.y;
+    target.scale.x = target.scale.y = target.scale.z = kTargetDiameterM;
+    target.color = Rgba(0.1f, 0.8f, 0.2f, 0.8f);
+    add(target);
+    // Leaders: a white disc under the robot's arrow.
+    for (std::uint16_t id : mission.leaders) {
+      const Robot* robot = world.Find(id);
+      if (robot == nullptr) continue;
+      Marker halo = MakeMarker("leaders", id, Marker::CYLINDER, stamp);
+      halo.pose.position.x = robot->pose.position.x;
+      halo.pose.position.y = robot->pose.position.y;
+      halo.scale.x = halo.scale.y = 4.0 * r;
+      halo.scale.z = kFlatM;
+      halo.color = Rgba(1.0f, 1.0f, 1.0f, 0.8f);
+      add(halo);
+    }
+  }
+
+  // Whatever was on screen and is gone now (killed robots, deleted objects) is deleted.
+  for (const auto& key : shown_) {
+    if (shown.count(key) != 0) continue;
+    Marker gone = MakeMarker(key.first, key.second, Marker::ARROW, stamp);
+    gone.action = Marker::DELETE;
+    array.markers.push_back(gone);
+  }
+  shown_ = std::move(shown);
+  markers_pub_.publish(array);
+}
+
+void Visuals::PublishTransforms(const World2D& world, ros::Time stamp) {
+  std::vector<geometry_msgs::TransformStamped> transforms;
+  transforms.reserve(world.size());
+  for (const auto& entry : world.robots()) {
+    geometry_msgs::TransformStamped t;
+    t.header.stamp = stamp;
+    t.header.frame_id = names::kWorldFrame;
+    // tf frame ids are not graph names: they cannot be resolved, so they are composed here.
+    t.child_frame_id = names::RobotNamespace(entry.first) + "/" + names::kBaseLink;
+    t.transform.translation.x = entry.second.pose.position.x;
+    t.transform.translation.y = entry.second.pose.position.y;
+    t.transform.rotation = YawQuaternion(entry.second.pose.heading.radians());
+    transforms.push_back(t);
+  }
+  if (!transforms.empty()) tf_broadcaster_->sendTransform(transforms);
+}
+
+}  // namespace sim
+}  // namespace swarm_transport
