@@ -127,6 +127,40 @@ std::vector<LockstepBarrier::EventKey> LockstepBarrier::GiveUpEvents() {
   return given_up;
 }
 
+void LockstepBarrier::OnSchedule(
+    const std::vector<std::pair<std::uint16_t, std::uint64_t>>& orders) {
+  have_schedule_ = true;
+  for (const auto& order : orders) {
+    if (orders_early_.erase(order.first) == 0) orders_due_[order.first] = order.second;
+  }
+}
+
+void LockstepBarrier::OrderArrived(std::uint16_t mission_id) {
+  if (orders_due_.erase(mission_id) == 0 && !have_schedule_) orders_early_.insert(mission_id);
+}
+
+bool LockstepBarrier::OrdersMissing(std::uint64_t tick) const {
+  if (tick >= 1 && ScheduleMissing()) return true;
+  for (const auto& order : orders_due_) {
+    if (order.second <= tick) return true;
+  }
+  return false;
+}
+
+std::vector<std::uint16_t> LockstepBarrier::GiveUpOrders(std::uint64_t tick) {
+  if (tick >= 1) have_schedule_ = true;
+  std::vector<std::uint16_t> given_up;
+  for (auto it = orders_due_.begin(); it != orders_due_.end();) {
+    if (it->second <= tick) {
+      given_up.push_back(it->first);
+      it = orders_due_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  return given_up;
+}
+
 bool LockstepBarrier::Complete(const Slot& slot) const {
   if (!slot.has_answer) return false;
   if (!slot.sends_tick_done) return true;

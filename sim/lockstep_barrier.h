@@ -66,6 +66,17 @@ class LockstepBarrier {
   void Seen(const EventKey& event);
   void Forget(std::uint16_t mission_id);
 
+  // A dispatcher's scheduled orders (Mission_Schedule): with ExpectSchedule, tick 1 on waits
+  // for the schedule; each order waits from its start tick until it arrived.
+  void ExpectSchedule() { expect_schedule_ = true; }
+  void OnSchedule(const std::vector<std::pair<std::uint16_t, std::uint64_t>>& orders);
+  void OrderArrived(std::uint16_t mission_id);
+  // Tick `tick` must wait: for the schedule, or for an order due by then.
+  bool OrdersMissing(std::uint64_t tick) const;
+  // Stops waiting for what OrdersMissing(tick) waits for; returns the orders given up.
+  std::vector<std::uint16_t> GiveUpOrders(std::uint64_t tick);
+  bool ScheduleMissing() const { return expect_schedule_ && !have_schedule_; }
+
   // Every live robot's tick is complete.
   bool AllAnswered() const;
   // Live robots whose tick is not complete, ascending.
@@ -97,6 +108,10 @@ class LockstepBarrier {
   std::map<std::uint16_t, Slot> robots_;
   std::map<std::string, std::uint64_t> received_;   // per publisher
   std::map<std::string, std::uint64_t> announced_;  // per publisher
+  bool expect_schedule_ = false;
+  bool have_schedule_ = false;
+  std::map<std::uint16_t, std::uint64_t> orders_due_;  // scheduled, not arrived: start tick
+  std::set<std::uint16_t> orders_early_;  // arrived before the schedule named them
   std::set<EventKey> events_awaited_;
   std::set<EventKey> events_seen_;
 };

@@ -228,8 +228,11 @@ bool Simulator::Initialize() {
                                 ros::TransportHints().tcpNoDelay());
   robot_delete_sub_ =
       nh_.subscribe(names::kRobotDelete, kMissionQueue, &Simulator::OnRobotDelete, this);
-  mission_new_sub_ =
-      nh_.subscribe(names::kMissionNew, kMissionQueue, &Simulator::OnMissionNew, this);
+  if (!lockstep_) {
+    // Lock-step takes orders in through the relay, at the tick the robots take them.
+    mission_new_sub_ =
+        nh_.subscribe(names::kMissionNew, kMissionQueue, &Simulator::OnMissionNew, this);
+  }
   object_update_sub_ =
       nh_.subscribe(names::kObjectUpdate, kMissionQueue, &Simulator::OnObjectUpdate, this);
   object_delete_sub_ =
@@ -251,7 +254,7 @@ bool Simulator::Initialize() {
           });
       relay_subs_.push_back(nh_.subscribe(ops));
     };
-    relay(names::kMissionNew, &relay_missions_, false);
+    relay(names::kMissionNew, &pending_missions_, false);
     relay(names::kObjectUpdate, &relay_updates_, true);
     relay(names::kObjectDelete, &relay_deletes_, true);
     relay(names::kFreeze, &relay_freezes_, true);
@@ -259,6 +262,10 @@ bool Simulator::Initialize() {
     relay(names::kMissionEvent, &relay_events_, false);
     relay(names::kMissionStatus, &relay_statuses_, true);
     if (params_.lockstep_dispatcher) {
+      // Its file missions enter at stamped ticks; tick 1 on waits for its schedule.
+      barrier_.ExpectSchedule();
+      schedule_sub_ = nh_.subscribe(names::kMissionSchedule, kMissionQueue,
+                                    &Simulator::OnSchedule, this);
       ROS_INFO("lockstep: a dispatcher sends LOADED %s, UNLOADED %s; ticks wait for them",
                params_.swarm.loaded_delay_s >= 0.0 ? "on its own" : "never (waits for you)",
                params_.swarm.unloaded_delay_s >= 0.0 ? "on its own" : "never (waits for you)");
@@ -416,6 +423,7 @@ void Simulator::Shutdown() {
   position_sub_.shutdown();
   robot_delete_sub_.shutdown();
   mission_new_sub_.shutdown();
+  schedule_sub_.shutdown();
   object_update_sub_.shutdown();
   object_delete_sub_.shutdown();
   spawn_srv_.shutdown();
@@ -580,7 +588,7 @@ void Simulator::RunLockstep() {
   while (Running() && (max_ticks == 0 || tick_ < max_ticks)) {
     UpdateLiveness();
     // A phase status relayed now makes its dispatcher event due in this tick's relay.
-    WaitForEvents();
+    WaitForDispatcher();
     PublishClock();
     PublishRadio();
     PublishPoses();
@@ -630,6 +638,7 @@ void Simulator::PublishClock() {
 }
 
 void Simulator::PublishRadio() {
+  if (lockstep_) ReleaseMissions();
   const double sim_time = SimTime();
   const auto& robots = world_->robots();
   std::vector<Robot_Position> truth;
@@ -706,6 +715,7 @@ void Simulator::Relay(const ros::MessageEvent<const M>& event, RelayList<M>* lis
   list->emplace_back(from, *event.getConstMessage());
   if constexpr (std::is_same_v<M, Mission_Status>) NoteStatus(*event.getConstMessage());
   if constexpr (std::is_same_v<M, Mission_Event>) NoteEvent(*event.getConstMessage());
+  if constexpr (std::is_same_v<M, New_Mission>) barrier_.OrderArrived(event.getConstMessage()->mission_id);
 }
 
 void Simulator::NoteStatus(const Mission_Status& status) {
@@ -737,21 +747,60 @@ void Simulator::NoteEvent(const Mission_Event& event) {
   barrier_.Seen({event.mission_id, event.event});
 }
 
-void Simulator::WaitForEvents() {
-  if (!barrier_.EventsAwaited()) return;
-  const ros::WallTime deadline =
-      ros::WallTime::now() + ros::WallDuration(params_.lockstep_timeout_s);
-  while (barrier_.EventsAwaited() && Running() && ros::WallTime::now() < deadline) {
+void Simulator::WaitForDispatcher() {
+  const auto holding = [this] {
+    return barrier_.EventsAwaited() || barrier_.OrdersMissing(tick_);
+  };
+  if (!holding()) return;
+  // An order or the schedule is due once per run and may wait for the dispatcher's listeners:
+  // the start-up timeout; a LOADED / UNLOADED the tick timeout.
+  const double timeout_s = barrier_.OrdersMissing(tick_) ? params_.lockstep_start_timeout_s
+                                                         : params_.lockstep_timeout_s;
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout_s);
+  while (holding() && Running() && ros::WallTime::now() < deadline) {
     SpinOnce(kPollS);
   }
-  if (!barrier_.EventsAwaited() || !Running()) return;
+  if (!holding() || !Running()) return;
+  if (barrier_.ScheduleMissing() && tick_ >= 1) {
+    ROS_WARN("lockstep tick %llu: no %s from the dispatcher within %.2f s; not waiting for it "
+             "any longer", static_cast<unsigned long long>(tick_), names::kMissionSchedule,
+             timeout_s);
+  }
+  for (std::uint16_t id : barrier_.GiveUpOrders(tick_)) {
+    ROS_WARN("lockstep tick %llu: the order of scheduled mission %u did not arrive within "
+             "%.2f s; not waiting for it any longer", static_cast<unsigned long long>(tick_), id,
+             timeout_s);
+  }
   for (const auto& key : barrier_.GiveUpEvents()) {
     ROS_WARN("lockstep tick %llu: no %s for mission %u from the dispatcher within %.2f s; "
              "not waiting for it any longer",
              static_cast<unsigned long long>(tick_),
-             key.second == Mission_Event::LOADED ? "LOADED" : "UNLOADED", key.first,
-             params_.lockstep_timeout_s);
+             key.second == Mission_Event::LOADED ? "LOADED" : "UNLOADED", key.first, timeout_s);
   }
+}
+
+void Simulator::OnSchedule(const Mission_Schedule::ConstPtr& msg) {
+  std::vector<std::pair<std::uint16_t, std::uint64_t>> orders;
+  const std::size_t n = std::min(msg->mission_ids.size(), msg->start_ticks.size());
+  for (std::size_t i = 0; i < n; ++i) orders.emplace_back(msg->mission_ids[i], msg->start_ticks[i]);
+  barrier_.OnSchedule(orders);
+}
+
+void Simulator::ReleaseMissions() {
+  // In arrival order: what is due enters this tick's relay and the simulator's books (the
+  // mission channel, markers) together; the rest waits for its start tick.
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < pending_missions_.size(); ++i) {
+    auto& entry = pending_missions_[i];
+    if (entry.second.start_tick > tick_) {
+      if (kept != i) pending_missions_[kept] = std::move(entry);
+      ++kept;
+      continue;
+    }
+    RegisterMission(entry.second);
+    relay_missions_.push_back(std::move(entry));
+  }
+  pending_missions_.resize(kept);
 }
 
 namespace {
@@ -945,17 +994,19 @@ void Simulator::OnRobotDelete(const Delete_Robot::ConstPtr& msg) {
   relayed_.erase(RelayKey(msg->robot_id, msg->sub_id));
 }
 
-void Simulator::OnMissionNew(const New_Mission::ConstPtr& msg) {
+void Simulator::OnMissionNew(const New_Mission::ConstPtr& msg) { RegisterMission(*msg); }
+
+void Simulator::RegisterMission(const New_Mission& order) {
   // The same validation as the robots and the dispatcher, so the mission channel and the
   // markers exist exactly for the missions the robots act on.
-  const core::MissionSpec spec = ToMissionSpec(*msg);
+  const core::MissionSpec spec = ToMissionSpec(order);
   core::MissionContext context;
   context.world_size_m = world_->params().world_size_m;
   for (const auto& entry : world_->robots()) context.known_robots.insert(entry.first);
   for (const auto& entry : missions_) context.live_missions.insert(entry.first);
   const std::string why = core::ValidateMission(spec, context);
   if (!why.empty()) {
-    ROS_DEBUG("simulator: ignored New_Mission %u: %s", msg->mission_id, why.c_str());
+    ROS_DEBUG("simulator: ignored New_Mission %u: %s", order.mission_id, why.c_str());
     return;
   }
   Mission mission;
@@ -964,7 +1015,7 @@ void Simulator::OnMissionNew(const New_Mission::ConstPtr& msg) {
   mission.object_position = spec.object_centre;
   mission.object_size = spec.object_size;
   mission.target = spec.target;
-  missions_[msg->mission_id] = mission;
+  missions_[order.mission_id] = mission;
 }
 
 void Simulator::OnObjectUpdate(const Update_Object::ConstPtr& msg) {

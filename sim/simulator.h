@@ -22,6 +22,7 @@
 #include "swarm_transport/Delete_Robot.h"
 #include "swarm_transport/Kill.h"
 #include "swarm_transport/Mission_Event.h"
+#include "swarm_transport/Mission_Schedule.h"
 #include "swarm_transport/Mission_Status.h"
 #include "swarm_transport/Neighbors.h"
 #include "swarm_transport/New_Mission.h"
@@ -158,8 +159,13 @@ class Simulator : public RobotOutlet {
   void UpdateLiveness();
   // Lock-step: spins until every live robot answered the current tick or the timeout passed.
   void WaitForAnswers();
-  // Lock-step: holds until every awaited dispatcher event arrived or lockstep_timeout_s passed.
-  void WaitForEvents();
+  // Lock-step: holds until every awaited dispatcher event arrived (at most lockstep_timeout_s)
+  // and, from tick 1, the dispatcher's schedule and every order due by this tick (at most
+  // lockstep_start_timeout_s).
+  void WaitForDispatcher();
+  void OnSchedule(const Mission_Schedule::ConstPtr& msg);
+  // Lock-step: the received orders due by this tick enter its relay and the books.
+  void ReleaseMissions();
   // Lock-step bookkeeping of awaited dispatcher events, from relayed statuses and events.
   void NoteStatus(const Mission_Status& status);
   void NoteEvent(const Mission_Event& event);
@@ -204,6 +210,8 @@ class Simulator : public RobotOutlet {
   void OnPosition(const Robot_Position::ConstPtr& msg);
   void OnRobotDelete(const Delete_Robot::ConstPtr& msg);
   void OnMissionNew(const New_Mission::ConstPtr& msg);
+  // Validated like the robots do: a valid order gets its mission channel and markers.
+  void RegisterMission(const New_Mission& order);
   void OnObjectUpdate(const Update_Object::ConstPtr& msg);
   void OnObjectDelete(const Delete_Object::ConstPtr& msg);
 
@@ -229,6 +237,7 @@ class Simulator : public RobotOutlet {
   ros::Publisher positions_pub_;
   ros::Publisher robots_pub_;
   std::vector<ros::Subscriber> relay_subs_;
+  RelayList<New_Mission> pending_missions_;  // received, waiting for their start tick
   RelayList<New_Mission> relay_missions_;
   RelayList<Update_Object> relay_updates_;
   RelayList<Delete_Object> relay_deletes_;
@@ -245,6 +254,7 @@ class Simulator : public RobotOutlet {
   ros::Subscriber position_sub_;
   ros::Subscriber robot_delete_sub_;
   ros::Subscriber mission_new_sub_;
+  ros::Subscriber schedule_sub_;
   ros::Subscriber object_update_sub_;
   ros::Subscriber object_delete_sub_;
 

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "swarm_transport/Mission_Event.h"
+#include "swarm_transport/Mission_Schedule.h"
 #include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/ros/conversions.h"
 #include "swarm_transport/ros/graph.h"
@@ -277,6 +278,8 @@ bool MissionDispatcher::Initialize() {
   new_pub_ = nh_.advertise<New_Mission>(names::kMissionNew, 10, true);
   status_pub_ = nh_.advertise<Mission_Status>(names::kMissionStatus, 100);
   event_pub_ = nh_.advertise<Mission_Event>(names::kMissionEvent, 10);
+  lockstep_ = ros::Time::isSimTime();
+  if (lockstep_) schedule_pub_ = nh_.advertise<Mission_Schedule>(names::kMissionSchedule, 1, true);
   positions_sub_ = nh_.subscribe(names::kPositions, 1, &MissionDispatcher::OnPositions, this);
   new_sub_ = nh_.subscribe(names::kMissionNew, 100, &MissionDispatcher::OnNewMission, this);
   status_sub_ = nh_.subscribe(names::kMissionStatus, 100, &MissionDispatcher::OnStatus, this);
@@ -301,8 +304,9 @@ bool MissionDispatcher::Initialize() {
            delay(options_.unloaded_delay_s).c_str(), file_missions_.size(),
            options_.max_live_missions);
   if (!file_missions_.empty()) {
-    ROS_INFO("%s: submitting the file missions %.2f s after the first %s", kNode,
-             options_.start_delay_s, names::kPositions);
+    ROS_INFO("%s: submitting the file missions %.2f s after the first %s%s", kNode,
+             options_.start_delay_s, names::kPositions,
+             lockstep_ ? " (lock-step: stamped with that tick, sent at once)" : "");
   }
   return true;
 }
@@ -357,7 +361,7 @@ void MissionDispatcher::PublishStatus(const core::MissionSpec& spec, MissionPhas
 
 MissionDispatcher::Verdict MissionDispatcher::Submit(core::MissionSpec spec,
                                                      const std::string& source, bool auto_id,
-                                                     bool publish) {
+                                                     bool publish, std::uint64_t start_tick) {
   Verdict verdict;
   const std::uint16_t next_id = next_id_;
   if (auto_id && spec.id == 0) spec.id = NextFreeId();
@@ -414,7 +418,9 @@ MissionDispatcher::Verdict MissionDispatcher::Submit(core::MissionSpec spec,
   // QUEUED of the dispatcher's raced the first leader's GATHERING, issue 9).
   if (publish) {
     AwaitListeners();
-    new_pub_.publish(ToNewMission(spec));
+    New_Mission order = ToNewMission(spec);
+    order.start_tick = start_tick;
+    new_pub_.publish(order);
   }
   const std::string what = Describe(spec);
   ROS_INFO("%s: queued mission %u from %s: %s", kNode, spec.id, source.c_str(), what.c_str());
@@ -429,8 +435,36 @@ void MissionDispatcher::SubmitFileMissions() {
   file_missions_.clear();
 }
 
+void MissionDispatcher::ScheduleFileMissions(std::uint64_t tick) {
+  // The tick of start_delay_s from the run's start, and never one that has begun.
+  const auto delay_ticks = static_cast<std::uint64_t>(
+      std::ceil(options_.start_delay_s / config_.tick_period_s - 1e-9));
+  const std::uint64_t start = std::max<std::uint64_t>(tick + 1, delay_ticks);
+  Mission_Schedule schedule;
+  for (const core::MissionSpec& spec : file_missions_) {
+    const Verdict verdict = Submit(spec, "missions_file", true, true, start);
+    if (!verdict.accepted) continue;
+    schedule.mission_ids.push_back(verdict.id);
+    schedule.start_ticks.push_back(start);
+  }
+  file_missions_.clear();
+  schedule_pub_.publish(schedule);
+  if (!schedule.mission_ids.empty()) {
+    ROS_INFO("%s: %zu file mission(s) enter the run at tick %llu", kNode,
+             schedule.mission_ids.size(), static_cast<unsigned long long>(start));
+  }
+}
+
 void MissionDispatcher::OnPositions(const Robot_Positions::ConstPtr& msg) {
   positions_ = msg;
+  if (lockstep_) {
+    // Even without a file: a lock-step simulator holds tick 1 for the schedule.
+    if (!file_missions_scheduled_) {
+      file_missions_scheduled_ = true;
+      ScheduleFileMissions(msg->tick);
+    }
+    return;
+  }
   if (file_missions_scheduled_ || file_missions_.empty()) return;
   file_missions_scheduled_ = true;
   if (options_.start_delay_s > 0.0) {

@@ -323,7 +323,9 @@ void Recorder::OnMissionNew(const New_Mission::ConstPtr& msg) {
     }
     return;
   }
-  const std::uint64_t newest = history_.empty() ? 0 : history_.back().tick;
+  // Known from the tick it reached us, or (lock-step) from the later tick it is stamped with.
+  const std::uint64_t newest =
+      std::max<std::uint64_t>(history_.empty() ? 0 : history_.back().tick, msg->start_tick);
   written_.erase(spec.id);  // a finished mission's id is used again
   auto it = missions_.find(spec.id);
   if (it != missions_.end()) {

@@ -175,6 +175,39 @@ TEST(LockstepBarrierTest, HoldsForAwaitedDispatcherEvents) {
   EXPECT_TRUE(b.EventsAwaited());
 }
 
+// Missions at a defined tick (issue 10, item 4): with a dispatcher, tick 1 waits for its
+// schedule, and each scheduled order's start tick waits until the order arrived, whichever of
+// the two topics delivers first.
+TEST(LockstepBarrierTest, HoldsTicksForTheDispatchersScheduledOrders) {
+  LockstepBarrier b;
+  EXPECT_FALSE(b.OrdersMissing(1));  // no dispatcher expected
+  b.ExpectSchedule();
+  EXPECT_FALSE(b.OrdersMissing(0));  // tick 0 runs: the dispatcher schedules at tick 0
+  EXPECT_TRUE(b.OrdersMissing(1));
+  b.OrderArrived(7);  // the order overtook the schedule
+  b.OnSchedule({{7, 10}, {8, 10}, {9, 30}});
+  EXPECT_FALSE(b.OrdersMissing(1));
+  EXPECT_FALSE(b.OrdersMissing(9));
+  EXPECT_TRUE(b.OrdersMissing(10));  // 8 is due
+  b.OrderArrived(8);
+  EXPECT_FALSE(b.OrdersMissing(10));
+  EXPECT_FALSE(b.OrdersMissing(29));
+  EXPECT_TRUE(b.OrdersMissing(30));
+  EXPECT_EQ(b.GiveUpOrders(30), (std::vector<std::uint16_t>{9}));
+  EXPECT_FALSE(b.OrdersMissing(31));
+  b.OrderArrived(12);  // a raw order nobody scheduled: nothing to wait for
+  EXPECT_FALSE(b.OrdersMissing(40));
+}
+
+TEST(LockstepBarrierTest, GivingUpOnAMissingScheduleLetsTheRunGoOn) {
+  LockstepBarrier b;
+  b.ExpectSchedule();
+  EXPECT_TRUE(b.ScheduleMissing());
+  EXPECT_TRUE(b.GiveUpOrders(1).empty());
+  EXPECT_FALSE(b.ScheduleMissing());
+  EXPECT_FALSE(b.OrdersMissing(2));
+}
+
 TEST(LockstepBarrierTest, EndAllAsksNobody) {
   LockstepBarrier b = TwoLive(1);
   b.EndAll();

@@ -96,9 +96,14 @@ class MissionDispatcher {
   bool LoadOptions(std::string* error);
   // Validates and, when accepted, tracks the mission; `publish` sends it on /flock/mission/new
   // (service and file missions; raw topic ones are already there). id 0 with `auto_id` picks
-  // the next free id.
-  Verdict Submit(core::MissionSpec spec, const std::string& source, bool auto_id, bool publish);
+  // the next free id. `start_tick` stamps the published order (lock-step: the robots take it
+  // then; 0: when it arrives).
+  Verdict Submit(core::MissionSpec spec, const std::string& source, bool auto_id, bool publish,
+                 std::uint64_t start_tick = 0);
   void SubmitFileMissions();
+  // Lock-step: submits the file missions stamped with their start tick (after the first
+  // positions, of tick `tick`) and publishes the schedule the simulator holds its ticks for.
+  void ScheduleFileMissions(std::uint64_t tick);
   core::MissionContext Context(int ignore_id = -1) const;
   std::uint16_t NextFreeId();
   void PublishStatus(const core::MissionSpec& spec, core::MissionPhase phase,
@@ -130,10 +135,12 @@ class MissionDispatcher {
   DispatcherOptions options_;
   std::vector<core::MissionSpec> file_missions_;
   bool file_missions_scheduled_ = false;
+  bool lockstep_ = false;  // /use_sim_time: the simulator's lock-step clock
 
   ros::Publisher new_pub_;
   ros::Publisher status_pub_;
   ros::Publisher event_pub_;
+  ros::Publisher schedule_pub_;  // lock-step only
   ros::Subscriber positions_sub_;
   ros::Subscriber new_sub_;
   ros::Subscriber status_sub_;

@@ -17,6 +17,7 @@ constexpr char kMissionNew[] = "/flock/mission/new";
 constexpr char kMissionStatus[] = "/flock/mission/status";      // each phase once, on entry
 constexpr char kMissionProgress[] = "/flock/mission/progress";  // periodic, within a phase
 constexpr char kMissionEvent[] = "/flock/mission/event";
+constexpr char kMissionSchedule[] = "/flock/mission/schedule";  // latched, lock-step start
 constexpr char kFreeze[] = "/flock/freeze";
 constexpr char kContinue[] = "/flock/continue";
 constexpr char kObjectUpdate[] = "/flock/object/update";
