@@ -8,7 +8,7 @@ namespace swarm_transport {
 namespace core {
 namespace {
 
-MissionAgentParams MissionParams(const RobotBrainParams& p) {
+MissionAgentParams MissionParams(const SwarmConfig& p) {
   MissionAgentParams m;
   m.goal_tolerance_m = p.leader.goal_tolerance_m;
   m.object_update_ticks = p.object_update_ticks;
@@ -25,8 +25,8 @@ std::string BadRange(const char* what, std::uint16_t from, std::uint16_t to) {
 
 }  // namespace
 
-RobotBrain::RobotBrain(std::uint16_t id, const RobotBrainParams& params)
-    : id_(id), params_(params), rng_(params.seed, id), agent_(id, MissionParams(params)) {}
+RobotBrain::RobotBrain(std::uint16_t id, const SwarmConfig& config)
+    : id_(id), params_(config), rng_(config.seed, id), agent_(id, MissionParams(config)) {}
 
 std::string RobotBrain::OnFreeze(std::uint16_t from, std::uint16_t to) {
   if (from >= to) return BadRange("Robot_Freeze", from, to);

@@ -69,15 +69,7 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
     return false;
   }
   id_ = static_cast<std::uint16_t>(options_.id);
-  core::RobotBrainParams brain;
-  brain.flocking = config_.flocking;
-  brain.leader = config_.leader;
-  brain.transport = config_.transport;
-  brain.danger_zones = config_.danger_zones;
-  brain.tick_period_s = config_.tick_period_s;
-  brain.seed = config_.seed;
-  brain.object_update_ticks = config_.object_update_ticks;
-  brain_.emplace(id_, brain);
+  brain_.emplace(id_, config_);
 
   position_pub_ = nh_.advertise<Robot_Position>(names::kPosition, 10);
   if (options_.direct == nullptr) {

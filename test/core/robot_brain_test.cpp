@@ -17,8 +17,8 @@ namespace {
 using fixtures::At;
 using fixtures::Thesis;
 
-RobotBrainParams Params() {
-  RobotBrainParams p;
+SwarmConfig Params() {
+  SwarmConfig p;
   p.flocking.local_range_m = 1.0;
   p.flocking.speed_m_per_tick = 0.1;
   p.flocking.free_will_deg = 90.0;
@@ -119,7 +119,7 @@ TEST(RobotBrainTest, AFirstLeaderRunsItsMissionAndAFrozenLeaderFacesItsCourse) {
 }
 
 TEST(RobotBrainTest, ALeaderOnlyMissionEndsWhenItsLeaderArrives) {
-  RobotBrainParams p = Params();
+  SwarmConfig p = Params();
   p.leader.keep_flock = false;
   RobotBrain brain(4, p);
   MissionSpec lead;

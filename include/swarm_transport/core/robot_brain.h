@@ -17,21 +17,11 @@
 #include "swarm_transport/core/mission.h"
 #include "swarm_transport/core/mission_agent.h"
 #include "swarm_transport/core/random.h"
+#include "swarm_transport/core/swarm_config.h"
 #include "swarm_transport/core/transport.h"
 
 namespace swarm_transport {
 namespace core {
-
-// The behaviour every robot of a swarm shares (the /swarm keys a robot uses).
-struct RobotBrainParams {
-  FlockingParams flocking;
-  LeaderParams leader;
-  TransportParams transport;
-  std::vector<Zone> danger_zones;  // static danger zones
-  double tick_period_s = 0.1;
-  std::uint64_t seed = 1;          // base seed; each robot's generator is (seed, id)
-  int object_update_ticks = 1;     // a first leader publishes Update_Object every N ticks
-};
 
 // A New_Mission the brain took.
 struct MissionTaken {
@@ -51,7 +41,8 @@ struct BrainTick {
 
 class RobotBrain {
  public:
-  RobotBrain(std::uint16_t id, const RobotBrainParams& params);
+  // `config` must be valid (SwarmConfig::Validate).
+  RobotBrain(std::uint16_t id, const SwarmConfig& config);
 
   // Inbox. Each returns an empty string when taken, else the reason it was not (its state is
   // then unchanged). Freeze / continue apply to robots in [from, to), an empty or inverted
@@ -85,7 +76,7 @@ class RobotBrain {
   bool InRange(std::uint16_t from, std::uint16_t to) const { return from <= id_ && id_ < to; }
 
   std::uint16_t id_;
-  RobotBrainParams params_;
+  SwarmConfig params_;
   Rng rng_;
   MissionAgent agent_;
   LeaderMemory leader_memory_;

@@ -10,31 +10,13 @@
 #include <string>
 #include <vector>
 
-#include "swarm_transport/core/flocking.h"
-#include "swarm_transport/core/leader.h"
 #include "swarm_transport/core/modes.h"
-#include "swarm_transport/core/transport.h"
+#include "swarm_transport/core/swarm_config.h"
 
 namespace swarm_transport {
 
-// Everything in the shared /swarm namespace (config/*.yaml): behaviour, clock, zones.
-struct SwarmConfig {
-  core::FlockingParams flocking;
-  core::LeaderParams leader;
-  core::TransportParams transport;
-  double tick_period_s = 0.1;            // one tick (lock-step: simulated; real time: wall)
-  std::uint64_t seed = 1;                // base seed of every robot's generator
-  std::vector<core::Zone> danger_zones;  // static danger zones
-  double loaded_delay_s = 2.0;           // dispatcher: LOADED this long after LOADING (<0: wait)
-  double unloaded_delay_s = 2.0;         // dispatcher: UNLOADED this long after UNLOADING
-  int object_update_ticks = 1;           // first leader publishes Update_Object every N ticks
-  // The radio passes positions on hop by hop this many hops for a chain neighbourhood (1: only
-  // robots in range are heard; mission peers are always heard over the mission channel).
-  int chain_hops = 16;
-
-  // Empty when valid, else one sentence naming the bad key.
-  std::string Validate() const;
-};
+// The shared configuration is the core's (core/swarm_config.h); this file loads it.
+using core::SwarmConfig;
 
 // Fills `config` from a dictionary holding the /swarm keys. Missing keys keep their defaults;
 // a key of the wrong type or an invalid value is an error (`error` names it, config untouched).

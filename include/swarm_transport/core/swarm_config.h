@@ -1,0 +1,40 @@
+// The shared swarm configuration (the /swarm keys of config/*.yaml), typed and validated in the
+// core: every node and the robot brain take the same struct. ros/params.h loads it.
+#ifndef SWARM_TRANSPORT_CORE_SWARM_CONFIG_H_
+#define SWARM_TRANSPORT_CORE_SWARM_CONFIG_H_
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "swarm_transport/core/flocking.h"
+#include "swarm_transport/core/geometry.h"
+#include "swarm_transport/core/leader.h"
+#include "swarm_transport/core/transport.h"
+
+namespace swarm_transport {
+namespace core {
+
+// Everything in the shared /swarm namespace (config/*.yaml): behaviour, clock, zones.
+struct SwarmConfig {
+  FlockingParams flocking;
+  LeaderParams leader;
+  TransportParams transport;
+  double tick_period_s = 0.1;       // one tick (lock-step: simulated; real time: wall)
+  std::uint64_t seed = 1;           // base seed; each robot's generator is (seed, id)
+  std::vector<Zone> danger_zones;   // static danger zones
+  double loaded_delay_s = 2.0;      // dispatcher: LOADED this long after LOADING (<0: wait)
+  double unloaded_delay_s = 2.0;    // dispatcher: UNLOADED this long after UNLOADING
+  int object_update_ticks = 1;      // a first leader publishes Update_Object every N ticks
+  // The radio passes positions on hop by hop this many hops for a chain neighbourhood (1: only
+  // robots in range are heard; mission peers are always heard over the mission channel).
+  int chain_hops = 16;
+
+  // Empty when valid, else one sentence naming the bad key.
+  std::string Validate() const;
+};
+
+}  // namespace core
+}  // namespace swarm_transport
+
+#endif  // SWARM_TRANSPORT_CORE_SWARM_CONFIG_H_

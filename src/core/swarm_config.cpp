@@ -1,0 +1,30 @@
+#include "swarm_transport/core/swarm_config.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace swarm_transport {
+namespace core {
+
+std::string SwarmConfig::Validate() const {
+  std::string e = flocking.Validate();
+  if (!e.empty()) return e;
+  e = leader.Validate();
+  if (!e.empty()) return e;
+  e = transport.Validate();
+  if (!e.empty()) return e;
+  std::ostringstream os;
+  if (!(tick_period_s > 0.0) || !std::isfinite(tick_period_s)) {
+    os << "tick_period_s must be > 0 but is " << tick_period_s;
+  } else if (!std::isfinite(loaded_delay_s) || !std::isfinite(unloaded_delay_s)) {
+    os << "loaded_delay_s and unloaded_delay_s must be finite";
+  } else if (object_update_ticks < 1) {
+    os << "object_update_ticks must be >= 1 but is " << object_update_ticks;
+  } else if (chain_hops < 1) {
+    os << "chain_hops must be >= 1 but is " << chain_hops;
+  }
+  return os.str();
+}
+
+}  // namespace core
+}  // namespace swarm_transport
