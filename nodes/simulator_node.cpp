@@ -3,7 +3,7 @@
 
 #include <csignal>
 
-#include "simulator.h"
+#include "swarm_transport/ros/simulator.h"
 
 int main(int argc, char** argv) {
   // Our own SIGINT handler: roscpp's would silence rosconsole before the final summary.

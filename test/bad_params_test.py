@@ -45,6 +45,10 @@ class BadParams(unittest.TestCase):
     def test_simulator_bad_clock(self):
         self.check('simulator', ['_clock:=sometimes', '__name:=sim_bad'], {}, 'clock')
 
+    def test_simulator_bad_placement(self):
+        self.check('simulator', ['_placement:=grid', '__name:=sim_bad_placement'], {},
+                   "placement must be 'random', 'corner' or 'file'")
+
 
 if __name__ == '__main__':
     rospy.init_node('bad_params_test')

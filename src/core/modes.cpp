@@ -25,9 +25,33 @@ bool ParseComm(const std::string& name, Comm* out) {
   return true;
 }
 
+bool ParsePlacement(const std::string& name, Placement* out) {
+  if (name == "random") {
+    *out = Placement::kRandom;
+  } else if (name == "corner") {
+    *out = Placement::kCorner;
+  } else if (name == "file") {
+    *out = Placement::kFile;
+  } else {
+    return false;
+  }
+  return true;
+}
+
 const char* ClockName(Clock clock) { return clock == Clock::kLockstep ? "lockstep" : "realtime"; }
 
 const char* CommName(Comm comm) { return comm == Comm::kBroadcast ? "broadcast" : "local"; }
+
+const char* PlacementName(Placement placement) {
+  switch (placement) {
+    case Placement::kCorner:
+      return "corner";
+    case Placement::kFile:
+      return "file";
+    default:
+      return "random";
+  }
+}
 
 }  // namespace core
 }  // namespace swarm_transport

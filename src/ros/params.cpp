@@ -303,4 +303,10 @@ bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, core::Comm* 
   return ReadPrivateMode(nh, key, "'local' or 'broadcast'", value, error, core::ParseComm);
 }
 
+bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, core::Placement* value,
+                 std::string* error) {
+  return ReadPrivateMode(nh, key, "'random', 'corner' or 'file'", value, error,
+                         core::ParsePlacement);
+}
+
 }  // namespace swarm_transport

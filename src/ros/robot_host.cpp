@@ -11,7 +11,7 @@
 #include <thread>
 #include <utility>
 
-#include "simulator.h"
+#include "swarm_transport/ros/simulator.h"
 #include "swarm_transport/ros/names.h"
 
 namespace swarm_transport {

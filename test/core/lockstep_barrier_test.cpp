@@ -1,4 +1,4 @@
-#include "lockstep_barrier.h"
+#include "swarm_transport/sim/lockstep_barrier.h"
 
 #include <gtest/gtest.h>
 
@@ -15,6 +15,12 @@ core::Velocity Forward(double linear) {
   core::Velocity v;
   v.linear = linear;
   return v;
+}
+
+// Robots 3 and 7 answer with a command.
+void BothAnswer(LockstepBarrier* b) {
+  b->OnCommand(3, Forward(0.1));
+  b->OnCommand(7, Forward(0.1));
 }
 
 // Two live robots in one host process ("/host"), tick `tick` asked.
@@ -98,8 +104,7 @@ TEST(LockstepBarrierTest, WaitsForTickDoneFromTheFirstTick) {
 
 TEST(LockstepBarrierTest, ATickDoneOfAnotherTickDoesNotComplete) {
   LockstepBarrier b = TwoLive(5);
-  b.OnCommand(3, Forward(0.1));
-  b.OnCommand(7, Forward(0.1));
+  BothAnswer(&b);
   b.OnTickDone(3, "/host", 4, 0);  // the previous tick's
   b.OnTickDone(7, "/host", 5, 0);
   EXPECT_FALSE(b.AllAnswered());
@@ -112,8 +117,7 @@ TEST(LockstepBarrierTest, ATickDoneOfAnotherTickDoesNotComplete) {
 // closes before the robot's message arrived and it is relayed a tick late.
 TEST(LockstepBarrierTest, AnnouncedMessagesAreCountedPerPublisher) {
   LockstepBarrier b = TwoLive(1);
-  b.OnCommand(3, Forward(0.1));
-  b.OnCommand(7, Forward(0.1));
+  BothAnswer(&b);
   b.OnTickDone(3, "/host", 1, 1);  // robot 3 sent one mission message
   b.OnTickDone(7, "/host", 1, 0);
   EXPECT_FALSE(b.AllAnswered());
@@ -126,8 +130,7 @@ TEST(LockstepBarrierTest, AnnouncedMessagesAreCountedPerPublisher) {
 
 TEST(LockstepBarrierTest, ARobotMovedToAnotherProcessTakesItsCountAlong) {
   LockstepBarrier b = TwoLive(1);
-  b.OnCommand(3, Forward(0.1));
-  b.OnCommand(7, Forward(0.1));
+  BothAnswer(&b);
   b.OnTickDone(3, "/host_a", 1, 2);
   b.OnTickDone(7, "/host_a", 1, 0);
   b.OnRobotMessage("/host_a");
@@ -137,8 +140,7 @@ TEST(LockstepBarrierTest, ARobotMovedToAnotherProcessTakesItsCountAlong) {
   b.StartTick(2);
   b.Ask(3);
   b.Ask(7);
-  b.OnCommand(3, Forward(0.1));
-  b.OnCommand(7, Forward(0.1));
+  BothAnswer(&b);
   b.OnTickDone(3, "/host_b", 2, 1);
   b.OnTickDone(7, "/host_a", 2, 0);
   EXPECT_FALSE(b.AllAnswered());  // /host_b owes one message

@@ -1,4 +1,4 @@
-// Clock and comm modes: every name parses to its mode and back; anything else is refused.
+// Clock, comm and placement modes: every name parses to its mode and back; anything else is refused.
 #include "swarm_transport/core/modes.h"
 
 #include <gtest/gtest.h>
@@ -18,6 +18,14 @@ TEST(ModesTest, NamesRoundTripAndUnknownNamesChangeNothing) {
     ASSERT_TRUE(ParseComm(CommName(c), &parsed));
     EXPECT_EQ(parsed, c);
   }
+  for (const Placement p : {Placement::kRandom, Placement::kCorner, Placement::kFile}) {
+    Placement parsed = p == Placement::kFile ? Placement::kRandom : Placement::kFile;
+    ASSERT_TRUE(ParsePlacement(PlacementName(p), &parsed));
+    EXPECT_EQ(parsed, p);
+  }
+  Placement placement = Placement::kCorner;
+  EXPECT_FALSE(ParsePlacement("grid", &placement));
+  EXPECT_EQ(placement, Placement::kCorner);
   Clock clock = Clock::kLockstep;
   EXPECT_FALSE(ParseClock("Lockstep", &clock));
   EXPECT_FALSE(ParseClock("", &clock));

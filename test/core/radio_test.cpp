@@ -1,4 +1,4 @@
-#include "radio.h"
+#include "swarm_transport/sim/radio.h"
 
 #include <gtest/gtest.h>
 

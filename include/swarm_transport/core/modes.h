@@ -14,12 +14,17 @@ enum class Clock : std::uint8_t { kRealtime, kLockstep };
 // local: a robot flocks on the radio's in-range list (SPEC 7); broadcast: on every robot's
 // /flock/position (the thesis's all-to-all wiring, for comparison benchmarks).
 enum class Comm : std::uint8_t { kLocal, kBroadcast };
+// Where the simulator puts its initial robots: seeded random non-overlapping poses, a grid in
+// the bottom-left corner, or the lines of a placement file.
+enum class Placement : std::uint8_t { kRandom, kCorner, kFile };
 
 // False (and `out` untouched) for a name that is none of the modes.
 bool ParseClock(const std::string& name, Clock* out);
 bool ParseComm(const std::string& name, Comm* out);
+bool ParsePlacement(const std::string& name, Placement* out);
 const char* ClockName(Clock clock);
 const char* CommName(Comm comm);
+const char* PlacementName(Placement placement);
 
 }  // namespace core
 }  // namespace swarm_transport

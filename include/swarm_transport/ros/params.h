@@ -42,6 +42,9 @@ bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, core::Clock*
                  std::string* error);
 bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, core::Comm* value,
                  std::string* error);
+// ~placement (random | corner | file), the same way.
+bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, core::Placement* value,
+                 std::string* error);
 
 // Parses one zone dictionary {shape: rect|circle, x, y, size_x, size_y | radius}.
 bool ZoneFromXmlRpc(XmlRpc::XmlRpcValue& value, int id, core::Zone* zone, std::string* error);

@@ -1,8 +1,8 @@
 // What the simulator shows: rviz markers (robots, range circles, danger zones, objects,
 // targets, leaders) on /flock/markers and tf world -> robot_<id>/base_link, at most
 // markers_rate_hz of wall time. Only publishes: it holds no state of the world.
-#ifndef SWARM_TRANSPORT_SIM_VISUALS_H_
-#define SWARM_TRANSPORT_SIM_VISUALS_H_
+#ifndef SWARM_TRANSPORT_ROS_VISUALS_H_
+#define SWARM_TRANSPORT_ROS_VISUALS_H_
 
 #include <ros/ros.h>
 #include <tf2_ros/transform_broadcaster.h>
@@ -13,9 +13,9 @@
 #include <utility>
 #include <vector>
 
-#include "live_mission.h"
+#include "swarm_transport/sim/live_mission.h"
 #include "swarm_transport/core/geometry.h"
-#include "world2d.h"
+#include "swarm_transport/sim/world2d.h"
 
 namespace swarm_transport {
 namespace sim {
@@ -53,4 +53,4 @@ class Visuals {
 }  // namespace sim
 }  // namespace swarm_transport
 
-#endif  // SWARM_TRANSPORT_SIM_VISUALS_H_
+#endif  // SWARM_TRANSPORT_ROS_VISUALS_H_

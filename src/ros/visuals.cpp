@@ -1,4 +1,4 @@
-#include "visuals.h"
+#include "swarm_transport/ros/visuals.h"
 
 #include <geometry_msgs/TransformStamped.h>
 #include <std_msgs/ColorRGBA.h>

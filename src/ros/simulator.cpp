@@ -1,4 +1,4 @@
-#include "simulator.h"
+#include "swarm_transport/ros/simulator.h"
 
 #include <rosgraph_msgs/Clock.h>
 
@@ -57,6 +57,16 @@ bool WallThrottle(ros::WallTime* last, double period_s) {
 
 bool IsFinite(const core::Vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
 
+// A teleport service's answer: OK, or ERROR with the reason (also logged).
+template <typename Response>
+bool Reply(bool ok, const char* service, std::uint16_t id, const std::string& error,
+           Response* res) {
+  if (!ok) ROS_WARN("simulator: %s of robot %u rejected: %s", service, id, error.c_str());
+  res->code = ok ? Response::OK : Response::ERROR;
+  res->message = ok ? "ok" : error;
+  return true;
+}
+
 }  // namespace
 
 std::string SimulatorParams::Validate() const {
@@ -66,14 +76,10 @@ std::string SimulatorParams::Validate() const {
     os << "/swarm: " << swarm_error;
   } else if (!std::isfinite(radio_loss) || radio_loss < 0.0 || radio_loss > 1.0) {
     os << "/swarm/radio_loss must be a probability in [0, 1] but is " << radio_loss;
-  } else if (placement != "random" && placement != "corner" && placement != "file") {
-    os << "~placement must be random, corner or file but is '" << placement << "'";
-  } else if (placement == "file" && placement_file.empty()) {
+  } else if (placement == core::Placement::kFile && placement_file.empty()) {
     os << "~placement_file must name a file when ~placement is file";
-  } else if (robots > kMaxRobots || robots < (placement == "file" ? -1 : 0)) {
+  } else if (robots > kMaxRobots || robots < (placement == core::Placement::kFile ? -1 : 0)) {
     os << "~robots must be in [0, " << kMaxRobots << "] but is " << robots;
-  } else if (clock != "realtime" && clock != "lockstep") {
-    os << "~clock must be realtime or lockstep but is '" << clock << "'";
   } else if (!std::isfinite(lockstep_timeout_s) || !(lockstep_timeout_s > 0.0)) {
     os << "~lockstep_timeout_s must be > 0 but is " << lockstep_timeout_s;
   } else if (lockstep_max_ticks < 0) {
@@ -120,7 +126,7 @@ bool Simulator::LoadParams(std::string* error) {
   const ros::NodeHandle& p = private_nh_;
   if (!ReadPrivate(p, "placement", &params_.placement, error)) return false;
   // With a placement file, robots defaults to every line of it.
-  if (params_.placement == "file") params_.robots = -1;
+  if (params_.placement == core::Placement::kFile) params_.robots = -1;
   if (!ReadPrivate(p, "robots", &params_.robots, error) ||
       !ReadPrivate(p, "placement_file", &params_.placement_file, error) ||
       !ReadPrivate(p, "clock", &params_.clock, error) ||
@@ -149,16 +155,16 @@ bool Simulator::LoadParams(std::string* error) {
   *error = world.Validate();
   if (!error->empty()) return false;
   world_ = std::make_unique<sim::World2D>(world);
-  lockstep_ = params_.clock == "lockstep";
+  lockstep_ = params_.clock == core::Clock::kLockstep;
   return true;
 }
 
 bool Simulator::PlaceInitialRobots(std::string* error) {
   std::vector<core::Pose2> poses;
   const sim::WorldParams& world = world_->params();
-  if (params_.placement == "random") {
+  if (params_.placement == core::Placement::kRandom) {
     poses = sim::PlaceRandom(params_.robots, params_.swarm.seed, world, error);
-  } else if (params_.placement == "corner") {
+  } else if (params_.placement == core::Placement::kCorner) {
     poses = sim::PlaceCorner(params_.robots, world, error);
   } else {
     std::ifstream in(params_.placement_file);
@@ -184,7 +190,8 @@ bool Simulator::PlaceInitialRobots(std::string* error) {
   if (static_cast<int>(poses.size()) != params_.robots) return false;  // error set by Place*
   for (std::size_t i = 0; i < poses.size(); ++i) {
     if (!world_->Spawn(static_cast<std::uint16_t>(i), poses[i], error)) {
-      *error = "robot " + std::to_string(i) + " (placement " + params_.placement + "): " + *error;
+      *error = "robot " + std::to_string(i) + " (placement " +
+               core::PlacementName(params_.placement) + "): " + *error;
       return false;
     }
   }
@@ -282,7 +289,7 @@ bool Simulator::Initialize() {
   ROS_INFO(
       "simulator: %zu robots (%s placement), %s clock, tick %.3f s, step %.3f s, "
       "arena %.3f m, radius %.3f m, radio range %.3f m, loss %.2f, seed %llu",
-      world_->size(), params_.placement.c_str(), params_.clock.c_str(), params_.swarm.tick_period_s,
+      world_->size(), core::PlacementName(params_.placement), core::ClockName(params_.clock), params_.swarm.tick_period_s,
       params_.integration_step_s, params_.swarm.flocking.world_size_m,
       params_.swarm.flocking.robot_radius_m, params_.radio_range_m, params_.radio_loss,
       static_cast<unsigned long long>(params_.swarm.seed));
@@ -943,29 +950,14 @@ bool Simulator::OnTeleportAbsolute(std::uint16_t id, TeleportAbsolute::Request& 
                                    TeleportAbsolute::Response& res) {
   std::string error;
   const core::Pose2 pose{{req.x, req.y}, core::Angle::FromRadians(req.theta)};
-  if (!world_->TeleportAbsolute(id, pose, &error)) {
-    ROS_WARN("simulator: teleport_absolute of robot %u rejected: %s", id, error.c_str());
-    res.code = TeleportAbsolute::Response::ERROR;
-    res.message = error;
-    return true;
-  }
-  res.code = TeleportAbsolute::Response::OK;
-  res.message = "ok";
-  return true;
+  return Reply(world_->TeleportAbsolute(id, pose, &error), "teleport_absolute", id, error, &res);
 }
 
 bool Simulator::OnTeleportRelative(std::uint16_t id, TeleportRelative::Request& req,
                                    TeleportRelative::Response& res) {
   std::string error;
-  if (!world_->TeleportRelative(id, req.linear, req.angular, &error)) {
-    ROS_WARN("simulator: teleport_relative of robot %u rejected: %s", id, error.c_str());
-    res.code = TeleportRelative::Response::ERROR;
-    res.message = error;
-    return true;
-  }
-  res.code = TeleportRelative::Response::OK;
-  res.message = "ok";
-  return true;
+  return Reply(world_->TeleportRelative(id, req.linear, req.angular, &error), "teleport_relative",
+               id, error, &res);
 }
 
 void Simulator::OnPosition(const Robot_Position::ConstPtr& msg) {

@@ -1,6 +1,6 @@
 // The simulator node: adapts the pure World2D to ROS, owns the clock and plays the radio.
-#ifndef SWARM_TRANSPORT_SIM_SIMULATOR_H_
-#define SWARM_TRANSPORT_SIM_SIMULATOR_H_
+#ifndef SWARM_TRANSPORT_ROS_SIMULATOR_H_
+#define SWARM_TRANSPORT_ROS_SIMULATOR_H_
 
 #include <geometry_msgs/Twist.h>
 #include <ros/callback_queue.h>
@@ -34,14 +34,15 @@
 #include "swarm_transport/TeleportRelative.h"
 #include "swarm_transport/Tick_Done.h"
 #include "swarm_transport/Update_Object.h"
+#include "swarm_transport/core/modes.h"
 #include "swarm_transport/core/random.h"
 #include "swarm_transport/ros/direct_link.h"
 #include "swarm_transport/ros/params.h"
-#include "live_mission.h"
-#include "lockstep_barrier.h"
-#include "radio.h"
-#include "visuals.h"
-#include "world2d.h"
+#include "swarm_transport/sim/live_mission.h"
+#include "swarm_transport/sim/lockstep_barrier.h"
+#include "swarm_transport/sim/radio.h"
+#include "swarm_transport/ros/visuals.h"
+#include "swarm_transport/sim/world2d.h"
 
 namespace swarm_transport {
 
@@ -51,9 +52,9 @@ struct SimulatorParams {
   SwarmConfig swarm;                 // /swarm: world size, radius, range, tick, seed, zones
   double radio_loss = 0.0;           // /swarm/radio_loss: drop probability per message, [0, 1]
   int robots = 0;                    // ~robots: initial robots, ids 0..robots-1
-  std::string placement = "random";  // ~placement: random | corner | file
+  core::Placement placement = core::Placement::kRandom;  // ~placement: random | corner | file
   std::string placement_file;        // ~placement_file: lines "x y theta_deg"
-  std::string clock = "realtime";    // ~clock: realtime | lockstep
+  core::Clock clock = core::Clock::kRealtime;  // ~clock: realtime | lockstep
   double lockstep_timeout_s = 2.0;   // ~lockstep_timeout_s: wait this long for a tick's answers
   int lockstep_max_ticks = 0;        // ~lockstep_max_ticks: stop ticking after this many (0: never)
   // ~lockstep_observers: also wait until /flock/positions has this many subscribers (a
@@ -270,4 +271,4 @@ class Simulator : public RobotOutlet {
 
 }  // namespace swarm_transport
 
-#endif  // SWARM_TRANSPORT_SIM_SIMULATOR_H_
+#endif  // SWARM_TRANSPORT_ROS_SIMULATOR_H_

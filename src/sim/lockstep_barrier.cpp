@@ -1,4 +1,4 @@
-#include "lockstep_barrier.h"
+#include "swarm_transport/sim/lockstep_barrier.h"
 
 namespace swarm_transport {
 namespace sim {

@@ -1,4 +1,4 @@
-#include "world2d.h"
+#include "swarm_transport/sim/world2d.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,10 +7,10 @@
 #include <cstdint>
 #include <vector>
 
-#include "live_mission.h"
+#include "swarm_transport/sim/live_mission.h"
 #include "swarm_transport/core/geometry.h"
 #include "swarm_transport/core/random.h"
-#include "world2d.h"
+#include "swarm_transport/sim/world2d.h"
 
 namespace swarm_transport {
 namespace sim {
