@@ -1,0 +1,127 @@
+// conversions.h: the one place that knows messages and core types. Round trips keep what the
+// wire can carry (float32), angles land in the ranges the messages promise, and every non-finite
+// float is caught by the checks that guard each subscriber.
+#include "swarm_transport/ros/conversions.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace swarm_transport {
+namespace {
+
+constexpr double kFloatTol = 1e-5;
+const float kNan = std::numeric_limits<float>::quiet_NaN();
+
+TEST(ConversionsTest, RobotPositionRoundTripKeepsPoseAndIdentity) {
+  const core::Pose2 pose{{3.25, 7.5}, core::Angle(123.0)};
+  const Robot_Position msg = ToRobotPosition(42, pose, 3, Robot_Position::TYPE_VIRTUAL);
+  EXPECT_EQ(msg.robot_id, 42);
+  EXPECT_EQ(msg.sub_id, 3);
+  EXPECT_EQ(msg.type, Robot_Position::TYPE_VIRTUAL);
+  const core::Neighbour n = ToNeighbour(msg);
+  EXPECT_EQ(n.id, 42);
+  EXPECT_EQ(n.sub_id, 3);
+  EXPECT_EQ(n.type, Robot_Position::TYPE_VIRTUAL);
+  EXPECT_NEAR(n.position.x, 3.25, kFloatTol);
+  EXPECT_NEAR(n.position.y, 7.5, kFloatTol);
+  EXPECT_NEAR(n.heading.degrees(), 123.0, 1e-4);
+}
+
+TEST(ConversionsTest, RobotPositionAngleStaysBelow360AfterFloatRounding) {
+  // 360 - 1e-9 degrees rounds to 360.0f as float: the message promises [0, 360).
+  const Robot_Position msg = ToRobotPosition(1, {{1.0, 1.0}, core::Angle(360.0 - 1e-9)});
+  EXPECT_GE(msg.angle, 0.0f);
+  EXPECT_LT(msg.angle, 360.0f);
+}
+
+TEST(ConversionsTest, PoseThetaIsInMinusPiToPi) {
+  const Pose msg = ToPoseMsg({{2.0, 3.0}, core::Angle(270.0)}, core::Velocity{0.5, -0.25});
+  EXPECT_NEAR(msg.theta, -M_PI / 2.0, kFloatTol);
+  EXPECT_NEAR(msg.linear_velocity, 0.5, kFloatTol);
+  EXPECT_NEAR(msg.angular_velocity, -0.25, kFloatTol);
+  const core::Pose2 back = ToPose2(msg);
+  EXPECT_NEAR(back.heading.degrees(), 270.0, 1e-4);
+  EXPECT_NEAR(ToPoseMsg({{0.0, 0.0}, core::Angle(180.0)}, {}).theta, M_PI, kFloatTol);
+}
+
+TEST(ConversionsTest, TwistCarriesLinearXAndAngularZ) {
+  const geometry_msgs::Twist t = ToTwist(core::Velocity{0.1, 1.5});
+  EXPECT_DOUBLE_EQ(t.linear.x, 0.1);
+  EXPECT_DOUBLE_EQ(t.angular.z, 1.5);
+  EXPECT_DOUBLE_EQ(t.linear.y, 0.0);
+  const core::Velocity v = ToVelocity(t);
+  EXPECT_DOUBLE_EQ(v.linear, 0.1);
+  EXPECT_DOUBLE_EQ(v.angular, 1.5);
+}
+
+TEST(ConversionsTest, EveryNonFiniteFloatIsCaught) {
+  Robot_Position p = ToRobotPosition(1, {{1.0, 1.0}, core::Angle(0.0)});
+  EXPECT_TRUE(IsFinite(p));
+  for (float Robot_Position::*field :
+       {&Robot_Position::pos_x, &Robot_Position::pos_y, &Robot_Position::angle}) {
+    Robot_Position bad = p;
+    bad.*field = kNan;
+    EXPECT_FALSE(IsFinite(bad));
+  }
+  geometry_msgs::Twist t;
+  EXPECT_TRUE(IsFinite(t));
+  for (double* field : {&t.linear.x, &t.linear.y, &t.linear.z, &t.angular.x, &t.angular.y,
+                        &t.angular.z}) {
+    const double old = *field;
+    *field = std::numeric_limits<double>::infinity();
+    EXPECT_FALSE(IsFinite(t));
+    *field = old;
+  }
+}
+
+TEST(ConversionsTest, MissionRoundTripKeepsTheOrder) {
+  core::MissionSpec spec;
+  spec.id = 7;
+  spec.range_from = 0;
+  spec.range_to = 12;
+  spec.leader_number = 3;
+  spec.object_centre = {7.0, 7.0};
+  spec.object_size = {2.0, 2.0};
+  spec.target = {3.0, 3.0};
+  spec.transport_mode = New_Mission::MODE_FORMATION;
+  const New_Mission msg = ToNewMission(spec);
+  EXPECT_EQ(msg.start_tick, 0u);  // a spec has no start tick: the dispatcher stamps it
+  const core::MissionSpec back = ToMissionSpec(msg);
+  EXPECT_EQ(back.id, 7);
+  EXPECT_EQ(back.Assigned().size(), 12u);
+  EXPECT_EQ(back.Leaders(), (std::vector<std::uint16_t>{0, 1, 2}));
+  EXPECT_EQ(back.transport_mode, New_Mission::MODE_FORMATION);
+  EXPECT_DOUBLE_EQ(back.target.x, 3.0);
+  EXPECT_TRUE(back.all_finite);
+  spec.robot_ids = {9, 4, 4};
+  EXPECT_EQ(ToMissionSpec(ToNewMission(spec)).Assigned(), (std::vector<std::uint16_t>{4, 9}));
+}
+
+TEST(ConversionsTest, AMissionWithANonFiniteFloatIsMarked) {
+  New_Mission msg;
+  msg.mission_id = 1;
+  msg.robot_index_to = 2;
+  msg.leader_number = 1;
+  EXPECT_TRUE(ToMissionSpec(msg).all_finite);
+  for (float New_Mission::*field :
+       {&New_Mission::object_position_x, &New_Mission::object_position_y,
+        &New_Mission::object_size_x, &New_Mission::object_size_y, &New_Mission::target_x,
+        &New_Mission::target_y}) {
+    New_Mission bad = msg;
+    bad.*field = kNan;
+    EXPECT_FALSE(ToMissionSpec(bad).all_finite);
+  }
+}
+
+TEST(ConversionsTest, LeaderNumberIsClampedToTheWire) {
+  core::MissionSpec spec;
+  spec.leader_number = 300;
+  EXPECT_EQ(ToNewMission(spec).leader_number, 255);
+  spec.leader_number = -4;
+  EXPECT_EQ(ToNewMission(spec).leader_number, 0);
+}
+
+}  // namespace
+}  // namespace swarm_transport
