@@ -8,6 +8,8 @@
 #include <cmath>
 #include <limits>
 
+#include "../core/fixtures.h"
+
 namespace swarm_transport {
 namespace {
 
@@ -77,14 +79,9 @@ TEST(ConversionsTest, EveryNonFiniteFloatIsCaught) {
 }
 
 TEST(ConversionsTest, MissionRoundTripKeepsTheOrder) {
-  core::MissionSpec spec;
-  spec.id = 7;
-  spec.range_from = 0;
+  core::MissionSpec spec = core::fixtures::Thesis(7);
   spec.range_to = 12;
   spec.leader_number = 3;
-  spec.object_centre = {7.0, 7.0};
-  spec.object_size = {2.0, 2.0};
-  spec.target = {3.0, 3.0};
   spec.transport_mode = New_Mission::MODE_FORMATION;
   const New_Mission msg = ToNewMission(spec);
   EXPECT_EQ(msg.start_tick, 0u);  // a spec has no start tick: the dispatcher stamps it
