@@ -53,8 +53,6 @@ bool WallThrottle(ros::WallTime* last, double period_s) {
   return true;
 }
 
-// Reads an optional private parameter; a present value of the wrong type is an error.
-
 bool IsFinite(const core::Vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
 
 // A teleport service's answer: OK, or ERROR with the reason (also logged).
@@ -660,7 +658,7 @@ void Simulator::PublishRadio() {
     e.position = {entry.second.pos_x, entry.second.pos_y};
     extras.push_back(e);
   }
-  radio_->Begin(*world_, extras, missions_);
+  radio_->Begin(*world_, std::move(extras), missions_);
   // Virtual copies are relayed at their owner's true pose, the others where announced.
   std::vector<Robot_Position> relayed;
   relayed.reserve(relayed_.size());

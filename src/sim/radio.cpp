@@ -1,6 +1,7 @@
 #include "swarm_transport/sim/radio.h"
 
 #include <algorithm>
+#include <utility>
 
 namespace swarm_transport {
 namespace sim {
@@ -15,7 +16,7 @@ long Radio::IndexOf(std::uint16_t id) const {
 
 bool Radio::Lost() { return params_.loss > 0.0 && loss_rng_->Uniform(0.0, 1.0) < params_.loss; }
 
-void Radio::Begin(const World2D& world, const std::vector<RadioExtra>& extras,
+void Radio::Begin(const World2D& world, std::vector<RadioExtra> extras,
                   const LiveMissions& missions) {
   ids_.clear();
   positions_.clear();
@@ -25,7 +26,7 @@ void Radio::Begin(const World2D& world, const std::vector<RadioExtra>& extras,
     ids_.push_back(entry.first);
     positions_.push_back(entry.second.pose.position);
   }
-  extras_ = extras;
+  extras_ = std::move(extras);
   extra_owner_.assign(extras_.size(), -1);
   for (std::size_t k = 0; k < extras_.size(); ++k) {
     if (!extras_[k].virtual_copy) continue;

@@ -47,8 +47,7 @@ class Radio {
   // Starts a round over `world`'s current poses. A virtual copy whose owner is in the world
   // stands at its owner's true pose (what a neighbour hears does not depend on when the copy's
   // message arrived); other extras where they were announced.
-  void Begin(const World2D& world, const std::vector<RadioExtra>& extras,
-             const LiveMissions& missions);
+  void Begin(const World2D& world, std::vector<RadioExtra> extras, const LiveMissions& missions);
   // The round of the robot at index `i` of the world's robots. Losses are drawn in call order:
   // call in ascending `i` for a reproducible round.
   void Hear(std::size_t i, RadioRound* out);
