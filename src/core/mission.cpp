@@ -116,5 +116,9 @@ std::string ValidateMission(const MissionSpec& m, const MissionContext& ctx) {
   return os.str();
 }
 
+std::uint64_t SignalTick(std::uint64_t phase_tick, double delay_s, double tick_period_s) {
+  return phase_tick + static_cast<std::uint64_t>(std::ceil(delay_s / tick_period_s - 1e-9));
+}
+
 }  // namespace core
 }  // namespace swarm_transport

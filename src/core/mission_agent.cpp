@@ -324,5 +324,32 @@ void MissionAgent::LeaderArrived(std::uint16_t mission_id, MissionOutbox* outbox
   }
 }
 
+void StatusSequencer::Sequence(bool ready, std::vector<StatusReport>* statuses,
+                               std::vector<StatusReport>* progress) {
+  // A mission's QUEUED goes out before any other status of it (a leader-only mission may end in
+  // the tick it starts).
+  if (!queued_.empty() && (ready || !statuses->empty())) {
+    statuses->insert(statuses->begin(), queued_.begin(), queued_.end());
+    queued_.clear();
+  }
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < statuses->size(); ++i) {
+    StatusReport& r = (*statuses)[i];
+    const auto last = reported_.find(r.mission_id);
+    if (last != reported_.end() && last->second == r.phase) {
+      progress->push_back(std::move(r));
+      continue;
+    }
+    if (r.phase == MissionPhase::kDone || r.phase == MissionPhase::kAborted) {
+      reported_.erase(r.mission_id);  // its last word (the id may be used again)
+    } else {
+      reported_[r.mission_id] = r.phase;
+    }
+    if (kept != i) (*statuses)[kept] = std::move(r);
+    ++kept;
+  }
+  statuses->resize(kept);
+}
+
 }  // namespace core
 }  // namespace swarm_transport

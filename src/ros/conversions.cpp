@@ -101,4 +101,30 @@ New_Mission ToNewMission(const core::MissionSpec& spec) {
   return msg;
 }
 
+void FillRadioRound(const sim::RadioRound& round, const std::vector<Robot_Position>& truth,
+                    const std::vector<Robot_Position>& extras, Neighbors* msg) {
+  msg->robots.reserve(round.in_range.size() + round.extras.size());
+  for (std::size_t j : round.in_range) msg->robots.push_back(truth[j]);
+  for (std::size_t e : round.extras) msg->robots.push_back(extras[e]);
+  msg->relayed.reserve(round.chain.size());
+  for (std::size_t j : round.chain) msg->relayed.push_back(truth[j]);
+  msg->mission_peers.reserve(round.peers.size());
+  for (std::size_t j : round.peers) msg->mission_peers.push_back(truth[j]);
+}
+
+core::Perception ToPerception(std::uint16_t id, const Neighbors& msg) {
+  core::Perception in;
+  in.self_id = id;
+  in.self = ToPose2(msg.pose);
+  in.others.reserve(msg.robots.size() + msg.relayed.size() + msg.mission_peers.size());
+  // In range, then passed on hop by hop (a chain's far end), then the mission channel.
+  for (const auto* list : {&msg.robots, &msg.relayed, &msg.mission_peers}) {
+    for (const Robot_Position& r : *list) {
+      if (!IsFinite(r)) continue;
+      in.others.push_back(ToNeighbour(r));
+    }
+  }
+  return in;
+}
+
 }  // namespace swarm_transport

@@ -580,9 +580,8 @@ void MissionDispatcher::ScheduleSignal(std::uint16_t id, TrackedMission* m,
   if (delay_s < 0.0 || (loaded ? m->loaded_sent : m->unloaded_sent)) return;
   // Sent at once, stamped with the first leader's tick at which it takes effect: the delay
   // then lands on the same tick whatever the scheduling (lock-step runs reproduce).
-  const auto delay_ticks =
-      static_cast<std::uint64_t>(std::ceil(delay_s / config_.tick_period_s - 1e-9));
-  SendEvent(id, kind, m->phase_tick + delay_ticks, "with the configured delay");
+  SendEvent(id, kind, core::SignalTick(m->phase_tick, delay_s, config_.tick_period_s),
+            "with the configured delay");
   (loaded ? m->loaded_sent : m->unloaded_sent) = true;
 }
 

@@ -286,7 +286,7 @@ void RobotNode::OnNewMission(const New_Mission::ConstPtr& msg) {
     }
     if (expected_.subscribers.empty()) LearnExpectedSubscribers();
     // Published with this tick's messages (before its GATHERING when it starts at once).
-    queued_.push_back(taken.queued);
+    statuses_.Queue(taken.queued);
     return;
   }
   // Only the robots concerned say so, so that one bad message does not log N lines.
@@ -368,8 +368,9 @@ void RobotNode::AwaitMissionOutlets() {
   }
 }
 
-void RobotNode::Publish(const core::MissionOutbox& outbox) {
-  if (outbox.empty()) return;
+void RobotNode::Publish(const core::MissionOutbox& outbox,
+                        const std::vector<core::StatusReport>& progress) {
+  if (outbox.empty() && progress.empty()) return;
   if (!status_pub_) {
     ROS_ERROR("robot %u: has mission messages to send but is no first leader", id_);
     return;
@@ -402,22 +403,14 @@ void RobotNode::Publish(const core::MissionOutbox& outbox) {
     delete_pub_.publish(d);
     ++events_published_;
   }
+  // The sequencer kept one report per phase; its repeats carry progress only.
   for (const core::StatusReport& r : outbox.statuses) {
-    // /flock/mission/status carries each phase once, when it is entered; the first leader's
-    // periodic report within a phase (robots inside, distance to go) is progress.
-    const auto last = published_phase_.find(r.mission_id);
-    if (last != published_phase_.end() && last->second == r.phase) {
-      if (progress_pub_) progress_pub_.publish(ToStatus(r));
-      continue;
-    }
     status_pub_.publish(ToStatus(r));
     ++events_published_;
-    if (r.phase == core::MissionPhase::kDone || r.phase == core::MissionPhase::kAborted) {
-      published_phase_.erase(r.mission_id);  // its last word (the id may be used again)
-    } else {
-      published_phase_[r.mission_id] = r.phase;
-    }
     ROS_INFO("robot %u: mission %u %s", id_, r.mission_id, core::PhaseName(r.phase));
+  }
+  if (progress_pub_) {
+    for (const core::StatusReport& r : progress) progress_pub_.publish(ToStatus(r));
   }
 }
 
@@ -445,10 +438,10 @@ Tick_Done RobotNode::TickDone() const {
 
 void RobotNode::Tick() {
   core::Perception in;
-  in.self_id = id_;
-  in.self = ToPose2(perception_->pose);
   if (options_.comm == core::Comm::kBroadcast) {
     // The thesis's wiring: everything every robot sent (the step filters by range).
+    in.self_id = id_;
+    in.self = ToPose2(perception_->pose);
     in.others.reserve(broadcast_.size());
     for (auto it = broadcast_.begin(); it != broadcast_.end();) {
       if (it->second.round + kForgetRounds < perception_->tick) {
@@ -459,16 +452,7 @@ void RobotNode::Tick() {
       ++it;
     }
   } else {
-    in.others.reserve(perception_->robots.size() + perception_->relayed.size() +
-                      perception_->mission_peers.size());
-    // In range, then passed on hop by hop (a chain's far end), then the mission channel.
-    for (const auto* list :
-         {&perception_->robots, &perception_->relayed, &perception_->mission_peers}) {
-      for (const Robot_Position& r : *list) {
-        if (!IsFinite(r)) continue;  // the radio relays what robots sent; never trust it blindly
-        in.others.push_back(ToNeighbour(r));
-      }
-    }
+    in = ToPerception(id_, *perception_);
   }
   // Mission peers and relayed robots are positions like any other: the flock group decides
   // whom the swarm runs over, and collisions count everyone.
@@ -480,13 +464,11 @@ void RobotNode::Tick() {
   const core::Velocity command = step.command;
   // A mission's QUEUED goes out before any other status of it (a leader-only mission may end
   // in the tick it starts), as soon as this first leader can publish.
-  if (!queued_.empty() && (MissionOutletsReady() || !outbox.statuses.empty())) {
-    outbox.statuses.insert(outbox.statuses.begin(), queued_.begin(), queued_.end());
-    queued_.clear();
-  }
+  std::vector<core::StatusReport> progress;
+  statuses_.Sequence(MissionOutletsReady(), &outbox.statuses, &progress);
   // Mission messages go out before the command: in lock-step the simulator steps only after
   // every command arrived, so the swarm hears them before its next tick.
-  Publish(outbox);
+  Publish(outbox, progress);
   // Direct links get the same content as the topics would carry, in the same order.
   SendCommand(ToTwist(command));
   if (options_.direct != nullptr && options_.clock == core::Clock::kLockstep) {

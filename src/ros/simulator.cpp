@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 #include <type_traits>
 
@@ -19,8 +18,6 @@ namespace swarm_transport {
 namespace {
 
 constexpr char kClockTopic[] = "/clock";
-// Stream of the radio-loss generator ("radio"); robots use their id (< 65536) as stream.
-constexpr std::uint64_t kRadioStream = 0x726164696fULL;
 constexpr int kMaxRobots = 65536;
 // Queue sizes. Neighbors: one message per tick, a robot is never more than one tick behind.
 // cmd_vel: lock-step sends one per tick; real time may burst. /flock/position: every robot
@@ -158,42 +155,8 @@ bool Simulator::LoadParams(std::string* error) {
 }
 
 bool Simulator::PlaceInitialRobots(std::string* error) {
-  std::vector<core::Pose2> poses;
-  const sim::WorldParams& world = world_->params();
-  if (params_.placement == core::Placement::kRandom) {
-    poses = sim::PlaceRandom(params_.robots, params_.swarm.seed, world, error);
-  } else if (params_.placement == core::Placement::kCorner) {
-    poses = sim::PlaceCorner(params_.robots, world, error);
-  } else {
-    std::ifstream in(params_.placement_file);
-    std::stringstream text;
-    if (!in || !(text << in.rdbuf())) {
-      *error = "cannot read ~placement_file '" + params_.placement_file + "'";
-      return false;
-    }
-    if (!sim::ParsePlacement(text.str(), &poses, error)) {
-      *error = params_.placement_file + ": " + *error;
-      return false;
-    }
-    if (params_.robots < 0) params_.robots = static_cast<int>(poses.size());
-    if (static_cast<int>(poses.size()) < params_.robots || poses.size() > kMaxRobots) {
-      std::ostringstream os;
-      os << params_.placement_file << " has " << poses.size() << " poses but ~robots is "
-         << params_.robots;
-      *error = os.str();
-      return false;
-    }
-    poses.resize(static_cast<std::size_t>(params_.robots));
-  }
-  if (static_cast<int>(poses.size()) != params_.robots) return false;  // error set by Place*
-  for (std::size_t i = 0; i < poses.size(); ++i) {
-    if (!world_->Spawn(static_cast<std::uint16_t>(i), poses[i], error)) {
-      *error = "robot " + std::to_string(i) + " (placement " +
-               core::PlacementName(params_.placement) + "): " + *error;
-      return false;
-    }
-  }
-  return true;
+  return sim::PlaceInitialRobots(params_.placement, params_.swarm.seed, params_.placement_file,
+                                 &params_.robots, world_.get(), error);
 }
 
 bool Simulator::Initialize() {
@@ -203,7 +166,7 @@ bool Simulator::Initialize() {
     ROS_FATAL("simulator: invalid parameters: %s", error.c_str());
     return false;
   }
-  radio_rng_ = std::make_unique<core::Rng>(params_.swarm.seed, kRadioStream);
+  radio_rng_ = std::make_unique<core::Rng>(params_.swarm.seed, sim::kRadioLossStream);
   sim::RadioParams radio;
   radio.range_m = params_.radio_range_m;
   radio.hops = params_.swarm.flocking.neighbourhood == core::Neighbourhood::kChain
@@ -689,13 +652,7 @@ void Simulator::PublishRadio() {
     msg.tick = tick_;
     msg.sim_time = sim_time;
     msg.pose = ToPoseMsg(robot->second.pose, robot->second.last_velocity);
-    msg.robots.reserve(round.in_range.size() + round.extras.size());
-    for (std::size_t j : round.in_range) msg.robots.push_back(truth[j]);
-    for (std::size_t e : round.extras) msg.robots.push_back(relayed[e]);
-    msg.relayed.reserve(round.chain.size());
-    for (std::size_t j : round.chain) msg.relayed.push_back(truth[j]);
-    msg.mission_peers.reserve(round.peers.size());
-    for (std::size_t j : round.peers) msg.mission_peers.push_back(truth[j]);
+    FillRadioRound(round, truth, relayed, &msg);
     if (lockstep_) FillRelay(&msg);
     if (io->second.direct) {
       direct_->Deliver(robot->first, boost::make_shared<const Neighbors>(std::move(msg)));
@@ -987,25 +944,10 @@ void Simulator::OnRobotDelete(const Delete_Robot::ConstPtr& msg) {
 void Simulator::OnMissionNew(const New_Mission::ConstPtr& msg) { RegisterMission(*msg); }
 
 void Simulator::RegisterMission(const New_Mission& order) {
-  // The same validation as the robots and the dispatcher, so the mission channel and the
-  // markers exist exactly for the missions the robots act on.
-  const core::MissionSpec spec = ToMissionSpec(order);
-  core::MissionContext context;
-  context.world_size_m = world_->params().world_size_m;
-  for (const auto& entry : world_->robots()) context.known_robots.insert(entry.first);
-  for (const auto& entry : missions_) context.live_missions.insert(entry.first);
-  const std::string why = core::ValidateMission(spec, context);
+  const std::string why = sim::RegisterMission(ToMissionSpec(order), *world_, &missions_);
   if (!why.empty()) {
     ROS_DEBUG("simulator: ignored New_Mission %u: %s", order.mission_id, why.c_str());
-    return;
   }
-  Mission mission;
-  mission.members = spec.Assigned();
-  mission.leaders = spec.Leaders();
-  mission.object_position = spec.object_centre;
-  mission.object_size = spec.object_size;
-  mission.target = spec.target;
-  missions_[order.mission_id] = mission;
 }
 
 void Simulator::OnObjectUpdate(const Update_Object::ConstPtr& msg) {

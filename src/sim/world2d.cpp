@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <sstream>
 #include <utility>
 
@@ -449,6 +450,46 @@ bool ParsePlacement(const std::string& text, std::vector<core::Pose2>* poses, st
     parsed.push_back(core::Pose2{{x, y}, core::Angle(theta_deg)});
   }
   *poses = std::move(parsed);
+  return true;
+}
+
+bool PlaceInitialRobots(core::Placement placement, std::uint64_t seed,
+                        const std::string& placement_file, int* robots, World2D* world,
+                        std::string* error) {
+  constexpr std::size_t kMaxRobots = 65536;
+  std::vector<core::Pose2> poses;
+  if (placement == core::Placement::kRandom) {
+    poses = PlaceRandom(*robots, seed, world->params(), error);
+  } else if (placement == core::Placement::kCorner) {
+    poses = PlaceCorner(*robots, world->params(), error);
+  } else {
+    std::ifstream in(placement_file);
+    std::stringstream text;
+    if (!in || !(text << in.rdbuf())) {
+      *error = "cannot read ~placement_file '" + placement_file + "'";
+      return false;
+    }
+    if (!ParsePlacement(text.str(), &poses, error)) {
+      *error = placement_file + ": " + *error;
+      return false;
+    }
+    if (*robots < 0) *robots = static_cast<int>(poses.size());
+    if (static_cast<int>(poses.size()) < *robots || poses.size() > kMaxRobots) {
+      std::ostringstream os;
+      os << placement_file << " has " << poses.size() << " poses but ~robots is " << *robots;
+      *error = os.str();
+      return false;
+    }
+    poses.resize(static_cast<std::size_t>(*robots));
+  }
+  if (static_cast<int>(poses.size()) != *robots) return false;  // error set by Place*
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    if (!world->Spawn(static_cast<std::uint16_t>(i), poses[i], error)) {
+      *error = "robot " + std::to_string(i) + " (placement " + core::PlacementName(placement) +
+               "): " + *error;
+      return false;
+    }
+  }
   return true;
 }
 

@@ -74,6 +74,11 @@ struct MissionContext {
 // unknown robot id; transport_mode not 0 or 1.
 std::string ValidateMission(const MissionSpec& mission, const MissionContext& context);
 
+// The tick a dispatcher's LOADED / UNLOADED takes effect: the tick the first leader reported
+// LOADING / UNLOADING plus `delay_s` rounded up to whole ticks (stamped, so that the delay lands
+// on the same tick however the processes are scheduled).
+std::uint64_t SignalTick(std::uint64_t phase_tick, double delay_s, double tick_period_s);
+
 }  // namespace core
 }  // namespace swarm_transport
 

@@ -54,6 +54,24 @@ struct MissionOutbox {
   }
 };
 
+// Which of a first leader's statuses go out as phase reports: a taken order's QUEUED first (once
+// the leader can publish, or together with its first other status), then each phase once; a
+// repeat of the phase it last reported for a mission is a progress report. The robot node and
+// the in-process batch runner both use it, so observers see the same sequence.
+class StatusSequencer {
+ public:
+  // The QUEUED of an order just taken.
+  void Queue(const StatusReport& queued) { queued_.push_back(queued); }
+  // Splits a tick's `statuses` in place: the phase reports stay, repeats move to `progress`.
+  // `ready`: the leader's mission outlets are connected.
+  void Sequence(bool ready, std::vector<StatusReport>* statuses,
+                std::vector<StatusReport>* progress);
+
+ private:
+  std::vector<StatusReport> queued_;
+  std::map<std::uint16_t, MissionPhase> reported_;  // last phase reported per live mission
+};
+
 // How the robot behaves this tick.
 struct MissionPlan {
   std::vector<Zone> zones;   // objects: safety for its active mission, danger for all others

@@ -107,7 +107,7 @@ class RobotNode {
   void Tick();
   // Publishes what the first leader of a mission decided this tick: a phase it entered on
   // /flock/mission/status (once), a report within the phase on /flock/mission/progress.
-  void Publish(const core::MissionOutbox& outbox);
+  void Publish(const core::MissionOutbox& outbox, const std::vector<core::StatusReport>& progress);
   Mission_Status ToStatus(const core::StatusReport& report) const;
   // A first leader needs its own publishers; only those robots advertise them, so the swarm
   // does not become all-to-all. True when every robot can hear them.
@@ -146,13 +146,10 @@ class RobotNode {
   // Progress within a phase (not relayed, not counted for the lock-step barrier): advertised
   // when this robot first becomes a first leader.
   ros::Publisher progress_pub_;
-  // QUEUED of the missions this robot took as first leader, published before anything else of
-  // them once it can publish: every status of a mission comes from its first leader, so that
-  // it reaches each subscriber in order (one publisher, one connection).
-  std::vector<core::StatusReport> queued_;
-  // The phase last published on /flock/mission/status per mission of this first leader; a
-  // report of the same phase again is progress.
-  std::map<std::uint16_t, core::MissionPhase> published_phase_;
+  // The QUEUED of the missions this robot took as first leader, and the phase last published
+  // per mission: every status of a mission comes from its first leader, so that it reaches each
+  // subscriber in order (one publisher, one connection).
+  core::StatusSequencer statuses_;
   TopicNodeCounts expected_;  // the graph when it became a first leader
   ros::WallTime outlets_since_;
   bool outlets_ready_ = false;

@@ -7,7 +7,11 @@
 #include <map>
 #include <vector>
 
+#include <string>
+
 #include "swarm_transport/core/geometry.h"
+#include "swarm_transport/core/mission.h"
+#include "swarm_transport/sim/world2d.h"
 
 namespace swarm_transport {
 namespace sim {
@@ -22,6 +26,12 @@ struct LiveMission {
 
 // By mission id.
 using LiveMissions = std::map<std::uint16_t, LiveMission>;
+
+// Enters an order the robots act on: validated as the robots and the dispatcher validate it
+// (against `world`'s robots and the live missions), so the mission channel and the markers
+// exist exactly for the missions the robots take. Empty when entered, else why not.
+std::string RegisterMission(const core::MissionSpec& spec, const World2D& world,
+                            LiveMissions* missions);
 
 }  // namespace sim
 }  // namespace swarm_transport

@@ -15,6 +15,10 @@
 namespace swarm_transport {
 namespace sim {
 
+// The stream of the seed's generator that draws a run's radio losses ("radio"; robots use their
+// id, < 65536, as stream).
+constexpr std::uint64_t kRadioLossStream = 0x726164696fULL;
+
 struct RadioParams {
   double range_m = 1.0;  // a robot hears the robots whose centre is within this of its own
   // Hops of a chain: 1 = only the robots in range; k > 1 = also what they heard in range,

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "swarm_transport/core/kinematics.h"
+#include "swarm_transport/core/modes.h"
 
 namespace swarm_transport {
 namespace sim {
@@ -102,6 +103,14 @@ std::vector<core::Pose2> PlaceCorner(int n, const WorldParams& params,
 // Parses a placement file: one robot per line "x y theta_deg", '#' starts a comment, blank lines
 // are skipped. False with `error` naming the line when a line is malformed or not finite.
 bool ParsePlacement(const std::string& text, std::vector<core::Pose2>* poses, std::string* error);
+
+// Spawns the initial robots, ids 0..n-1, into an empty `world`: `*robots` of them placed by
+// `placement` (random with `seed`, corner, or the lines of `placement_file`; with a file,
+// *robots < 0 takes every line and is set to their number). False with `error` naming what is
+// wrong (a file that cannot be read, too few poses, a pose outside the arena).
+bool PlaceInitialRobots(core::Placement placement, std::uint64_t seed,
+                        const std::string& placement_file, int* robots, World2D* world,
+                        std::string* error);
 
 }  // namespace sim
 }  // namespace swarm_transport
