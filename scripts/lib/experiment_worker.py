@@ -242,13 +242,15 @@ def _run_mission(job, ros, state, lock, waiter, trace=None):
     pos_state = {'tick': -1}
 
     def on_positions(p):
-        with lock:
-            pos_state['tick'] = p.tick
-            state['positions_tick'] = p.tick
+        # Tracked before the tick counts as seen: the arrival's row must be in the track when
+        # the wait for it below ends (it was missing from 1 of 52 leader runs).
         if track is not None:
             track.add(p)
         if trace is not None:
             trace.add(p)
+        with lock:
+            pos_state['tick'] = p.tick
+            state['positions_tick'] = p.tick
 
     # Subscribing opens the lock-step gate (observers:=1): tick 0 follows.
     rospy.Subscriber('/flock/positions', Robot_Positions, on_positions, queue_size=10000,
@@ -337,9 +339,12 @@ class LeaderTrack(object):
         self.local_range = job['local_range_m']
         self.start = None
         self.rows = []
+        self.end = None  # the arrival tick, once known
         self.lock = threading.Lock()
 
     def add(self, msg):
+        if self.end is not None and msg.tick > self.end:
+            return  # the leader flocks again: frames after its arrival are no part of the track
         robots = [r for r in msg.robots if r.type == 0]
         pts = [(r.pos_x, r.pos_y) for r in robots]
         ids = [r.robot_id for r in robots]
@@ -361,6 +366,7 @@ class LeaderTrack(object):
         """Ends the track at the arrival: later rows go (the leader flocks again), the row of
         the arrival tick counts as 100 % of the path (it is within goal tolerance)."""
         with self.lock:
+            self.end = tick
             rows = sorted(r for r in set(self.rows) if r[0] <= tick)
             if rows and rows[-1][0] == tick:
                 rows[-1] = (tick, 1.0) + tuple(rows[-1][2:])
