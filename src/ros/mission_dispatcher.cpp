@@ -147,34 +147,20 @@ bool MissionFromXmlRpc(XmlRpcValue& e, core::MissionSpec* spec, std::string* err
   return true;
 }
 
-const char* EventName(core::MissionEventKind kind) {
-  return kind == core::MissionEventKind::kLoaded ? "LOADED" : "UNLOADED";
+core::MissionReport ToReport(const Mission_Status& msg) {
+  core::MissionReport r;
+  r.mission_id = msg.mission_id;
+  r.phase = static_cast<MissionPhase>(msg.state);
+  r.reason = msg.reason;
+  r.tick = msg.tick;
+  r.robots_assigned = msg.robots_assigned;
+  r.robots_inside = msg.robots_inside;
+  r.distance_to_target_m = msg.distance_to_target;
+  return r;
 }
 
-std::string Describe(const core::MissionSpec& m) {
-  std::ostringstream os;
-  os << std::setprecision(4);
-  const std::vector<std::uint16_t> assigned = m.Assigned();
-  os << assigned.size() << (assigned.size() == 1 ? " robot " : " robots ");
-  if (m.robot_ids.empty()) {
-    os << "[" << m.range_from << ", " << m.range_to << ")";
-  } else {
-    constexpr std::size_t kShown = 10;
-    os << "{";
-    for (std::size_t i = 0; i < assigned.size() && i < kShown; ++i) {
-      os << (i > 0 ? ", " : "") << assigned[i];
-    }
-    os << (assigned.size() > kShown ? ", ...}" : "}");
-  }
-  os << ", " << m.leader_number << " leader(s), first leader " << m.FirstLeader() << ", ";
-  if (m.LeaderOnly()) {
-    os << "leader-only to (" << m.target.x << ", " << m.target.y << ")";
-  } else {
-    os << m.object_size.x << " x " << m.object_size.y << " object at (" << m.object_centre.x << ", "
-       << m.object_centre.y << ") to (" << m.target.x << ", " << m.target.y << "), "
-       << (m.transport_mode == 1 ? "formation" : "swarm") << " mode";
-  }
-  return os.str();
+const char* EventName(core::MissionEventKind kind) {
+  return kind == core::MissionEventKind::kLoaded ? "LOADED" : "UNLOADED";
 }
 
 }  // namespace
@@ -213,11 +199,6 @@ bool MissionsFromXmlRpc(XmlRpcValue& file, std::vector<core::MissionSpec>* missi
   return true;
 }
 
-bool TrackedMission::Live() const {
-  return phase != MissionPhase::kDone && phase != MissionPhase::kAborted &&
-         phase != MissionPhase::kRejected;
-}
-
 MissionDispatcher::MissionDispatcher(ros::NodeHandle nh, ros::NodeHandle private_nh)
     : nh_(nh), private_nh_(private_nh) {}
 
@@ -238,6 +219,13 @@ bool MissionDispatcher::LoadOptions(std::string* error) {
   }
   *error = options_.Validate();
   if (!error->empty()) return false;
+  core::MissionBookParams book;
+  book.world_size_m = config_.flocking.world_size_m;
+  book.tick_period_s = config_.tick_period_s;
+  book.loaded_delay_s = options_.loaded_delay_s;
+  book.unloaded_delay_s = options_.unloaded_delay_s;
+  book.max_live_missions = options_.max_live_missions;
+  book_ = std::make_unique<core::MissionBook>(book);
   if (options_.missions_file.empty()) return true;
 
   const std::string& path = options_.missions_file;
@@ -317,28 +305,14 @@ bool MissionDispatcher::FromSelf(const std::string& publisher) const {
   return publisher == ros::this_node::getName();
 }
 
-core::MissionContext MissionDispatcher::Context(int ignore_id) const {
-  core::MissionContext c;
-  c.world_size_m = config_.flocking.world_size_m;
+std::set<std::uint16_t> MissionDispatcher::KnownRobots() const {
+  std::set<std::uint16_t> known;
   if (positions_) {
     for (const Robot_Position& r : positions_->robots) {
-      if (r.type == Robot_Position::TYPE_PHYSICAL) c.known_robots.insert(r.robot_id);
+      if (r.type == Robot_Position::TYPE_PHYSICAL) known.insert(r.robot_id);
     }
   }
-  for (const auto& kv : missions_) {
-    if (kv.second.Live() && kv.first != ignore_id) c.live_missions.insert(kv.first);
-  }
-  return c;
-}
-
-std::uint16_t MissionDispatcher::NextFreeId() {
-  // The table is bounded far below 65535 entries, so a free id is always found.
-  for (int tries = 0; tries < 65535; ++tries) {
-    const std::uint16_t id = next_id_;
-    next_id_ = next_id_ == 65535 ? 1 : static_cast<std::uint16_t>(next_id_ + 1);
-    if (missions_.count(id) == 0) return id;
-  }
-  return next_id_;
+  return known;
 }
 
 void MissionDispatcher::PublishStatus(const core::MissionSpec& spec, MissionPhase phase,
@@ -359,72 +333,34 @@ void MissionDispatcher::PublishStatus(const core::MissionSpec& spec, MissionPhas
   status_pub_.publish(msg);
 }
 
-MissionDispatcher::Verdict MissionDispatcher::Submit(core::MissionSpec spec,
+core::MissionBook::Verdict MissionDispatcher::Submit(core::MissionSpec spec,
                                                      const std::string& source, bool auto_id,
                                                      bool publish, std::uint64_t start_tick) {
-  Verdict verdict;
-  const std::uint16_t next_id = next_id_;
-  if (auto_id && spec.id == 0) spec.id = NextFreeId();
-  verdict.id = spec.id;
-  auto it = missions_.find(spec.id);
-  // A mission first seen through its leader's status (its order arrived late) gets the order
-  // attached instead of a "duplicate id" rejection.
-  const bool attach =
-      it != missions_.end() && it->second.Live() && !it->second.has_spec && !publish;
-  std::string reason = core::ValidateMission(spec, Context(attach ? spec.id : -1));
-  if (reason.empty() && !attach) {
-    int live = 0;
-    for (const auto& kv : missions_) live += kv.second.Live() ? 1 : 0;
-    if (live >= options_.max_live_missions) {
-      reason = "too many live missions (" + std::to_string(live) + ", ~max_live_missions)";
-    }
-  }
-  if (!reason.empty()) {
-    ROS_WARN("%s: rejected mission %u from %s: %s", kNode, spec.id, source.c_str(), reason.c_str());
-    PublishStatus(spec, MissionPhase::kRejected, reason);
-    next_id_ = next_id;  // a rejected mission does not use up an automatic id
-    verdict.message = "mission " + std::to_string(spec.id) + " rejected: " + reason;
+  const core::MissionBook::Verdict verdict =
+      book_->Submit(std::move(spec), source, auto_id, !publish, KnownRobots(),
+                    ros::Time::now().toSec());
+  if (!verdict.accepted) {
+    ROS_WARN("%s: rejected mission %u from %s: %s", kNode, verdict.id, source.c_str(),
+             verdict.reason.c_str());
+    PublishStatus(verdict.spec, MissionPhase::kRejected, verdict.reason);
     return verdict;
   }
-  verdict.accepted = true;
-  if (attach) {
-    it->second.spec = spec;
-    it->second.has_spec = true;
-    it->second.source = source;
-    ROS_INFO("%s: mission %u from %s: its first leader had reported it already", kNode, spec.id,
-             source.c_str());
-    verdict.message = "mission " + std::to_string(spec.id) + " (already running) attached";
+  if (verdict.attached) {
+    ROS_INFO("%s: mission %u from %s: its first leader had reported it already", kNode,
+             verdict.id, source.c_str());
     return verdict;
   }
-  if (it != missions_.end()) {
-    // A finished mission's id is reused: its entry and its place in the finished list go.
-    const auto old = std::make_pair(it->first, it->second.generation);
-    finished_.erase(std::remove(finished_.begin(), finished_.end(), old), finished_.end());
-    missions_.erase(it);
-  }
-  TrackedMission& m = missions_[spec.id];
-  m.spec = spec;
-  m.has_spec = true;
-  m.source = source;
-  m.generation = next_generation_++;
-  m.robots_assigned =
-      static_cast<std::uint16_t>(std::min<std::size_t>(spec.Assigned().size(), 65535));
-  if (!spec.LeaderOnly()) m.distance_to_target_m = core::Distance(spec.object_centre, spec.target);
-  m.phase = MissionPhase::kQueued;
-  m.entered[static_cast<std::size_t>(MissionPhase::kQueued)] = ros::Time::now();
-  m.reached = 1u << static_cast<unsigned>(MissionPhase::kQueued);
   // No QUEUED status from here: the mission's first leader reports it when it holds the order,
   // and every later phase too, so that a subscriber gets them in order over one connection (a
   // QUEUED of the dispatcher's raced the first leader's GATHERING, issue 9).
   if (publish) {
     AwaitListeners();
-    New_Mission order = ToNewMission(spec);
+    New_Mission order = ToNewMission(verdict.spec);
     order.start_tick = start_tick;
     new_pub_.publish(order);
   }
-  const std::string what = Describe(spec);
-  ROS_INFO("%s: queued mission %u from %s: %s", kNode, spec.id, source.c_str(), what.c_str());
-  verdict.message = "mission " + std::to_string(spec.id) + " queued: " + what;
+  ROS_INFO("%s: queued mission %u from %s: %s", kNode, verdict.id, source.c_str(),
+           core::DescribeMission(verdict.spec).c_str());
   return verdict;
 }
 
@@ -442,7 +378,7 @@ void MissionDispatcher::ScheduleFileMissions(std::uint64_t tick) {
   const std::uint64_t start = std::max<std::uint64_t>(tick + 1, delay_ticks);
   Mission_Schedule schedule;
   for (const core::MissionSpec& spec : file_missions_) {
-    const Verdict verdict = Submit(spec, "missions_file", true, true, start);
+    const core::MissionBook::Verdict verdict = Submit(spec, "missions_file", true, true, start);
     if (!verdict.accepted) continue;
     schedule.mission_ids.push_back(verdict.id);
     schedule.start_ticks.push_back(start);
@@ -499,90 +435,30 @@ void MissionDispatcher::OnStatus(const ros::MessageEvent<Mission_Status const>& 
              msg.mission_id, event.getPublisherName().c_str());
     return;
   }
-  const auto phase = static_cast<MissionPhase>(msg.state);
-  auto it = missions_.find(msg.mission_id);
-  if (it != missions_.end() && !it->second.Live()) return;  // late news of a finished mission
-  if (it == missions_.end()) {
-    // A REJECTED from elsewhere is about a submission, not about a mission to follow.
-    if (phase == MissionPhase::kRejected) return;
-    int live = 0;
-    for (const auto& kv : missions_) live += kv.second.Live() ? 1 : 0;
-    if (live >= options_.max_live_missions) {
-      ROS_WARN_THROTTLE(5.0, "%s: not tracking mission %u: too many live missions", kNode,
-                        msg.mission_id);
-      return;
-    }
-    // A mission whose order the dispatcher missed (e.g. it started later): follow it anyway.
-    TrackedMission& m = missions_[msg.mission_id];
-    m.source = "status";
-    m.generation = next_generation_++;
-    m.spec.id = msg.mission_id;
-    it = missions_.find(msg.mission_id);
+  core::MissionReport report = ToReport(msg);
+  const core::MissionBook::StatusOutcome outcome =
+      book_->OnStatus(report, ros::Time::now().toSec());
+  if (outcome.ignored == "too many live missions") {
+    ROS_WARN_THROTTLE(5.0, "%s: not tracking mission %u: too many live missions", kNode,
+                      msg.mission_id);
+  }
+  if (outcome.followed) {
     ROS_INFO("%s: following mission %u first seen in a status from %s", kNode, msg.mission_id,
              event.getPublisherName().c_str());
-  } else if (phase == MissionPhase::kRejected && it->second.phase != MissionPhase::kQueued) {
-    // Someone rejected a duplicate of a running mission's id: the running one goes on.
-    return;
   }
-  TrackedMission& m = it->second;
-  if (msg.robots_assigned > 0) m.robots_assigned = msg.robots_assigned;
-  m.robots_inside = msg.robots_inside;
-  m.distance_to_target_m = msg.distance_to_target;
-  if (msg.tick > 0) m.phase_tick = msg.tick;
-  if (!msg.reason.empty()) m.reason = msg.reason;
-  if (phase != m.phase || m.reached == 0) EnterPhase(msg.mission_id, &m, phase);
+  if (outcome.entered) {
+    const core::MissionBook::Entry& m = *book_->Find(msg.mission_id);
+    ROS_INFO("%s: mission %u is %s%s%s", kNode, msg.mission_id, core::PhaseName(m.phase),
+             m.reason.empty() ? "" : ": ", m.reason.c_str());
+  }
+  for (const core::DueSignal& due : outcome.signals) {
+    SendEvent(due.mission_id, due.kind, due.not_before_tick, "with the configured delay");
+  }
 }
 
 void MissionDispatcher::OnProgress(const Mission_Status::ConstPtr& msg) {
-  auto it = missions_.find(msg->mission_id);
-  if (it == missions_.end() || !it->second.Live()) return;
   if (!std::isfinite(msg->distance_to_target)) return;
-  TrackedMission& m = it->second;
-  if (msg->robots_assigned > 0) m.robots_assigned = msg->robots_assigned;
-  m.robots_inside = msg->robots_inside;
-  m.distance_to_target_m = msg->distance_to_target;
-}
-
-void MissionDispatcher::EnterPhase(std::uint16_t id, TrackedMission* m, MissionPhase phase) {
-  const auto index = static_cast<unsigned>(phase);
-  m->phase = phase;
-  if ((m->reached & (1u << index)) == 0) {
-    m->reached |= 1u << index;
-    m->entered[index] = ros::Time::now();
-  }
-  ROS_INFO("%s: mission %u is %s%s%s", kNode, id, core::PhaseName(phase),
-           m->reason.empty() ? "" : ": ", m->reason.c_str());
-  if (phase == MissionPhase::kLoading) ScheduleSignal(id, m, core::MissionEventKind::kLoaded);
-  if (phase == MissionPhase::kUnloading) {
-    ScheduleSignal(id, m, core::MissionEventKind::kUnloaded);
-  }
-  if (!m->Live()) {
-    finished_.emplace_back(id, m->generation);
-    Forget();  // never the mission just finished: it is the newest
-  }
-}
-
-void MissionDispatcher::Forget() {
-  while (finished_.size() > kMaxFinishedMissions) {
-    const auto oldest = finished_.front();
-    finished_.pop_front();
-    auto it = missions_.find(oldest.first);
-    if (it != missions_.end() && it->second.generation == oldest.second && !it->second.Live()) {
-      missions_.erase(it);
-    }
-  }
-}
-
-void MissionDispatcher::ScheduleSignal(std::uint16_t id, TrackedMission* m,
-                                       core::MissionEventKind kind) {
-  const bool loaded = kind == core::MissionEventKind::kLoaded;
-  const double delay_s = loaded ? options_.loaded_delay_s : options_.unloaded_delay_s;
-  if (delay_s < 0.0 || (loaded ? m->loaded_sent : m->unloaded_sent)) return;
-  // Sent at once, stamped with the first leader's tick at which it takes effect: the delay
-  // then lands on the same tick whatever the scheduling (lock-step runs reproduce).
-  SendEvent(id, kind, core::SignalTick(m->phase_tick, delay_s, config_.tick_period_s),
-            "with the configured delay");
-  (loaded ? m->loaded_sent : m->unloaded_sent) = true;
+  book_->OnProgress(ToReport(*msg));
 }
 
 void MissionDispatcher::SendEvent(std::uint16_t id, core::MissionEventKind kind,
@@ -617,7 +493,8 @@ void MissionDispatcher::AwaitListeners() {
 }
 
 bool MissionDispatcher::OnSubmit(Submit_Mission::Request& req, Submit_Mission::Response& res) {
-  const Verdict verdict = Submit(ToMissionSpec(req.mission), "service", true, true);
+  const core::MissionBook::Verdict verdict =
+      Submit(ToMissionSpec(req.mission), "service", true, true);
   res.code = verdict.accepted ? Submit_Mission::Response::OK : Submit_Mission::Response::REJECTED;
   res.message = verdict.message;
   return true;
@@ -629,69 +506,26 @@ bool MissionDispatcher::OnSignal(Mission_Signal::Request& req, Mission_Signal::R
   if (req.event != static_cast<std::uint8_t>(core::MissionEventKind::kLoaded) &&
       req.event != static_cast<std::uint8_t>(core::MissionEventKind::kUnloaded)) {
     res.message = "event must be 1 (LOADED) or 2 (UNLOADED) but is " + std::to_string(req.event);
-  } else if (missions_.count(req.mission_id) == 0) {
-    res.message = mission + " is unknown";
-  } else if (!missions_[req.mission_id].Live()) {
-    res.message =
-        mission + " is finished (" + core::PhaseName(missions_[req.mission_id].phase) + ")";
+  } else {
+    res.message = book_->Signal(req.mission_id, static_cast<core::MissionEventKind>(req.event));
   }
   if (!res.message.empty()) {
     ROS_WARN("%s: refused a signal: %s", kNode, res.message.c_str());
     return true;
   }
-  TrackedMission& m = missions_[req.mission_id];
   const auto kind = static_cast<core::MissionEventKind>(req.event);
   SendEvent(req.mission_id, kind, 0, "requested through ~signal");
-  (kind == core::MissionEventKind::kLoaded ? m.loaded_sent : m.unloaded_sent) = true;
   res.code = Mission_Signal::Response::OK;
   res.message = std::string(EventName(kind)) + " sent for " + mission + " (now " +
-                core::PhaseName(m.phase) + ")";
+                core::PhaseName(book_->Find(req.mission_id)->phase) + ")";
   return true;
 }
 
 bool MissionDispatcher::OnStatusService(std_srvs::Trigger::Request& /*req*/,
                                         std_srvs::Trigger::Response& res) {
   res.success = true;
-  res.message = StatusTable();
+  res.message = book_->Table(ros::Time::now().toSec());
   return true;
-}
-
-std::string MissionDispatcher::StatusTable() const {
-  const ros::Time now = ros::Time::now();
-  int live = 0;
-  for (const auto& kv : missions_) live += kv.second.Live() ? 1 : 0;
-  std::ostringstream os;
-  os << missions_.size() << " mission(s) tracked, " << live << " live\n";
-  if (missions_.empty()) return os.str();
-  char line[160];
-  std::snprintf(line, sizeof(line), "%-6s %-10s %-14s %6s %6s %8s  %s\n", "id", "state", "source",
-                "robots", "inside", "dist_m", "seconds per phase | reason");
-  os << line;
-  static const char* const kShort[] = {"Q", "G", "L", "T", "U"};
-  for (const auto& kv : missions_) {
-    const TrackedMission& m = kv.second;
-    const std::string source = m.source.substr(0, m.source.find(' '));
-    std::snprintf(line, sizeof(line), "%-6u %-10s %-14s %6u %6u %8.2f ", kv.first,
-                  core::PhaseName(m.phase), source.c_str(), m.robots_assigned, m.robots_inside,
-                  m.distance_to_target_m);
-    os << line;
-    // Each phase lasts from its entry to the entry of the next phase reached (or until now).
-    for (unsigned p = 0; p <= static_cast<unsigned>(MissionPhase::kUnloading); ++p) {
-      if ((m.reached & (1u << p)) == 0) continue;
-      ros::Time end = now;
-      for (unsigned q = p + 1; q < kPhaseCount; ++q) {
-        if (m.reached & (1u << q)) {
-          end = m.entered[q];
-          break;
-        }
-      }
-      std::snprintf(line, sizeof(line), " %s %.1f", kShort[p], (end - m.entered[p]).toSec());
-      os << line;
-    }
-    if (!m.reason.empty()) os << " | " << m.reason;
-    os << "\n";
-  }
-  return os.str();
 }
 
 }  // namespace swarm_transport

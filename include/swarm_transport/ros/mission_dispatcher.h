@@ -7,10 +7,8 @@
 #include <std_srvs/Trigger.h>
 #include <xmlrpcpp/XmlRpcValue.h>
 
-#include <array>
 #include <cstdint>
-#include <deque>
-#include <map>
+#include <memory>
 #include <set>
 #include <string>
 #include <utility>
@@ -22,6 +20,7 @@
 #include "swarm_transport/Robot_Positions.h"
 #include "swarm_transport/Submit_Mission.h"
 #include "swarm_transport/core/mission.h"
+#include "swarm_transport/core/mission_book.h"
 #include "swarm_transport/ros/params.h"
 
 namespace swarm_transport {
@@ -43,28 +42,6 @@ struct DispatcherOptions {
 bool MissionsFromXmlRpc(XmlRpc::XmlRpcValue& file, std::vector<core::MissionSpec>* missions,
                         std::string* error);
 
-// What the dispatcher knows about one mission, fed by its own decisions and by the
-// Mission_Status messages of the mission's first leader.
-struct TrackedMission {
-  core::MissionSpec spec;
-  bool has_spec = false;  // false for missions first seen through a status message
-  std::string source;     // service | missions_file | topic | status (order never heard)
-  core::MissionPhase phase = core::MissionPhase::kQueued;
-  std::string reason;
-  std::uint16_t robots_assigned = 0;
-  std::uint16_t robots_inside = 0;
-  double distance_to_target_m = 0.0;
-  // When each phase was first entered; bit p of `reached` says phase p was.
-  std::array<ros::Time, 8> entered{};
-  std::uint8_t reached = 0;
-  bool loaded_sent = false;
-  bool unloaded_sent = false;
-  std::uint64_t generation = 0;  // tells a reused id's new entry from the forgotten one
-  std::uint64_t phase_tick = 0;  // the first leader's tick of its latest report
-
-  bool Live() const;
-};
-
 // Accepts missions from ~missions_file, the ~submit service and raw /flock/mission/new
 // messages, validates each (ValidateMission: arena, known robots, live ids), publishes the
 // accepted ones latched on /flock/mission/new (a rejected one gets a REJECTED + reason status),
@@ -82,41 +59,27 @@ class MissionDispatcher {
   // Stops the pending timers.
   void Shutdown();
 
-  // Completed missions kept for ~status; older ones are forgotten first.
-  static constexpr std::size_t kMaxFinishedMissions = 1000;
-
  private:
-  // The answer to one submission.
-  struct Verdict {
-    bool accepted = false;
-    std::uint16_t id = 0;
-    std::string message;
-  };
-
   bool LoadOptions(std::string* error);
   // Validates and, when accepted, tracks the mission; `publish` sends it on /flock/mission/new
   // (service and file missions; raw topic ones are already there). id 0 with `auto_id` picks
   // the next free id. `start_tick` stamps the published order (lock-step: the robots take it
   // then; 0: when it arrives).
-  Verdict Submit(core::MissionSpec spec, const std::string& source, bool auto_id, bool publish,
-                 std::uint64_t start_tick = 0);
+  core::MissionBook::Verdict Submit(core::MissionSpec spec, const std::string& source,
+                                    bool auto_id, bool publish, std::uint64_t start_tick = 0);
   void SubmitFileMissions();
   // Lock-step: submits the file missions stamped with their start tick (after the first
   // positions, of tick `tick`) and publishes the schedule the simulator holds its ticks for.
   void ScheduleFileMissions(std::uint64_t tick);
-  core::MissionContext Context(int ignore_id = -1) const;
-  std::uint16_t NextFreeId();
+  // The physical robots of the latest /flock/positions (a mission must name only those).
+  std::set<std::uint16_t> KnownRobots() const;
   void PublishStatus(const core::MissionSpec& spec, core::MissionPhase phase,
                      const std::string& reason);
-  void EnterPhase(std::uint16_t id, TrackedMission* mission, core::MissionPhase phase);
-  void ScheduleSignal(std::uint16_t id, TrackedMission* mission, core::MissionEventKind kind);
   // Before a new order: waits (at most kListenerWaitS) until every registered subscriber of
   // the order topic is connected.
   void AwaitListeners();
   void SendEvent(std::uint16_t id, core::MissionEventKind kind, std::uint64_t not_before_tick,
                  const char* why);
-  void Forget();
-  std::string StatusTable() const;
   bool FromSelf(const std::string& publisher) const;
 
   void OnPositions(const Robot_Positions::ConstPtr& msg);
@@ -151,11 +114,7 @@ class MissionDispatcher {
   ros::Timer start_timer_;
 
   Robot_Positions::ConstPtr positions_;
-  std::map<std::uint16_t, TrackedMission> missions_;
-  // Finished missions in the order they finished: (id, generation).
-  std::deque<std::pair<std::uint16_t, std::uint64_t>> finished_;
-  std::uint64_t next_generation_ = 1;
-  std::uint16_t next_id_ = 1;
+  std::unique_ptr<core::MissionBook> book_;  // made by LoadOptions
 };
 
 }  // namespace swarm_transport

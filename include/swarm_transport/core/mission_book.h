@@ -1,0 +1,140 @@
+// The dispatcher's bookkeeping, pure [SPEC 6, issue 10 item 3]: which missions are accepted and
+// why others are refused, their ids (chosen, reused), their phases as their first leaders
+// report them, when LOADED / UNLOADED are due, and the status table. The dispatcher node only
+// moves bytes between ROS and this class; the batch engine uses it for its dispatcher's part.
+// Times are seconds of the caller's clock (ros::Time: simulated in lock-step), only shown.
+#ifndef SWARM_TRANSPORT_CORE_MISSION_BOOK_H_
+#define SWARM_TRANSPORT_CORE_MISSION_BOOK_H_
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "swarm_transport/core/mission.h"
+
+namespace swarm_transport {
+namespace core {
+
+struct MissionBookParams {
+  double world_size_m = 11.088889;
+  double tick_period_s = 0.1;
+  double loaded_delay_s = 2.0;    // LOADED this long after LOADING; < 0: only on a signal
+  double unloaded_delay_s = 2.0;  // UNLOADED this long after UNLOADING; < 0: only on a signal
+  int max_live_missions = 64;     // more are refused
+};
+
+// A LOADED / UNLOADED the dispatcher must send now, taking effect at `not_before_tick`.
+struct DueSignal {
+  std::uint16_t mission_id = 0;
+  MissionEventKind kind = MissionEventKind::kLoaded;
+  std::uint64_t not_before_tick = 0;
+};
+
+// What a first leader reports (Mission_Status / progress), already checked for finite fields.
+struct MissionReport {
+  std::uint16_t mission_id = 0;
+  MissionPhase phase = MissionPhase::kQueued;
+  std::string reason;
+  std::uint64_t tick = 0;  // 0: unknown (the dispatcher's own reports)
+  std::uint16_t robots_assigned = 0;
+  std::uint16_t robots_inside = 0;
+  double distance_to_target_m = 0.0;
+};
+
+// One line for logs and verdicts: robots, leaders, object, target, mode.
+std::string DescribeMission(const MissionSpec& mission);
+
+class MissionBook {
+ public:
+  // Completed missions kept for the table; older ones are forgotten first.
+  static constexpr std::size_t kMaxFinishedMissions = 1000;
+
+  // What the book knows about one mission.
+  struct Entry {
+    MissionSpec spec;
+    bool has_spec = false;  // false for a mission first seen through a status
+    std::string source;     // service | missions_file | topic | status (order never heard)
+    MissionPhase phase = MissionPhase::kQueued;
+    std::string reason;
+    std::uint16_t robots_assigned = 0;
+    std::uint16_t robots_inside = 0;
+    double distance_to_target_m = 0.0;
+    std::array<double, 8> entered{};  // when each phase was first entered (caller's seconds)
+    std::uint8_t reached = 0;         // bit p: phase p was entered
+    bool loaded_sent = false;
+    bool unloaded_sent = false;
+    std::uint64_t generation = 0;  // tells a reused id's new entry from the forgotten one
+    std::uint64_t phase_tick = 0;  // the first leader's tick of its latest report
+    bool Live() const;
+  };
+
+  // The answer to a submission.
+  struct Verdict {
+    bool accepted = false;
+    bool attached = false;  // an order for a mission first seen through its status
+    std::uint16_t id = 0;
+    std::string reason;   // why refused
+    std::string message;  // the sentence for the submitter
+    MissionSpec spec;     // as accepted (its id chosen) or refused
+  };
+
+  explicit MissionBook(MissionBookParams params) : params_(params) {}
+
+  // Validates `spec` (arena, `known_robots` when not empty, live ids, the live limit) and, when
+  // accepted, follows it as QUEUED from `now_s`. id 0 with `auto_id` takes the next free id (a
+  // refused mission does not use one up). `attach`: an order for a live mission first seen
+  // through its status is attached to it instead of refused as a duplicate (a raw order heard
+  // on the topic; a submission always names a new mission).
+  Verdict Submit(MissionSpec spec, const std::string& source, bool auto_id, bool attach,
+                 const std::set<std::uint16_t>& known_robots, double now_s);
+
+  // What a first leader's phase report did.
+  struct StatusOutcome {
+    std::vector<DueSignal> signals;  // due now: LOADED after LOADING, UNLOADED after UNLOADING
+    bool entered = false;            // the mission entered the reported phase
+    bool followed = false;           // first seen through this report (its order never heard)
+    std::string ignored;             // why it changed nothing, when it did not
+  };
+  // A first leader's phase report: each signal is due once, with the configured delay stamped
+  // as a tick (SignalTick). Ignored: a finished mission's late news, a REJECTED from elsewhere,
+  // a new mission beyond the live limit.
+  StatusOutcome OnStatus(const MissionReport& report, double now_s);
+  // A report within a phase: robots inside, distance to go.
+  void OnProgress(const MissionReport& report);
+  // A user's LOADED / UNLOADED for a live mission (takes effect at once). Empty when it is to
+  // be sent, else why not.
+  std::string Signal(std::uint16_t mission_id, MissionEventKind kind);
+
+  // The status table: one line per mission, seconds per phase up to `now_s`.
+  std::string Table(double now_s) const;
+  int LiveCount() const;
+  const Entry* Find(std::uint16_t id) const;
+  const std::map<std::uint16_t, Entry>& entries() const { return entries_; }
+  // Arena, known robots and live ids for a validation (`ignore_id` not counted as live).
+  MissionContext Context(const std::set<std::uint16_t>& known_robots, int ignore_id = -1) const;
+
+ private:
+  std::uint16_t NextFreeId();
+  void EnterPhase(std::uint16_t id, Entry* entry, MissionPhase phase, double now_s,
+                  std::vector<DueSignal>* signals);
+  void Forget();
+
+  MissionBookParams params_;
+  std::map<std::uint16_t, Entry> entries_;
+  // Finished missions in the order they finished: (id, generation).
+  std::deque<std::pair<std::uint16_t, std::uint64_t>> finished_;
+  std::uint64_t next_generation_ = 1;
+  std::uint16_t next_id_ = 1;
+};
+
+}  // namespace core
+}  // namespace swarm_transport
+
+#endif  // SWARM_TRANSPORT_CORE_MISSION_BOOK_H_
