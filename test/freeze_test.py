@@ -1,13 +1,15 @@
 #!/usr/bin/env python3
 """Freeze / continue in lock-step: robots frozen by Robot_Freeze stand still while the others
 move, move again after Robot_Continue; an inverted range is rejected and changes nothing; a
-NaN Robot_Position is rejected and every node goes on ticking."""
+NaN Robot_Position is rejected and every node goes on ticking; a burst of bad messages costs
+each robot one log line, not one per message."""
 
 import sys
 import unittest
 
 import rospy
 import rostest
+from rosgraph_msgs.msg import Log
 from std_srvs.srv import Trigger
 from swarm_transport.msg import Robot_Continue, Robot_Freeze, Robot_Position
 
@@ -96,9 +98,27 @@ class FreezeContinue(unittest.TestCase):
         min_move = rospy.get_param('~min_move_m')
         span = rospy.get_param('~window_ticks')
         self.assertEqual(self.frozen(), set())
-        self.freeze.publish(Robot_Freeze(8, 3))  # from > to: rejected, nobody freezes
+        lines = {}
+
+        def on_log(msg):
+            if 'rejected Robot_Freeze' in msg.msg and msg.msg.startswith('robot '):
+                rid = int(msg.msg.split()[1].rstrip(':'))
+                lines[rid] = lines.get(rid, 0) + 1
+
+        log_sub = rospy.Subscriber('/rosout', Log, on_log, queue_size=1000)
+        rospy.sleep(0.5)  # the subscription connects to every robot
+        burst = rospy.get_param('~bad_burst')
+        for _ in range(burst):
+            self.freeze.publish(Robot_Freeze(8, 3))  # from > to: rejected, nobody freezes
         self.window(rospy.get_param('~settle_ticks'))
         self.assertEqual(self.frozen(), set(), 'an inverted Robot_Freeze froze robots')
+        rospy.sleep(0.5)  # the last log lines arrive
+        log_sub.unregister()
+        # Delivered and said (each robot logs it) - but once, not once per message.
+        self.assertEqual(sorted(lines), list(range(self.robots)),
+                         'robots that logged the rejection: %s' % sorted(lines))
+        self.assertLessEqual(max(lines.values()), rospy.get_param('~max_log_lines_per_robot'),
+                             'log lines per robot for %d bad messages: %s' % (burst, lines))
         driven = self.driven(span)
         for rid in range(self.robots):
             self.assertGreater(driven[rid], min_move,

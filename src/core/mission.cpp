@@ -95,6 +95,10 @@ std::string ValidateMission(const MissionSpec& m, const MissionContext& ctx) {
        << static_cast<int>(m.transport_mode);
   } else if (!m.LeaderOnly() && (!(m.object_size.x > 0.0) || !(m.object_size.y > 0.0))) {
     os << "object size must be > 0 on both axes (0 x 0 means a leader-only mission)";
+  } else if (!m.LeaderOnly() &&
+             (m.object_size.x > ctx.world_size_m || m.object_size.y > ctx.world_size_m)) {
+    os << "object size " << m.object_size.x << " x " << m.object_size.y
+       << " is larger than the arena (" << ctx.world_size_m << " m)";
   } else if (m.LeaderOnly() && assigned.size() != static_cast<std::size_t>(m.leader_number)) {
     os << "a leader-only mission (object size 0 x 0) must assign exactly its leaders";
   } else if (!m.LeaderOnly() && !inside(m.object_centre)) {

@@ -17,6 +17,7 @@ bool MissionAgent::OnNewMission(const MissionSpec& mission, std::string* why) {
   Live live;
   live.spec = mission;
   live.centre = mission.object_centre;
+  live.centre_tick = tick_;
   live_.emplace(mission.id, live);
   if (mission.Assigns(self_id_)) queue_.push_back(mission.id);
   return true;
@@ -28,8 +29,32 @@ bool MissionAgent::OnObjectUpdate(std::uint16_t mission_id, Vec2 centre, std::st
     *why = "Update_Object for unknown mission " + std::to_string(mission_id);
     return false;
   }
-  it->second.centre = centre;
+  Live& live = it->second;
+  const double size = params_.world_size_m;
+  if (!(centre.x >= 0.0 && centre.y >= 0.0 && centre.x <= size && centre.y <= size)) {
+    std::ostringstream os;
+    os << "Update_Object " << mission_id << ": (" << centre.x << ", " << centre.y
+       << ") is outside the arena [0, " << size << "]";
+    *why = os.str();
+    return false;
+  }
+  // Relayed in the round of the tick after the one it was sent in.
+  const std::uint64_t ticks = tick_ + 1 - std::min(tick_ + 1, live.centre_tick);
+  const double jump = Distance(centre, live.centre);
+  if (jump > MaxObjectStep(ticks, params_.speed_m_per_tick)) {
+    std::ostringstream os;
+    os << "Update_Object " << mission_id << ": a jump of " << jump << " m in " << ticks
+       << " tick(s) is farther than its robots can carry it";
+    *why = os.str();
+    return false;
+  }
+  live.centre = centre;
+  live.centre_tick = tick_ + 1;
   return true;
+}
+
+double MaxObjectStep(std::uint64_t ticks, double speed_m_per_tick) {
+  return (2.0 * static_cast<double>(ticks) + 2.0) * speed_m_per_tick;
 }
 
 bool MissionAgent::OnObjectDelete(std::uint16_t mission_id, std::string* why) {
@@ -76,6 +101,11 @@ void MissionAgent::OnStatus(std::uint16_t mission_id, MissionPhase phase) {
   if (phase == MissionPhase::kQueued || phase == MissionPhase::kRejected) return;
   // Phases only move forward; a late or repeated report must not turn the clock back.
   if (static_cast<int>(phase) > static_cast<int>(it->second.phase)) it->second.phase = phase;
+}
+
+const MissionSpec* MissionAgent::Find(std::uint16_t mission_id) const {
+  const auto it = live_.find(mission_id);
+  return it == live_.end() ? nullptr : &it->second.spec;
 }
 
 std::set<std::uint16_t> MissionAgent::LiveIds() const {
@@ -243,6 +273,7 @@ void MissionAgent::RunFirstLeader(Live* live, const Pose2& self, const Group& gr
 
 MissionPlan MissionAgent::Tick(const Pose2& self, const std::vector<Neighbour>& heard,
                                std::uint64_t tick, MissionOutbox* outbox) {
+  tick_ = tick;
   MissionPlan plan;
   if (!queue_.empty()) plan.active = queue_.front();
   if (plan.active) {

@@ -14,6 +14,8 @@ MissionAgentParams MissionParams(const SwarmConfig& p) {
   m.object_update_ticks = p.object_update_ticks;
   m.transport = p.transport;
   m.local_range_m = p.flocking.local_range_m;
+  m.world_size_m = p.flocking.world_size_m;
+  m.speed_m_per_tick = p.flocking.speed_m_per_tick;
   return m;
 }
 
@@ -75,8 +77,14 @@ std::string RobotBrain::OnObjectUpdate(std::uint16_t mission_id, Vec2 centre) {
 }
 
 std::string RobotBrain::OnObjectDelete(std::uint16_t mission_id) {
+  const MissionSpec* spec = agent_.Find(mission_id);
+  const bool member = spec != nullptr && spec->Assigns(id_);
   std::string why;
-  return agent_.OnObjectDelete(mission_id, &why) ? "" : why;
+  if (!agent_.OnObjectDelete(mission_id, &why)) return why;
+  // The object is gone: nothing holds its robots any more (a Delete_Object before the first
+  // leader's Robot_Continue, or instead of it, left them frozen for good; issue 11).
+  if (member) frozen_ = false;
+  return "";
 }
 
 std::string RobotBrain::OnEvent(std::uint16_t mission_id, MissionEventKind event,

@@ -31,6 +31,9 @@ constexpr std::uint32_t kBroadcastQueue = 10000;
 constexpr std::uint64_t kForgetRounds = 10;
 // Lock-step diagnostics: a broadcast position this close to the radio's truth is current.
 constexpr double kCurrentPositionM = 0.01;
+// A robot logs one line per kind of rejected message per this many wall seconds (a flood of bad
+// messages must not flood the log; issue 11).
+constexpr double kRejectLogPeriodS = 10.0;
 
 }  // namespace
 
@@ -232,12 +235,12 @@ void RobotNode::RecordTick() {
 
 void RobotNode::OnFreeze(const Robot_Freeze::ConstPtr& msg) {
   const std::string why = brain_->OnFreeze(msg->robot_index_from, msg->robot_index_to);
-  if (!why.empty()) ROS_WARN("robot %u: rejected %s", id_, why.c_str());
+  if (!why.empty()) Rejected("Robot_Freeze", why);
 }
 
 void RobotNode::OnContinue(const Robot_Continue::ConstPtr& msg) {
   const std::string why = brain_->OnContinue(msg->robot_index_from, msg->robot_index_to);
-  if (!why.empty()) ROS_WARN("robot %u: rejected %s", id_, why.c_str());
+  if (!why.empty()) Rejected("Robot_Continue", why);
 }
 
 bool RobotNode::OnDescribe(std_srvs::Trigger::Request& /*req*/,
@@ -291,7 +294,7 @@ void RobotNode::OnNewMission(const New_Mission::ConstPtr& msg) {
   }
   // Only the robots concerned say so, so that one bad message does not log N lines.
   if (spec.Assigns(id_) || id_ == 0) {
-    ROS_WARN("robot %u: rejected New_Mission %u: %s", id_, msg->mission_id, why.c_str());
+    Rejected("New_Mission", "New_Mission " + std::to_string(msg->mission_id) + ": " + why);
   }
 }
 
@@ -299,11 +302,12 @@ void RobotNode::OnObjectUpdate(const Update_Object::ConstPtr& msg) {
   const std::string why =
       brain_->OnObjectUpdate(msg->mission_id, {msg->object_position_x, msg->object_position_y});
   if (why.empty()) return;
-  // A non-finite position is bad input; an update for a mission it does not hold is routine.
-  if (!std::isfinite(msg->object_position_x) || !std::isfinite(msg->object_position_y)) {
-    ROS_WARN("robot %u: rejected %s", id_, why.c_str());
-  } else {
+  // An update for a mission it does not hold is routine; a non-finite, out-of-arena or
+  // implausible one is bad input.
+  if (brain_->missions().Find(msg->mission_id) == nullptr) {
     ROS_DEBUG("robot %u: ignored: %s", id_, why.c_str());
+  } else {
+    Rejected("Update_Object", why);
   }
 }
 
@@ -315,7 +319,24 @@ void RobotNode::OnObjectDelete(const Delete_Object::ConstPtr& msg) {
 void RobotNode::OnMissionEvent(const Mission_Event::ConstPtr& msg) {
   const std::string why = brain_->OnEvent(
       msg->mission_id, static_cast<core::MissionEventKind>(msg->event), msg->not_before_tick);
-  if (!why.empty()) ROS_WARN("robot %u: rejected %s", id_, why.c_str());
+  if (!why.empty()) Rejected("Mission_Event", why);
+}
+
+void RobotNode::Rejected(const std::string& kind, const std::string& why) {
+  RejectLog& log = rejected_[kind];
+  const ros::WallTime now = ros::WallTime::now();
+  if (!log.last.isZero() && (now - log.last).toSec() < kRejectLogPeriodS) {
+    ++log.suppressed;
+    return;
+  }
+  if (log.suppressed > 0) {
+    ROS_WARN("robot %u: rejected %s (and %llu more %s since the last such line)", id_,
+             why.c_str(), static_cast<unsigned long long>(log.suppressed), kind.c_str());
+  } else {
+    ROS_WARN("robot %u: rejected %s", id_, why.c_str());
+  }
+  log.last = now;
+  log.suppressed = 0;
 }
 
 void RobotNode::OnMissionStatus(const Mission_Status::ConstPtr& msg) {

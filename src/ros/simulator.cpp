@@ -50,8 +50,6 @@ bool WallThrottle(ros::WallTime* last, double period_s) {
   return true;
 }
 
-bool IsFinite(const core::Vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
-
 // A teleport service's answer: OK, or ERROR with the reason (also logged).
 template <typename Response>
 bool Reply(bool ok, const char* service, std::uint16_t id, const std::string& error,
@@ -951,10 +949,8 @@ void Simulator::RegisterMission(const New_Mission& order) {
 }
 
 void Simulator::OnObjectUpdate(const Update_Object::ConstPtr& msg) {
-  const core::Vec2 position{msg->object_position_x, msg->object_position_y};
-  auto it = missions_.find(msg->mission_id);
-  if (it == missions_.end() || !IsFinite(position)) return;
-  it->second.object_position = position;
+  sim::UpdateMissionObject(msg->mission_id, {msg->object_position_x, msg->object_position_y},
+                           *world_, &missions_);
 }
 
 void Simulator::OnObjectDelete(const Delete_Object::ConstPtr& msg) {

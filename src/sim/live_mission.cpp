@@ -21,5 +21,18 @@ std::string RegisterMission(const core::MissionSpec& spec, const World2D& world,
   return "";
 }
 
+bool UpdateMissionObject(std::uint16_t mission_id, core::Vec2 centre, const World2D& world,
+                         LiveMissions* missions) {
+  const auto it = missions->find(mission_id);
+  const double size = world.params().world_size_m;
+  // Negated comparisons: NaN is outside.
+  if (it == missions->end() || !(centre.x >= 0.0 && centre.x <= size) ||
+      !(centre.y >= 0.0 && centre.y <= size)) {
+    return false;
+  }
+  it->second.object_position = centre;
+  return true;
+}
+
 }  // namespace sim
 }  // namespace swarm_transport

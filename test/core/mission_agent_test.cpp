@@ -350,6 +350,27 @@ TEST(SignalTickTest, TheDelayRoundsUpToWholeTicks) {
   EXPECT_EQ(SignalTick(10, 2.0, 0.1), 30u);
 }
 
+TEST(MissionAgentTest, AnObjectUpdateMustStayInTheArenaAndWithinReachOfItsRobots) {
+  MissionAgentParams params;
+  params.speed_m_per_tick = 0.1;
+  MissionAgent agent(5, params);  // not in the mission: the object is a danger zone to it
+  std::string why;
+  agent.Tick(PoseAt(1.0, 1.0), {}, 10, nullptr);
+  ASSERT_TRUE(agent.OnNewMission(Thesis(), &why)) << why;  // object at (7, 7) since tick 10
+  // Outside the arena, or a jump no robot could carry it in one tick: refused, unchanged.
+  EXPECT_FALSE(agent.OnObjectUpdate(7, {7.0, 20.0}, &why));
+  EXPECT_NE(why.find("outside the arena"), std::string::npos) << why;
+  EXPECT_FALSE(agent.OnObjectUpdate(7, {7.0, 9.0}, &why));
+  EXPECT_NE(why.find("farther than its robots can carry it"), std::string::npos) << why;
+  // One tick's drive: taken.
+  EXPECT_TRUE(agent.OnObjectUpdate(7, {7.1, 7.0}, &why)) << why;
+  agent.Tick(PoseAt(1.0, 1.0), {}, 11, nullptr);
+  // After ten ticks without news it may have come ten ticks' worth farther.
+  for (std::uint64_t t = 12; t < 21; ++t) agent.Tick(PoseAt(1.0, 1.0), {}, t, nullptr);
+  EXPECT_TRUE(agent.OnObjectUpdate(7, {7.1, 8.9}, &why)) << why;
+  EXPECT_NEAR(MaxObjectStep(1, 0.1), 0.4, 1e-12);
+}
+
 }  // namespace
 }  // namespace core
 }  // namespace swarm_transport

@@ -269,6 +269,16 @@ TEST(ValidateMissionTest, ReportsTheFirstProblemOnly) {
   EXPECT_EQ(reason.find("leader_number"), std::string::npos) << reason;
 }
 
+TEST(ValidateMissionTest, AnObjectLargerThanTheArenaIsRejected) {
+  MissionSpec m = ThesisMission();
+  m.object_size = {3e38, 2.0};  // as a forged order had it (issue 11)
+  ExpectRejected(m, Context(), "larger than the arena");
+  m.object_size = {2.0, 11.5};
+  ExpectRejected(m, Context(), "larger than the arena");
+  m.object_size = {11.0, 11.0};
+  EXPECT_EQ(ValidateMission(m, Context()), "");
+}
+
 }  // namespace
 }  // namespace core
 }  // namespace swarm_transport

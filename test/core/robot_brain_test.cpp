@@ -156,6 +156,25 @@ TEST(RobotBrainTest, TheSameSeedAndIdGiveTheSameRun) {
   EXPECT_TRUE(differs);  // each robot draws its own free will
 }
 
+TEST(RobotBrainTest, DeletingAMissionsObjectReleasesItsFrozenRobotsOnly) {
+  RobotBrain member(1, Params());
+  RobotBrain other(5, Params());
+  for (RobotBrain* brain : {&member, &other}) {
+    ASSERT_EQ(brain->OnNewMission(Thesis(), {}, nullptr), "");
+    ASSERT_EQ(brain->OnFreeze(0, 10), "");
+    ASSERT_TRUE(brain->frozen());
+  }
+  // A Delete_Object without the Robot_Continue before it (forged, or the leader lost).
+  EXPECT_EQ(member.OnObjectDelete(7), "");
+  EXPECT_FALSE(member.frozen());
+  EXPECT_EQ(other.OnObjectDelete(7), "");
+  EXPECT_TRUE(other.frozen());  // frozen by someone else's order: not the object's to release
+  // An unknown mission's delete is rejected and releases nobody.
+  ASSERT_EQ(member.OnFreeze(0, 10), "");
+  EXPECT_NE(member.OnObjectDelete(99), "");
+  EXPECT_TRUE(member.frozen());
+}
+
 }  // namespace
 }  // namespace core
 }  // namespace swarm_transport

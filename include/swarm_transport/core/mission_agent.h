@@ -28,7 +28,17 @@ struct MissionAgentParams {
   std::uint64_t phase_timeout_ticks = 20000;  // a phase that lasts longer aborts the mission
   TransportParams transport;        // gathering and carrying (leaders bound or not)
   double local_range_m = 1.0;       // the flocking's: whether the gathered group is one chain
+  // Plausible Update_Object: inside the arena [0, world_size_m]^2, and no farther from the
+  // last known centre than the object's robots can carry it in the ticks since (issue 11).
+  double world_size_m = 11.088889;
+  double speed_m_per_tick = 0.1;    // the robots' top speed: the object moves no faster
 };
+
+// How far an object may move in `ticks` ticks when its robots drive at most `speed_m_per_tick`:
+// twice that distance plus two ticks' worth (the centroid of robots that each move at most the
+// speed moves at most the speed; the rest is slack for rounding, a tick's lag and real-time
+// jitter, where two updates may arrive between two of a robot's ticks).
+double MaxObjectStep(std::uint64_t ticks, double speed_m_per_tick);
 
 // A status report the first leader publishes.
 struct StatusReport {
@@ -102,6 +112,8 @@ class MissionAgent {
 
   // Missions this robot holds (not yet deleted).
   std::set<std::uint16_t> LiveIds() const;
+  // The order of live mission `mission_id`, or nullptr.
+  const MissionSpec* Find(std::uint16_t mission_id) const;
   // The phase this robot believes `mission_id` is in (kDone when unknown).
   MissionPhase PhaseOf(std::uint16_t mission_id) const;
   // True when this robot is the first leader of a live mission (it must be able to publish).
@@ -123,6 +135,7 @@ class MissionAgent {
   struct Live {
     MissionSpec spec;
     Vec2 centre;
+    std::uint64_t centre_tick = 0;             // the tick `centre` was last set at
     MissionPhase phase = MissionPhase::kQueued;  // as known by this robot
     std::uint64_t phase_tick = 0;               // first-leader: tick the phase began
     bool phase_started = false;
@@ -153,6 +166,7 @@ class MissionAgent {
                   MissionOutbox* outbox);
 
   std::uint16_t self_id_;
+  std::uint64_t tick_ = 0;  // the last tick run: relayed messages belong to the next one
   MissionAgentParams params_;
   std::map<std::uint16_t, Live> live_;
   std::deque<std::uint16_t> queue_;  // this robot's own missions, FIFO [T6.4]

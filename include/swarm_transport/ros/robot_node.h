@@ -109,6 +109,9 @@ class RobotNode {
   // /flock/mission/status (once), a report within the phase on /flock/mission/progress.
   void Publish(const core::MissionOutbox& outbox, const std::vector<core::StatusReport>& progress);
   Mission_Status ToStatus(const core::StatusReport& report) const;
+  // Logs a rejected message: one line per kind per kRejectLogPeriodS, with how many of that
+  // kind it did not log since.
+  void Rejected(const std::string& kind, const std::string& why);
   // A first leader needs its own publishers; only those robots advertise them, so the swarm
   // does not become all-to-all. True when every robot can hear them.
   bool MissionOutletsReady();
@@ -150,6 +153,11 @@ class RobotNode {
   // per mission: every status of a mission comes from its first leader, so that it reaches each
   // subscriber in order (one publisher, one connection).
   core::StatusSequencer statuses_;
+  struct RejectLog {
+    ros::WallTime last;
+    std::uint64_t suppressed = 0;
+  };
+  std::map<std::string, RejectLog> rejected_;  // by message kind
   TopicNodeCounts expected_;  // the graph when it became a first leader
   ros::WallTime outlets_since_;
   bool outlets_ready_ = false;

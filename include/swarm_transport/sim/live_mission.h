@@ -33,6 +33,11 @@ using LiveMissions = std::map<std::uint16_t, LiveMission>;
 std::string RegisterMission(const core::MissionSpec& spec, const World2D& world,
                             LiveMissions* missions);
 
+// A first leader's Update_Object: moves a live mission's object when `centre` is finite and
+// inside `world`'s arena. False when it changed nothing (unknown mission, bad position).
+bool UpdateMissionObject(std::uint16_t mission_id, core::Vec2 centre, const World2D& world,
+                         LiveMissions* missions);
+
 }  // namespace sim
 }  // namespace swarm_transport
 
