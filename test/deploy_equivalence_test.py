@@ -20,7 +20,7 @@ import yaml
 import swarm_testing as st
 
 
-PER_ROBOT_TOPIC = re.compile(r'^/robot_\d+/(neighbors|cmd_vel|tick_done|pose)$')
+PER_ROBOT_TOPIC = re.compile(r'^/robot_\d+/(neighbors|cmd_vel|answer|pose)$')
 
 
 def per_robot_topics():

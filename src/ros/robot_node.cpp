@@ -19,10 +19,6 @@ namespace {
 // Diagnostics: one line per robot per this many wall seconds on this topic.
 constexpr char kStatsTopic[] = "/flock/robot_stats";
 constexpr double kStatsPeriodS = 1.0;
-// Lock-step: how long a first leader's tick may wait for its mission subscribers (below the
-// simulator's default lockstep_timeout_s of 2 s), polling every kLockstepOutletPollS.
-constexpr double kLockstepOutletWaitS = 1.5;
-constexpr double kLockstepOutletPollS = 0.002;
 constexpr std::uint32_t kStatsQueue = 10;
 constexpr std::uint32_t kProgressQueue = 10;
 // Broadcast comm: every robot publishes once per tick, so the queue must hold a whole swarm's
@@ -76,20 +72,18 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
 
   position_pub_ = nh_.advertise<Robot_Position>(names::kPosition, 10);
   if (options_.direct == nullptr) {
-    cmd_pub_ = nh_.advertise<geometry_msgs::Twist>(names::kCmdVel, 2);
+    if (options_.clock == core::Clock::kLockstep) {
+      answer_pub_ = nh_.advertise<Tick_Answer>(names::kAnswer, 2);
+    } else {
+      cmd_pub_ = nh_.advertise<geometry_msgs::Twist>(names::kCmdVel, 2);
+    }
     // tcpNoDelay: a tick's perception is one small message; Nagle would add ~40 ms per tick.
     neighbors_sub_ = nh_.subscribe(names::kNeighbors, 2, &RobotNode::OnNeighbors, this,
                                    ros::TransportHints().tcpNoDelay());
   }
-  if (options_.clock == core::Clock::kLockstep) {
-    // Lock-step: mission messages arrive relayed inside `neighbors`, each at the tick after it
-    // was sent, whatever the scheduling; the simulator waits for this robot's tick_done. Only
-    // the simulator and observers subscribe to mission topics here, so every robot can
-    // advertise its outlets now: connected long before any mission, they make no first leader
-    // wait a scheduling-dependent while.
-    if (options_.direct == nullptr) tick_done_pub_ = nh_.advertise<Tick_Done>(names::kTickDone, 2);
-    AdvertiseMissionOutlets();
-  } else {
+  // Lock-step: mission messages arrive relayed inside `neighbors`, each at the tick after it
+  // was sent, and go out inside the robot's answer: no mission topics, nothing to connect.
+  if (options_.clock != core::Clock::kLockstep) {
     freeze_sub_ = nh_.subscribe(names::kFreeze, 20, &RobotNode::OnFreeze, this);
     continue_sub_ = nh_.subscribe(names::kContinue, 20, &RobotNode::OnContinue, this);
     mission_sub_ = nh_.subscribe(names::kMissionNew, 20, &RobotNode::OnNewMission, this);
@@ -283,6 +277,10 @@ void RobotNode::OnNewMission(const New_Mission::ConstPtr& msg) {
   const std::string why = brain_->OnNewMission(spec, known_robots_, &taken);
   if (why.empty()) {
     if (!taken.first_leader) return;
+    if (options_.clock == core::Clock::kLockstep) {
+      statuses_.Queue(taken.queued);  // its answers carry the statuses
+      return;
+    }
     if (!status_pub_) AdvertiseMissionOutlets();
     if (!progress_pub_) {
       progress_pub_ = nh_.advertise<Mission_Status>(names::kMissionProgress, kProgressQueue);
@@ -373,65 +371,57 @@ bool RobotNode::MissionOutletsReady() {
   return outlets_ready_;
 }
 
-void RobotNode::AwaitMissionOutlets() {
-  if (MissionOutletsReady()) return;
-  // Lock-step ticks take milliseconds: a first leader that waited for its subscribers tick by
-  // tick would start its mission at a tick that depends on how fast they connect (seen under
-  // load: tick 135 instead of 0). So it waits within this tick, whose answer the simulator
-  // awaits, up to kLockstepOutletWaitS; connections are made by roscpp's own thread.
-  const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(kLockstepOutletWaitS);
-  while (!MissionOutletsReady() && ros::WallTime::now() < until && ros::ok()) {
-    ros::WallDuration(kLockstepOutletPollS).sleep();
-  }
-  if (!MissionOutletsReady()) {
-    ROS_WARN("robot %u: mission subscribers not connected after %.1f s; the mission starts "
-             "when they are (this run may not repeat exactly)", id_, kLockstepOutletWaitS);
-  }
-}
-
-void RobotNode::Publish(const core::MissionOutbox& outbox,
-                        const std::vector<core::StatusReport>& progress) {
-  if (outbox.empty() && progress.empty()) return;
-  if (!status_pub_) {
-    ROS_ERROR("robot %u: has mission messages to send but is no first leader", id_);
-    return;
-  }
+Tick_Answer RobotNode::MissionMessages(const core::MissionOutbox& outbox,
+                                       const std::vector<core::StatusReport>& progress) const {
+  Tick_Answer m;
   if (outbox.update_object) {
     Update_Object u;
     u.mission_id = outbox.update_object->first;
     u.object_position_x = static_cast<float>(outbox.update_object->second.x);
     u.object_position_y = static_cast<float>(outbox.update_object->second.y);
-    update_pub_.publish(u);
-    ++events_published_;
+    m.object_updates.push_back(u);
   }
   for (const auto& run : outbox.freeze) {
     Robot_Freeze f;
     f.robot_index_from = run.first;
     f.robot_index_to = run.second;
-    freeze_pub_.publish(f);
-    ++events_published_;
+    m.freezes.push_back(f);
   }
   for (const auto& run : outbox.resume) {
     Robot_Continue c;
     c.robot_index_from = run.first;
     c.robot_index_to = run.second;
-    continue_pub_.publish(c);
-    ++events_published_;
+    m.continues.push_back(c);
   }
   if (outbox.delete_object) {
     Delete_Object d;
     d.mission_id = *outbox.delete_object;
-    delete_pub_.publish(d);
-    ++events_published_;
+    m.object_deletes.push_back(d);
   }
   // The sequencer kept one report per phase; its repeats carry progress only.
   for (const core::StatusReport& r : outbox.statuses) {
-    status_pub_.publish(ToStatus(r));
-    ++events_published_;
+    m.statuses.push_back(ToStatus(r));
     ROS_INFO("robot %u: mission %u %s", id_, r.mission_id, core::PhaseName(r.phase));
   }
+  for (const core::StatusReport& r : progress) m.progress.push_back(ToStatus(r));
+  return m;
+}
+
+void RobotNode::Publish(const Tick_Answer& m) {
+  const bool any = !m.object_updates.empty() || !m.freezes.empty() || !m.continues.empty() ||
+                   !m.object_deletes.empty() || !m.statuses.empty() || !m.progress.empty();
+  if (!any) return;
+  if (!status_pub_) {
+    ROS_ERROR("robot %u: has mission messages to send but is no first leader", id_);
+    return;
+  }
+  for (const auto& u : m.object_updates) update_pub_.publish(u);
+  for (const auto& f : m.freezes) freeze_pub_.publish(f);
+  for (const auto& c : m.continues) continue_pub_.publish(c);
+  for (const auto& d : m.object_deletes) delete_pub_.publish(d);
+  for (const auto& st : m.statuses) status_pub_.publish(st);
   if (progress_pub_) {
-    for (const core::StatusReport& r : progress) progress_pub_.publish(ToStatus(r));
+    for (const auto& st : m.progress) progress_pub_.publish(st);
   }
 }
 
@@ -448,13 +438,6 @@ Mission_Status RobotNode::ToStatus(const core::StatusReport& r) const {
   m.object_position_y = static_cast<float>(r.object.y);
   m.distance_to_target = static_cast<float>(r.distance_to_target);
   return m;
-}
-
-Tick_Done RobotNode::TickDone() const {
-  Tick_Done done;
-  done.tick = perception_->tick;
-  done.events_published = events_published_;
-  return done;
 }
 
 void RobotNode::Tick() {
@@ -478,30 +461,39 @@ void RobotNode::Tick() {
   // Mission peers and relayed robots are positions like any other: the flock group decides
   // whom the swarm runs over, and collisions count everyone.
 
-  if (options_.clock == core::Clock::kLockstep) AwaitMissionOutlets();
   const core::Pose2 before = in.self;
-  core::BrainTick step = brain_->Tick(std::move(in), perception_->tick, MissionOutletsReady());
-  core::MissionOutbox& outbox = step.outbox;
+  const bool lockstep = options_.clock == core::Clock::kLockstep;
+  core::BrainTick step =
+      brain_->Tick(std::move(in), perception_->tick, lockstep || MissionOutletsReady());
   const core::Velocity command = step.command;
-  // A mission's QUEUED goes out before any other status of it (a leader-only mission may end
-  // in the tick it starts), as soon as this first leader can publish.
   std::vector<core::StatusReport> progress;
-  statuses_.Sequence(MissionOutletsReady(), &outbox.statuses, &progress);
-  // Mission messages go out before the command: in lock-step the simulator steps only after
-  // every command arrived, so the swarm hears them before its next tick.
-  Publish(outbox, progress);
-  // Direct links get the same content as the topics would carry, in the same order.
-  SendCommand(ToTwist(command));
-  if (options_.direct != nullptr && options_.clock == core::Clock::kLockstep) {
-    options_.direct->SendTickDone(id_, TickDone());
-  } else if (tick_done_pub_) {
-    tick_done_pub_.publish(TickDone());
+  statuses_.Sequence(lockstep || MissionOutletsReady(), &step.outbox.statuses, &progress);
+  Tick_Answer answer = MissionMessages(step.outbox, progress);
+  if (lockstep) {
+    // One answer: the command and everything said this tick (the simulator relays it and
+    // publishes it for observers). Direct links get the same content as the topic.
+    answer.tick = perception_->tick;
+    answer.command = ToTwist(command);
+    if (options_.direct != nullptr) {
+      options_.direct->SendAnswer(id_, answer);
+    } else {
+      answer_pub_.publish(answer);
+    }
+  } else {
+    // Mission messages go out before the command.
+    Publish(answer);
+    SendCommand(ToTwist(command));
   }
-  const core::Pose2 after = core::TurnThenDrive(before, command, config_.tick_period_s);
-  // By shared pointer: roscpp hands it to subscribers in this process (the simulator of a
-  // robot_host) without serialising it and without waking its poll thread; a message
-  // published by reference is serialised, and signals that thread, even for them.
-  position_pub_.publish(boost::make_shared<Robot_Position>(ToRobotPosition(id_, after)));
+  // Its position for those who listen to robots (broadcast comm, observers in real time). In
+  // lock-step with the radio, /flock/positions carries every robot's true pose each tick and the
+  // simulator keeps only virtual copies and statists from /flock/position: not published.
+  if (!lockstep || options_.comm == core::Comm::kBroadcast) {
+    const core::Pose2 after = core::TurnThenDrive(before, command, config_.tick_period_s);
+    // By shared pointer: roscpp hands it to subscribers in this process (the simulator of a
+    // robot_host) without serialising it and without waking its poll thread; a message
+    // published by reference is serialised, and signals that thread, even for them.
+    position_pub_.publish(boost::make_shared<Robot_Position>(ToRobotPosition(id_, after)));
+  }
   ++ticks_;
   if (stats_) RecordTick();
 }

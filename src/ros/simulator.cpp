@@ -206,27 +206,34 @@ bool Simulator::Initialize() {
   if (lockstep_) {
     // The lock-step barrier for mission messages: what arrives during tick k is relayed in
     // every Neighbors of tick k + 1 (robots in lock-step do not subscribe to these topics).
-    // `counted`: the kinds robots publish, announced in their tick_done.
-    // The barrier counts messages per publisher node, so the callbacks must get the
-    // connection header: a lambda given to subscribe<M>() would be wrapped as a
+    // The relay orders messages by their publishing node (and skips what this node publishes
+    // itself), so the callbacks must get the connection header: a lambda given to subscribe<M>() would be wrapped as a
     // `const M::ConstPtr&` callback, whose MessageEvent names every sender "unknown_publisher"
     // (the dispatcher's statuses then counted as a robot's, and a tick could close early).
-    auto relay = [this](const char* topic, auto* list, bool counted) {
+    auto relay = [this](const char* topic, auto* list) {
       using M = typename std::remove_pointer_t<decltype(list)>::value_type::second_type;
       ros::SubscribeOptions ops;
       ops.initByFullCallbackType<const ros::MessageEvent<const M>&>(
-          topic, kMissionQueue, [this, list, counted](const ros::MessageEvent<const M>& event) {
-            Relay(event, list, counted);
+          topic, kMissionQueue, [this, list](const ros::MessageEvent<const M>& event) {
+            Relay(event, list);
           });
       relay_subs_.push_back(nh_.subscribe(ops));
     };
-    relay(names::kMissionNew, &pending_missions_, false);
-    relay(names::kObjectUpdate, &relay_updates_, true);
-    relay(names::kObjectDelete, &relay_deletes_, true);
-    relay(names::kFreeze, &relay_freezes_, true);
-    relay(names::kContinue, &relay_continues_, true);
-    relay(names::kMissionEvent, &relay_events_, false);
-    relay(names::kMissionStatus, &relay_statuses_, true);
+    relay(names::kMissionNew, &pending_missions_);
+    relay(names::kObjectUpdate, &relay_updates_);
+    relay(names::kObjectDelete, &relay_deletes_);
+    relay(names::kFreeze, &relay_freezes_);
+    relay(names::kContinue, &relay_continues_);
+    relay(names::kMissionEvent, &relay_events_);
+    relay(names::kMissionStatus, &relay_statuses_);
+    // What the robots say in their answers, for observers (robots in lock-step publish no
+    // mission topics).
+    status_pub_ = nh_.advertise<Mission_Status>(names::kMissionStatus, kMissionQueue);
+    progress_pub_ = nh_.advertise<Mission_Status>(names::kMissionProgress, kMissionQueue);
+    update_pub_ = nh_.advertise<Update_Object>(names::kObjectUpdate, kMissionQueue);
+    delete_pub_ = nh_.advertise<Delete_Object>(names::kObjectDelete, kMissionQueue);
+    freeze_pub_ = nh_.advertise<Robot_Freeze>(names::kFreeze, kMissionQueue);
+    continue_pub_ = nh_.advertise<Robot_Continue>(names::kContinue, kMissionQueue);
     if (params_.lockstep_dispatcher) {
       // Its file missions enter at stamped ticks; tick 1 on waits for its schedule.
       barrier_.ExpectSchedule();
@@ -271,7 +278,7 @@ void Simulator::AddRobotIo(std::uint16_t id) {
         robot_nh.advertise<Pose>(names::kPose, kPoseQueue, counter(&RobotIo::pose_subscribers, 1),
                                  counter(&RobotIo::pose_subscribers, -1));
   }
-  // A robot of this process linked directly: its round, command and tick_done bypass roscpp.
+  // A robot of this process linked directly: its round, command and answer bypass roscpp.
   io.direct = direct_ != nullptr && direct_->Hosts(id);
   if (!io.direct) {
     io.neighbors = robot_nh.advertise<Neighbors>(names::kNeighbors, kNeighborsQueue,
@@ -286,15 +293,12 @@ void Simulator::AddRobotIo(std::uint16_t id) {
     io.cmd_vel = robot_nh.subscribe(ops);
   }
   if (lockstep_ && !io.direct) {
-    ros::SubscribeOptions done_ops;
-    done_ops.initByFullCallbackType<const ros::MessageEvent<const Tick_Done>&>(
-        names::kTickDone, kCmdVelQueue,
-        [this, id](const ros::MessageEvent<const Tick_Done>& event) {
-          OnTickDone(id, event.getPublisherName(), *event.getConstMessage());
-        });
-    done_ops.callback_queue = &cmd_queue_;
-    done_ops.transport_hints = ros::TransportHints().tcpNoDelay();
-    io.tick_done = robot_nh.subscribe(done_ops);
+    ros::SubscribeOptions answer_ops = ros::SubscribeOptions::create<Tick_Answer>(
+        names::kAnswer, kCmdVelQueue,
+        [this, id](const Tick_Answer::ConstPtr& msg) { OnAnswer(id, *msg); }, ros::VoidConstPtr(),
+        &cmd_queue_);
+    answer_ops.transport_hints = ros::TransportHints().tcpNoDelay();
+    io.answer = robot_nh.subscribe(answer_ops);
   }
   io.teleport_absolute =
       robot_nh.advertiseService<TeleportAbsolute::Request, TeleportAbsolute::Response>(
@@ -319,20 +323,12 @@ void Simulator::CountSubscriber(std::uint16_t id, std::uint64_t generation, int 
   it->second.*field = std::max(0, it->second.*field + delta);
 }
 
-bool Simulator::Ready(std::uint16_t id, RobotIo* io) {
-  if (io->direct) {
-    // Nothing to connect: a direct robot hears its first round and answers it for sure, and
-    // in lock-step (the host runs its robots on the simulator's clock) it sends tick_done.
-    barrier_.SendsTickDone(id);
-    return true;
-  }
+bool Simulator::Ready(RobotIo* io) {
+  // Nothing to connect: a direct robot hears its first round and answers it for sure.
+  if (io->direct) return true;
   // Only checked until the robot is live: getNumPublishers() scans every subscription.
-  const bool connected = io->neighbors_subscribers > 0 && io->cmd_vel.getNumPublishers() > 0;
-  // A robot that publishes tick_done is waited for from its first tick on, not only from its
-  // first tick_done (which may arrive after its first command).
-  if (connected && io->tick_done && io->tick_done.getNumPublishers() > 0) {
-    barrier_.SendsTickDone(id);
-  }
+  const bool connected = io->neighbors_subscribers > 0 && io->answer &&
+                         io->answer.getNumPublishers() > 0;
   const ros::WallTime now = ros::WallTime::now();
   if (!connected) {
     io->connected_since = ros::WallTime();
@@ -352,6 +348,7 @@ void Simulator::RemoveRobot(std::uint16_t id) {
     io.neighbors.shutdown();
     io.pose.shutdown();
     io.cmd_vel.shutdown();
+    io.answer.shutdown();
     io.teleport_absolute.shutdown();
     io.teleport_relative.shutdown();
     io_.erase(it);
@@ -451,7 +448,7 @@ void Simulator::WaitForRobots() {
   while (Running()) {
     connected = 0;
     for (auto& entry : io_) {
-      if (Ready(entry.first, &entry.second)) ++connected;
+      if (Ready(&entry.second)) ++connected;
     }
     const bool observed = params_.lockstep_observers == 0 ||
                           positions_pub_.getNumSubscribers() >=
@@ -491,7 +488,7 @@ void Simulator::UpdateLiveness() {
     const std::uint16_t id = entry.first;
     RobotIo& io = entry.second;
     const bool live = barrier_.Live(id);
-    if (!live && Ready(id, &io)) {
+    if (!live && Ready(&io)) {
       barrier_.MakeLive(id);
       if (tick_ > 0) {
         ROS_INFO("lockstep: robot %u connected at tick %llu", id,
@@ -502,11 +499,6 @@ void Simulator::UpdateLiveness() {
       io.connected_since = ros::WallTime();
       ROS_WARN("lockstep: robot %u disconnected at tick %llu", id,
                static_cast<unsigned long long>(tick_));
-    } else if (live && barrier_.Resynchronise(id)) {
-      // It answered, but only older ticks: it must have missed a Neighbors message. Its next
-      // answer counts as the answer to the next tick instead of lagging forever.
-      ROS_WARN("lockstep: robot %u answers an old tick; resynchronised at tick %llu", id,
-               static_cast<unsigned long long>(tick_));
     }
   }
 }
@@ -516,8 +508,7 @@ void Simulator::WaitForAnswers() {
       ros::WallTime::now() + ros::WallDuration(params_.lockstep_timeout_s);
   bool complete = false;
   do {
-    // Directly linked robots tick here; their commands and tick_dones are in when this
-    // returns, their mission messages (ROS topics) on the global queue.
+    // Directly linked robots tick here; their answers are in when this returns.
     SpinRobots();
     ros::spinOnce();
     complete = barrier_.AllAnswered();
@@ -526,9 +517,9 @@ void Simulator::WaitForAnswers() {
     complete = barrier_.AllAnswered();
     PublishVisualsIfDue();
   } while (!complete && Running() && ros::WallTime::now() < deadline);
-  // Whatever robots sent together with their answers (virtual copies) is in before the next
-  // radio round.
+  // Whatever robots sent besides their answers (virtual copies) is in before the next round.
   ros::spinOnce();
+  TakeAnswers();
   if (barrier_.AllAnswered() || !Running()) return;
   const std::vector<std::uint16_t> late = barrier_.Late();
   if (WallThrottle(&last_late_warning_wall_, kWarnPeriodS)) {
@@ -669,9 +660,10 @@ void Simulator::PublishRadio() {
 }
 
 template <typename M>
-void Simulator::Relay(const ros::MessageEvent<const M>& event, RelayList<M>* list, bool counted) {
+void Simulator::Relay(const ros::MessageEvent<const M>& event, RelayList<M>* list) {
   const std::string& from = event.getPublisherName();
-  if (counted) barrier_.OnRobotMessage(from);
+  // What this node publishes are its robots' answers, relayed by TakeAnswers already.
+  if (from == ros::this_node::getName()) return;
   list->emplace_back(from, *event.getConstMessage());
   if constexpr (std::is_same_v<M, Mission_Status>) NoteStatus(*event.getConstMessage());
   if constexpr (std::is_same_v<M, Mission_Event>) NoteEvent(*event.getConstMessage());
@@ -797,8 +789,77 @@ void Simulator::ClearRelay() {
   relay_statuses_.clear();
 }
 
-void Simulator::OnTickDone(std::uint16_t id, const std::string& from, const Tick_Done& msg) {
-  barrier_.OnTickDone(id, from, msg.tick, msg.events_published);
+void Simulator::OnAnswer(std::uint16_t id, const Tick_Answer& answer) {
+  if (finished_ || io_.count(id) == 0) return;
+  const bool finite = IsFinite(answer.command);
+  if (!finite && WallThrottle(&last_bad_cmd_warning_wall_, kWarnPeriodS)) {
+    ROS_WARN("lockstep: robot %u answered with a non-finite command; it stands instead", id);
+  }
+  const auto result =
+      barrier_.OnAnswer(id, answer.tick, finite ? ToVelocity(answer.command) : core::Velocity());
+  switch (result) {
+    case sim::LockstepBarrier::Answer::kAnswer:
+    case sim::LockstepBarrier::Answer::kStale:
+      // A late answer's command is past, but what it says still holds: relayed a tick late.
+      answers_.emplace_back(id, answer);
+      break;
+    case sim::LockstepBarrier::Answer::kUnsolicited:
+    case sim::LockstepBarrier::Answer::kOutside:
+      if (WallThrottle(&last_unsolicited_warning_wall_, kWarnPeriodS)) {
+        ROS_WARN("lockstep: robot %u answered tick %llu, which it was not asked (tick %llu); "
+                 "ignored", id, static_cast<unsigned long long>(answer.tick),
+                 static_cast<unsigned long long>(tick_));
+      }
+      break;
+  }
+}
+
+namespace {
+
+// The relay's sender of a robot's answer: after every node name (they start with '/'), in
+// ascending robot id.
+std::string AnswerSender(std::uint16_t id) {
+  char name[16];
+  std::snprintf(name, sizeof(name), "robot_%05u", static_cast<unsigned>(id));
+  return name;
+}
+
+}  // namespace
+
+void Simulator::TakeAnswers() {
+  // By robot id, then in arrival order (a late answer before the robot's current one).
+  std::stable_sort(answers_.begin(), answers_.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& entry : answers_) {
+    const std::string sender = AnswerSender(entry.first);
+    const Tick_Answer& a = entry.second;
+    for (const Update_Object& u : a.object_updates) {
+      relay_updates_.emplace_back(sender, u);
+      sim::UpdateMissionObject(u.mission_id, {u.object_position_x, u.object_position_y}, *world_,
+                               &missions_);
+      update_pub_.publish(u);
+    }
+    for (const Robot_Freeze& f : a.freezes) {
+      relay_freezes_.emplace_back(sender, f);
+      freeze_pub_.publish(f);
+    }
+    for (const Robot_Continue& c : a.continues) {
+      relay_continues_.emplace_back(sender, c);
+      continue_pub_.publish(c);
+    }
+    for (const Delete_Object& d : a.object_deletes) {
+      relay_deletes_.emplace_back(sender, d);
+      missions_.erase(d.mission_id);
+      delete_pub_.publish(d);
+    }
+    for (const Mission_Status& st : a.statuses) {
+      relay_statuses_.emplace_back(sender, st);
+      NoteStatus(st);
+      status_pub_.publish(st);
+    }
+    for (const Mission_Status& st : a.progress) progress_pub_.publish(st);
+  }
+  answers_.clear();
 }
 
 void Simulator::PublishRobotList() {
@@ -834,10 +895,8 @@ void Simulator::SendCommand(std::uint16_t id, const geometry_msgs::Twist& comman
   OnSimulatorThread([this, id, command]() { OnCmdVel(id, command); });
 }
 
-void Simulator::SendTickDone(std::uint16_t id, const Tick_Done& done) {
-  // The publisher a topic would name: the barrier counts this robot's mission messages, sent
-  // by this process's node on the mission topics, under the same name.
-  OnSimulatorThread([this, id, done]() { OnTickDone(id, ros::this_node::getName(), done); });
+void Simulator::SendAnswer(std::uint16_t id, const Tick_Answer& answer) {
+  OnSimulatorThread([this, id, answer]() { OnAnswer(id, answer); });
 }
 
 void Simulator::OnCmdVel(std::uint16_t id, const geometry_msgs::Twist& msg) {
@@ -847,17 +906,16 @@ void Simulator::OnCmdVel(std::uint16_t id, const geometry_msgs::Twist& msg) {
   if (!finite && WallThrottle(&last_bad_cmd_warning_wall_, kWarnPeriodS)) {
     ROS_WARN("simulator: robot %u sent a cmd_vel with a non-finite value; it stands instead", id);
   }
-  const core::Velocity velocity = finite ? ToVelocity(msg) : core::Velocity();
-  const auto answer =
-      lockstep_ ? barrier_.OnCommand(id, velocity) : sim::LockstepBarrier::Command::kOutside;
-  if (answer == sim::LockstepBarrier::Command::kOutside) {
-    // Real time, or a robot outside the lock-step protocol: the command applies at once.
-    if (finite) world_->SetCommand(id, velocity, nullptr);
-  } else if (answer == sim::LockstepBarrier::Command::kUnsolicited &&
-             WallThrottle(&last_unsolicited_warning_wall_, kWarnPeriodS)) {
-    ROS_WARN("lockstep: robot %u sent a cmd_vel it was not asked for (tick %llu); ignored", id,
-             static_cast<unsigned long long>(tick_));
+  if (lockstep_ && barrier_.Live(id)) {
+    // A lock-step robot's command comes in its answer; a cmd_vel beside it would race it.
+    if (WallThrottle(&last_unsolicited_warning_wall_, kWarnPeriodS)) {
+      ROS_WARN("lockstep: ignored a cmd_vel for robot %u, which answers its ticks (tick %llu)",
+               id, static_cast<unsigned long long>(tick_));
+    }
+    return;
   }
+  // Real time, or a robot outside the lock-step protocol: the command applies at once.
+  if (finite) world_->SetCommand(id, ToVelocity(msg), nullptr);
 }
 
 bool Simulator::OnSpawn(Spawn::Request& req, Spawn::Response& res) {

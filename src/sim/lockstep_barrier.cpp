@@ -8,7 +8,9 @@ void LockstepBarrier::Add(std::uint16_t id) { robots_[id] = Slot(); }
 void LockstepBarrier::Remove(std::uint16_t id) {
   const auto it = robots_.find(id);
   if (it == robots_.end()) return;
-  if (it->second.live && !it->second.has_answer && awaiting_ > 0) --awaiting_;
+  if (it->second.live && it->second.asked && !it->second.has_answer && awaiting_ > 0) {
+    --awaiting_;
+  }
   robots_.erase(it);
 }
 
@@ -17,90 +19,53 @@ bool LockstepBarrier::Live(std::uint16_t id) const {
   return it != robots_.end() && it->second.live;
 }
 
-void LockstepBarrier::SendsTickDone(std::uint16_t id) {
-  const auto it = robots_.find(id);
-  if (it != robots_.end()) it->second.sends_tick_done = true;
-}
-
 void LockstepBarrier::MakeLive(std::uint16_t id) {
   const auto it = robots_.find(id);
   if (it == robots_.end() || it->second.live) return;
-  Slot& slot = it->second;
-  slot.live = true;
-  slot.answered = slot.asked;
-  slot.has_answer = false;
-  slot.stale = false;
+  it->second = Slot();
+  it->second.live = true;
 }
 
 void LockstepBarrier::MakeNotLive(std::uint16_t id) {
   const auto it = robots_.find(id);
-  if (it != robots_.end()) it->second.live = false;
-}
-
-bool LockstepBarrier::Resynchronise(std::uint16_t id) {
-  const auto it = robots_.find(id);
-  if (it == robots_.end()) return false;
-  Slot& slot = it->second;
-  if (!slot.live || slot.has_answer || !slot.stale) return false;
-  slot.answered = slot.asked;
-  return true;
+  if (it == robots_.end() || !it->second.live) return;
+  if (it->second.asked && !it->second.has_answer && awaiting_ > 0) --awaiting_;
+  it->second = Slot();
 }
 
 void LockstepBarrier::EndAll() {
   awaiting_ = 0;
-  for (auto& entry : robots_) entry.second.live = false;
+  for (auto& entry : robots_) entry.second = Slot();
 }
 
 void LockstepBarrier::StartTick(std::uint64_t tick) {
   tick_ = tick;
   awaiting_ = 0;
+  for (auto& entry : robots_) {
+    entry.second.asked = false;
+    entry.second.has_answer = false;
+  }
 }
 
 void LockstepBarrier::Ask(std::uint16_t id) {
   const auto it = robots_.find(id);
-  if (it == robots_.end() || !it->second.live) return;
-  Slot& slot = it->second;
-  ++slot.asked;
-  slot.has_answer = false;
-  slot.done = false;
-  slot.stale = false;
+  if (it == robots_.end() || !it->second.live || it->second.asked) return;
+  it->second.asked = true;
   ++awaiting_;
 }
 
-LockstepBarrier::Command LockstepBarrier::OnCommand(std::uint16_t id,
-                                                    const core::Velocity& velocity) {
+LockstepBarrier::Answer LockstepBarrier::OnAnswer(std::uint16_t id, std::uint64_t tick,
+                                                  const core::Velocity& velocity) {
   const auto it = robots_.find(id);
-  if (it == robots_.end() || !it->second.live) return Command::kOutside;
+  if (it == robots_.end() || !it->second.live) return Answer::kOutside;
   Slot& slot = it->second;
-  if (slot.answered >= slot.asked) return Command::kUnsolicited;
-  ++slot.answered;
-  if (slot.answered != slot.asked) {
-    slot.stale = true;  // it stood in that tick and the late answer stays ignored
-    return Command::kStale;
-  }
+  if (tick < tick_) return Answer::kStale;
+  if (tick > tick_ || !slot.asked || slot.has_answer) return Answer::kUnsolicited;
   slot.answer = velocity;
   slot.has_answer = true;
   if (awaiting_ > 0) --awaiting_;
-  return Command::kAnswer;
+  return Answer::kAnswer;
 }
-
-void LockstepBarrier::OnTickDone(std::uint16_t id, const std::string& publisher,
-                                 std::uint64_t tick, std::uint64_t events_published) {
-  const auto it = robots_.find(id);
-  if (it == robots_.end()) return;
-  Slot& slot = it->second;
-  if (slot.publisher != publisher) {  // first word, or the robot came back in another process
-    if (!slot.publisher.empty()) announced_[slot.publisher] -= slot.events_announced;
-    slot.publisher = publisher;
-    slot.events_announced = 0;
-  }
-  announced_[publisher] += events_published - slot.events_announced;
-  slot.events_announced = events_published;
-  slot.sends_tick_done = true;
-  if (slot.live && tick == tick_) slot.done = true;
-}
-
-void LockstepBarrier::OnRobotMessage(const std::string& publisher) { ++received_[publisher]; }
 
 void LockstepBarrier::Await(const EventKey& event) {
   if (events_seen_.count(event) == 0) events_awaited_.insert(event);
@@ -161,29 +126,11 @@ std::vector<std::uint16_t> LockstepBarrier::GiveUpOrders(std::uint64_t tick) {
   return given_up;
 }
 
-bool LockstepBarrier::Complete(const Slot& slot) const {
-  if (!slot.has_answer) return false;
-  if (!slot.sends_tick_done) return true;
-  if (!slot.done) return false;
-  const auto announced = announced_.find(slot.publisher);
-  const auto received = received_.find(slot.publisher);
-  const std::uint64_t want = announced == announced_.end() ? 0 : announced->second;
-  const std::uint64_t have = received == received_.end() ? 0 : received->second;
-  return have >= want;
-}
-
-bool LockstepBarrier::AllAnswered() const {
-  if (awaiting_ != 0) return false;
-  for (const auto& entry : robots_) {
-    if (entry.second.live && !Complete(entry.second)) return false;
-  }
-  return true;
-}
-
 std::vector<std::uint16_t> LockstepBarrier::Late() const {
   std::vector<std::uint16_t> late;
   for (const auto& entry : robots_) {
-    if (entry.second.live && !Complete(entry.second)) late.push_back(entry.first);
+    const Slot& slot = entry.second;
+    if (slot.live && slot.asked && !slot.has_answer) late.push_back(entry.first);
   }
   return late;
 }

@@ -1,5 +1,5 @@
 // In-process links between a simulator and the robots hosted in the same process: the per-robot
-// topics neighbors, cmd_vel and tick_done without roscpp in between.
+// topics neighbors, cmd_vel and (lock-step) answer without roscpp in between.
 //
 // Why: every roscpp publication of a process is locked by its poll loop each cycle, and every
 // Publisher::publish looks its topic up by a linear search over all of the process's
@@ -17,21 +17,19 @@
 #include <utility>
 
 #include "swarm_transport/Neighbors.h"
-#include "swarm_transport/Tick_Done.h"
+#include "swarm_transport/Tick_Answer.h"
 
 namespace swarm_transport {
 
-// Where a robot with a direct link sends what it would publish on robot_<id>/cmd_vel and
-// robot_<id>/tick_done. The content is exactly what it would publish; a lock-step simulator
-// counts a direct tick_done as sent by this process's node (ros::this_node::getName()), the
-// name its mission messages, which stay ROS topics, arrive with.
+// Where a robot with a direct link sends what it would publish on robot_<id>/cmd_vel and, in
+// lock-step, robot_<id>/answer. The content is exactly what it would publish.
 class RobotOutlet {
  public:
   virtual ~RobotOutlet() = default;
   // Robot `id`'s command of this tick (also its last zero command when it stops).
   virtual void SendCommand(std::uint16_t id, const geometry_msgs::Twist& command) = 0;
-  // Lock-step: robot `id` finished its tick (after its command and its mission messages).
-  virtual void SendTickDone(std::uint16_t id, const Tick_Done& done) = 0;
+  // Lock-step: robot `id`'s answer to a tick (its command and its mission messages).
+  virtual void SendAnswer(std::uint16_t id, const Tick_Answer& answer) = 0;
 };
 
 // The simulator's side: the robots of its own process that take their radio rounds directly.
@@ -40,7 +38,7 @@ class DirectRobots {
  public:
   virtual ~DirectRobots() = default;
   // True when robot `id` is hosted here and linked directly (it neither subscribes
-  // robot_<id>/neighbors nor publishes robot_<id>/cmd_vel or tick_done).
+  // robot_<id>/neighbors nor publishes robot_<id>/cmd_vel or answer).
   virtual bool Hosts(std::uint16_t id) const = 0;
   // Hands robot `id` its radio round. It must not run the robot's tick before returning: the
   // simulator is in the middle of its round (the robot runs on its own callback queue).

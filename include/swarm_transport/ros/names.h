@@ -31,7 +31,7 @@ constexpr char kStats[] = "/flock/stats";  // the recorder's Swarm_Stats
 constexpr char kCmdVel[] = "cmd_vel";
 constexpr char kPose[] = "pose";
 constexpr char kNeighbors[] = "neighbors";
-constexpr char kTickDone[] = "tick_done";  // lock-step only
+constexpr char kAnswer[] = "answer";  // lock-step only: Tick_Answer
 constexpr char kTeleportAbsolute[] = "teleport_absolute";
 constexpr char kTeleportRelative[] = "teleport_relative";
 

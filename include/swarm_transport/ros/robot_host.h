@@ -30,7 +30,7 @@ struct RobotHostOptions {
   // ~run_simulator: also run the simulator in this process (its private parameters under
   // ~simulator/, as under /simulator/ for the simulator node; its ~clock must be ours). The
   // simulator and the hosted robots are then linked directly (direct_link.h): no
-  // robot_<id>/neighbors, cmd_vel or tick_done topics, and by default no robot_<id>/pose
+  // robot_<id>/neighbors, cmd_vel or answer topics, and by default no robot_<id>/pose
   // (~simulator/pose_topics). Lock-step runs the robots in the simulator's thread.
   bool run_simulator = false;
   std::string Validate() const;

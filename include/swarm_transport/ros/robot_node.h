@@ -23,7 +23,7 @@
 #include "swarm_transport/Robot_Freeze.h"
 #include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/Robot_Positions.h"
-#include "swarm_transport/Tick_Done.h"
+#include "swarm_transport/Tick_Answer.h"
 #include "swarm_transport/Update_Object.h"
 #include "swarm_transport/core/modes.h"
 #include "swarm_transport/core/robot_brain.h"
@@ -50,16 +50,17 @@ struct RobotNodeOptions {
   // robot a wall timer (roscpp re-sorts all of a process's timers at every expiry).
   bool external_timer = false;
   // Not a parameter: a host that also runs the simulator links its robots directly. The
-  // robot then neither subscribes neighbors nor advertises cmd_vel / tick_done: its rounds
-  // come through OnNeighbors() and its commands and tick_dones go to this outlet (which must
-  // outlive the robot).
+  // robot then neither subscribes neighbors nor advertises cmd_vel / answer: its rounds come
+  // through OnNeighbors() and its commands and answers go to this outlet (which must outlive
+  // the robot).
   RobotOutlet* direct = nullptr;
   std::string Validate() const;
 };
 
 // One robot of the swarm [SPEC 4]. In lock-step every Neighbors message is one tick and is
-// answered with exactly one cmd_vel; in real time a wall timer ticks at tick_period_s on the
-// latest perception, like the thesis's ros::Rate loop.
+// answered with exactly one Tick_Answer (its command and its mission messages); in real time a
+// wall timer ticks at tick_period_s on the latest perception, like the thesis's ros::Rate loop,
+// and the robot publishes cmd_vel and, as a first leader, the mission topics.
 class RobotNode {
  public:
   RobotNode(ros::NodeHandle nh, ros::NodeHandle private_nh);
@@ -101,26 +102,25 @@ class RobotNode {
   bool OnDescribe(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   // Its velocity command, over the direct link or the cmd_vel topic.
   void SendCommand(const geometry_msgs::Twist& command);
-  // Lock-step: this tick's Tick_Done (mission messages sent so far).
-  Tick_Done TickDone() const;
   // Computes and executes one tick on `perception_` (the brain decides, the node sends).
   void Tick();
-  // Publishes what the first leader of a mission decided this tick: a phase it entered on
-  // /flock/mission/status (once), a report within the phase on /flock/mission/progress.
-  void Publish(const core::MissionOutbox& outbox, const std::vector<core::StatusReport>& progress);
+  // What the first leader of a mission says this tick, as messages (the answer's lists): a
+  // phase it entered (once), reports within the phase (progress), object, freeze, continue.
+  Tick_Answer MissionMessages(const core::MissionOutbox& outbox,
+                              const std::vector<core::StatusReport>& progress) const;
+  // Real time: publishes them on the mission topics (/flock/mission/status, .../progress, ...).
+  void Publish(const Tick_Answer& messages);
   Mission_Status ToStatus(const core::StatusReport& report) const;
   // Logs a rejected message: one line per kind per kRejectLogPeriodS, with how many of that
   // kind it did not log since.
   void Rejected(const std::string& kind, const std::string& why);
-  // A first leader needs its own publishers; only those robots advertise them, so the swarm
-  // does not become all-to-all. True when every robot can hear them.
+  // Real time: a first leader needs its own publishers; only those robots advertise them, so
+  // the swarm does not become all-to-all. True when every robot can hear them.
   bool MissionOutletsReady();
-  // The publishers a first leader needs (lazily in real time, at start in lock-step).
+  // Real time: the publishers a first leader needs (when it first becomes one).
   void AdvertiseMissionOutlets();
   // Asks the master how many nodes subscribe to each mission topic (once per new outlet).
   void LearnExpectedSubscribers();
-  // Lock-step: blocks the tick (at most kLockstepOutletWaitS) until MissionOutletsReady().
-  void AwaitMissionOutlets();
 
   ros::NodeHandle nh_;
   ros::NodeHandle private_nh_;
@@ -162,8 +162,7 @@ class RobotNode {
   ros::WallTime outlets_since_;
   bool outlets_ready_ = false;
   ros::ServiceServer describe_srv_;
-  ros::Publisher tick_done_pub_;
-  std::uint32_t events_published_ = 0;  // mission messages sent so far (tick_done)
+  ros::Publisher answer_pub_;  // lock-step, without a direct link
   ros::WallTimer timer_;
   std::set<std::uint16_t> known_robots_;
   Neighbors::ConstPtr perception_;

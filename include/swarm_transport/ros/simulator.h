@@ -32,7 +32,7 @@
 #include "swarm_transport/Spawn.h"
 #include "swarm_transport/TeleportAbsolute.h"
 #include "swarm_transport/TeleportRelative.h"
-#include "swarm_transport/Tick_Done.h"
+#include "swarm_transport/Tick_Answer.h"
 #include "swarm_transport/Update_Object.h"
 #include "swarm_transport/core/modes.h"
 #include "swarm_transport/core/random.h"
@@ -85,8 +85,11 @@ struct SimulatorParams {
 // Single-threaded: every callback runs from Run()'s loop between world steps, so the world
 // needs no lock and a tick's result never depends on thread scheduling.
 // Robots hosted in the simulator's own process can be linked directly (AttachDirect): no
-// neighbors / cmd_vel / tick_done topics for them; as a RobotOutlet the simulator takes their
-// commands and tick_dones into the same bookkeeping as the topics' (thread-safe).
+// neighbors / cmd_vel / answer topics for them; as a RobotOutlet the simulator takes their
+// commands and answers into the same bookkeeping as the topics' (thread-safe).
+// Lock-step is two messages per robot and tick: its Neighbors, its Tick_Answer. The answers'
+// mission messages are relayed in the next tick's Neighbors, ordered by robot id, and published
+// on the /flock/ mission topics for observers (the dispatcher, the recorder, rostopic).
 class Simulator : public RobotOutlet {
  public:
   Simulator(ros::NodeHandle nh, ros::NodeHandle private_nh);
@@ -99,11 +102,11 @@ class Simulator : public RobotOutlet {
   // the same thread.
   bool Initialize();
   bool lockstep() const { return lockstep_; }
-  // RobotOutlet: a directly linked robot's command and tick_done. From the simulator's own
+  // RobotOutlet: a directly linked robot's command and answer. From the simulator's own
   // thread (lock-step: a robot run by SpinRobots) they apply at once, from any other thread
   // they are queued for the simulator's loop like a cmd_vel message.
   void SendCommand(std::uint16_t id, const geometry_msgs::Twist& command) override;
-  void SendTickDone(std::uint16_t id, const Tick_Done& done) override;
+  void SendAnswer(std::uint16_t id, const Tick_Answer& answer) override;
   // Runs the clock until ROS shuts down.
   void Run();
   // Disconnects everything.
@@ -116,7 +119,7 @@ class Simulator : public RobotOutlet {
  private:
   // The ROS side of one robot (or its direct link); its lock-step bookkeeping is barrier_'s.
   struct RobotIo {
-    bool direct = false;  // linked directly: no neighbors, cmd_vel or tick_done topics
+    bool direct = false;  // linked directly: no neighbors, cmd_vel or answer topics
     ros::Publisher neighbors;
     ros::Publisher pose;
     ros::Subscriber cmd_vel;
@@ -128,12 +131,14 @@ class Simulator : public RobotOutlet {
     int pose_subscribers = 0;
     std::uint64_t generation = 0;      // tells this robot's callbacks from a killed namesake's
     ros::WallTime connected_since;     // lock-step: both links up since (zero: not connected)
-    ros::Subscriber tick_done;         // lock-step: mission messages it sent (Tick_Done.msg)
+    ros::Subscriber answer;            // lock-step: its Tick_Answer
   };
   using Mission = sim::LiveMission;
   using RelayKey = std::pair<std::uint16_t, std::uint8_t>;  // (robot_id, sub_id)
-  // Lock-step: mission messages received this tick, with their publisher, to relay in the
-  // next Neighbors (stable-sorted by publisher: per publisher and topic, arrival is FIFO).
+  // Lock-step: mission messages received this tick, with their sender, to relay in the next
+  // Neighbors (stable-sorted by sender: per sender and topic, arrival is FIFO). Senders are
+  // publishing nodes ("/mission_dispatcher") or robots' answers (AnswerSender: after them, by
+  // robot id).
   template <typename M>
   using RelayList = std::vector<std::pair<std::string, M>>;
 
@@ -144,8 +149,8 @@ class Simulator : public RobotOutlet {
   void AddRobotIo(std::uint16_t id);
   // Counts a (dis)connected subscriber of robot `id`'s `field` (+1 / -1).
   void CountSubscriber(std::uint16_t id, std::uint64_t generation, int RobotIo::*field, int delta);
-  // Lock-step: the robot has listened to its Neighbors and published cmd_vel for kSettleS.
-  bool Ready(std::uint16_t id, RobotIo* io);
+  // Lock-step: the robot has listened to its Neighbors and published its answers for kSettleS.
+  bool Ready(RobotIo* io);
   void RemoveRobot(std::uint16_t id);
 
   void RunRealtime();
@@ -179,11 +184,15 @@ class Simulator : public RobotOutlet {
   void PublishRadio();
   // Lock-step relay of mission messages (Neighbors.msg): record one, fill a perception, clear.
   template <typename M>
-  void Relay(const ros::MessageEvent<const M>& event, RelayList<M>* list, bool counted);
+  void Relay(const ros::MessageEvent<const M>& event, RelayList<M>* list);
   void FillRelay(Neighbors* msg) const;
   void ClearRelay();
-  // `publisher`: the node that sent it (the barrier counts mission messages per node).
-  void OnTickDone(std::uint16_t id, const std::string& publisher, const Tick_Done& msg);
+  // Lock-step: robot `id`'s answer (its command counts for the barrier; its mission messages,
+  // also those of a late answer, are kept for TakeAnswers).
+  void OnAnswer(std::uint16_t id, const Tick_Answer& answer);
+  // Lock-step, once a tick's answers are in: their mission messages, by robot id, into the next
+  // relay, the simulator's own books and the observers' topics.
+  void TakeAnswers();
   // Latched /flock/robots: the robots that exist (robots check missions against it).
   void PublishRobotList();
   void PublishPoses();
@@ -191,7 +200,7 @@ class Simulator : public RobotOutlet {
   // Markers and tf when their wall-clock period has passed.
   void PublishVisualsIfDue();
   // Spins the callback queues (and, lock-step, the directly linked robots) once, waiting up to
-  // `wait_s` for the first command or tick_done when none is queued.
+  // `wait_s` for the first command or answer when none is queued.
   void SpinOnce(double wait_s = 0.0);
   // Lock-step: runs the directly linked robots' pending callbacks in this thread.
   void SpinRobots();
@@ -246,6 +255,14 @@ class Simulator : public RobotOutlet {
   RelayList<Robot_Continue> relay_continues_;
   RelayList<Mission_Event> relay_events_;
   RelayList<Mission_Status> relay_statuses_;
+  std::vector<std::pair<std::uint16_t, Tick_Answer>> answers_;  // lock-step: not taken yet
+  // Lock-step: the answers' mission messages for observers.
+  ros::Publisher status_pub_;
+  ros::Publisher progress_pub_;
+  ros::Publisher update_pub_;
+  ros::Publisher delete_pub_;
+  ros::Publisher freeze_pub_;
+  ros::Publisher continue_pub_;
   sim::LockstepBarrier barrier_;
   ros::Publisher clock_pub_;
   std::unique_ptr<sim::Visuals> visuals_;

@@ -1,11 +1,11 @@
 // The lock-step barrier [SPEC 7]: when is a tick complete? Pure bookkeeping (no ROS, no
 // clock): the simulator's adapter feeds it what arrives and asks it whether to go on.
 //
-// A tick is complete when every live robot answered the tick's perception with a command,
-// sent its tick_done (if it sends them), and every mission message its process announced in
-// tick_done arrived (counted per publishing node: a host runs many robots in one node); and,
-// with a dispatcher, when every LOADED / UNLOADED it owes for a relayed LOADING / UNLOADING
-// arrived (it is stamped with the tick at which it applies).
+// A tick is complete when every live robot asked answered it - one answer per robot and tick,
+// naming the tick and carrying the command and every mission message the robot sends in it, so
+// nothing else has to be counted or waited for (issue 10, item 4) - and, with a dispatcher,
+// when every LOADED / UNLOADED it owes for a relayed LOADING / UNLOADING arrived (it is stamped
+// with the tick at which it applies), and its scheduled orders due by then.
 #ifndef SWARM_TRANSPORT_SIM_LOCKSTEP_BARRIER_H_
 #define SWARM_TRANSPORT_SIM_LOCKSTEP_BARRIER_H_
 
@@ -26,11 +26,11 @@ class LockstepBarrier {
  public:
   using EventKey = std::pair<std::uint16_t, std::uint8_t>;  // (mission id, event kind)
 
-  // What a command did to the barrier.
-  enum class Command {
+  // What an answer did to the barrier.
+  enum class Answer {
     kAnswer,       // the answer to the current tick
-    kStale,        // the late answer to an earlier tick: ignored
-    kUnsolicited,  // more commands than perceptions: ignored
+    kStale,        // the late answer to an earlier tick: ignored (the robot stood in it)
+    kUnsolicited,  // a tick it was not asked (a later one, or twice): ignored
     kOutside,      // the robot is not live: not the barrier's business
   };
 
@@ -39,27 +39,17 @@ class LockstepBarrier {
   void Remove(std::uint16_t id);
   bool Has(std::uint16_t id) const { return robots_.count(id) != 0; }
   bool Live(std::uint16_t id) const;
-  // It publishes tick_done: every tick waits for it, from its first tick on.
-  void SendsTickDone(std::uint16_t id);
   // It is connected: from the next perception on it must answer every tick.
   void MakeLive(std::uint16_t id);
   void MakeNotLive(std::uint16_t id);
-  // A live robot that answered only older ticks this tick missed a perception: its next
-  // answer counts for the next tick. True when it was resynchronised.
-  bool Resynchronise(std::uint16_t id);
   // No robot is asked anything any more (the last tick is over).
   void EndAll();
 
   // A tick: `Ask` each live robot that gets a perception (after StartTick).
   void StartTick(std::uint64_t tick);
   void Ask(std::uint16_t id);
-  Command OnCommand(std::uint16_t id, const core::Velocity& velocity);
-  // `publisher`: the node that sent it; `events_published`: mission messages its robots sent
-  // so far (cumulative per robot).
-  void OnTickDone(std::uint16_t id, const std::string& publisher, std::uint64_t tick,
-                  std::uint64_t events_published);
-  // A mission message the robots announce (counted per publisher) arrived.
-  void OnRobotMessage(const std::string& publisher);
+  // Robot `id`'s answer to tick `tick` with its command.
+  Answer OnAnswer(std::uint16_t id, std::uint64_t tick, const core::Velocity& velocity);
   // Dispatcher events: one is owed (unless it arrived already), one arrived, a mission ended
   // (its id may be used again).
   void Await(const EventKey& event);
@@ -77,9 +67,9 @@ class LockstepBarrier {
   std::vector<std::uint16_t> GiveUpOrders(std::uint64_t tick);
   bool ScheduleMissing() const { return expect_schedule_ && !have_schedule_; }
 
-  // Every live robot's tick is complete.
-  bool AllAnswered() const;
-  // Live robots whose tick is not complete, ascending.
+  // Every live robot asked this tick answered it.
+  bool AllAnswered() const { return awaiting_ == 0; }
+  // Live robots asked this tick that have not answered, ascending.
   std::vector<std::uint16_t> Late() const;
   std::size_t LiveCount() const;
   // Dispatcher events still missing; GiveUpEvents() stops waiting for them (returns them).
@@ -91,23 +81,14 @@ class LockstepBarrier {
  private:
   struct Slot {
     bool live = false;
-    std::uint64_t asked = 0;     // perceptions sent while live
-    std::uint64_t answered = 0;  // commands received while live; == asked: answered
-    bool has_answer = false;     // the current tick's command arrived
-    bool stale = false;          // an old tick's answer arrived during the current tick
+    bool asked = false;       // it got the current tick's perception
+    bool has_answer = false;  // ... and answered it
     core::Velocity answer;
-    bool sends_tick_done = false;
-    bool done = false;           // the current tick's tick_done arrived
-    std::string publisher;       // its node
-    std::uint64_t events_announced = 0;
   };
-  bool Complete(const Slot& slot) const;
 
   std::uint64_t tick_ = 0;
   std::size_t awaiting_ = 0;  // live robots asked this tick that have not answered
   std::map<std::uint16_t, Slot> robots_;
-  std::map<std::string, std::uint64_t> received_;   // per publisher
-  std::map<std::string, std::uint64_t> announced_;  // per publisher
   bool expect_schedule_ = false;
   bool have_schedule_ = false;
   std::map<std::uint16_t, std::uint64_t> orders_due_;  // scheduled, not arrived: start tick
