@@ -11,6 +11,7 @@
 #include <sstream>
 #include <system_error>
 #include <utility>
+#include <vector>
 
 #include "swarm_transport/Swarm_Stats.h"
 #include "swarm_transport/ros/conversions.h"
@@ -20,6 +21,7 @@ namespace swarm_transport {
 namespace {
 
 using core::MissionPhase;
+using core::RunMetrics;
 using XmlRpc::XmlRpcValue;
 
 constexpr char kNode[] = "recorder";
@@ -30,36 +32,8 @@ constexpr std::uint32_t kMissionQueue = 1000;
 constexpr std::uint32_t kStatsQueue = 10;
 // Wall seconds between two warnings of one kind.
 constexpr double kWarnPeriodS = 10.0;
-// Sample times this close to due count as due (sim_time is tick * tick_period in floats).
-constexpr double kSampleEpsS = 1e-9;
 // Spin period of Run() (wall s): how long a stop request may wait.
 constexpr double kSpinS = 0.05;
-
-constexpr char kSwarmHeader[] = "tick,sim_time_s,robots,swarm_count,largest_swarm";
-constexpr char kMissionsHeader[] =
-    "mission_id,kind,assigned,leaders,final_state,queued_tick,gathering_tick,loading_tick,"
-    "transport_tick,unloading_tick,done_tick,transport_ticks,slip_per_robot_m,"
-    "distance_per_robot_m,leader_waits,path_fraction_attached,leader_swarm_at_arrival,"
-    "object_error_m,leader_contact";
-constexpr char kRunHeader[] =
-    "run_name,seed,robots,ticks,sim_time_s,samples,mean_swarm_count,final_swarm_count,"
-    "missions_done,missions_aborted";
-
-std::size_t PhaseIndex(MissionPhase phase) { return static_cast<std::size_t>(phase); }
-
-std::string Num(double value) {
-  if (!std::isfinite(value)) return "";
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.9g", value);
-  return buffer;
-}
-
-std::string Num(std::uint64_t value) { return std::to_string(value); }
-
-template <typename T>
-std::string Opt(const std::optional<T>& value) {
-  return value ? Num(*value) : "";
-}
 
 std::uint16_t Clamp16(std::size_t value) {
   return static_cast<std::uint16_t>(std::min<std::size_t>(value, 65535));
@@ -110,11 +84,6 @@ void CsvFile::Close() {
   file_ = nullptr;
 }
 
-long Recorder::Frame::IndexOf(std::uint16_t id) const {
-  const auto it = std::lower_bound(ids.begin(), ids.end(), id);
-  return it != ids.end() && *it == id ? it - ids.begin() : -1;
-}
-
 Recorder::Recorder(ros::NodeHandle nh, ros::NodeHandle private_nh)
     : nh_(nh), private_nh_(private_nh) {}
 
@@ -156,8 +125,8 @@ bool Recorder::OpenFiles(std::string* error) {
     return false;
   }
   run_dir_ = dir.string();
-  if (!swarm_csv_.Open(run_dir_ + "/swarm_count.csv", kSwarmHeader, error) ||
-      !missions_csv_.Open(run_dir_ + "/missions.csv", kMissionsHeader, error)) {
+  if (!swarm_csv_.Open(run_dir_ + "/swarm_count.csv", RunMetrics::kSwarmHeader, error) ||
+      !missions_csv_.Open(run_dir_ + "/missions.csv", RunMetrics::kMissionsHeader, error)) {
     return false;
   }
   WriteRun();  // the header and a row of zeros, replaced as the run goes on
@@ -166,7 +135,22 @@ bool Recorder::OpenFiles(std::string* error) {
 
 bool Recorder::Initialize() {
   std::string error;
-  if (!LoadParams(&error) || !OpenFiles(&error)) {
+  bool ok = LoadParams(&error);
+  if (ok) {
+    core::RunMetricsParams metrics;
+    metrics.local_range_m = params_.swarm.flocking.local_range_m;
+    metrics.goal_tolerance_m = params_.swarm.leader.goal_tolerance_m;
+    metrics.sample_period_s = params_.sample_period_s;
+    metrics_.emplace(metrics, [](RunMetrics::Level level, const std::string& text) {
+      if (level == RunMetrics::Level::kWarn) {
+        ROS_WARN("%s: %s", kNode, text.c_str());
+      } else {
+        ROS_INFO("%s: %s", kNode, text.c_str());
+      }
+    });
+    ok = OpenFiles(&error);
+  }
+  if (!ok) {
     ROS_FATAL("%s: %s", kNode, error.c_str());
     return false;
   }
@@ -198,18 +182,16 @@ void Recorder::Shutdown() {
   mission_new_sub_.shutdown();
   status_sub_.shutdown();
   stats_pub_.shutdown();
-  FeedMissions(true);
-  WriteFinished(true);
+  if (!metrics_) return;  // never initialized
+  metrics_->Drain();
+  WriteMissions(false);
   WriteRun();
   swarm_csv_.Close();
   missions_csv_.Close();
-  std::size_t unfinished = 0;
-  for (const auto& kv : missions_) unfinished += kv.second.final_state ? 0 : 1;
   ROS_INFO("%s: %zu samples up to tick %llu, %zu missions done, %zu aborted, %zu unfinished%s%s",
-           kNode, samples_,
-           static_cast<unsigned long long>(history_.empty() ? 0 : history_.back().tick),
-           missions_done_, missions_aborted_, unfinished, run_dir_.empty() ? "" : "; files in ",
-           run_dir_.c_str());
+           kNode, metrics_->samples(), static_cast<unsigned long long>(metrics_->newest_tick()),
+           metrics_->missions_done(), metrics_->missions_aborted(), metrics_->missions_unfinished(),
+           run_dir_.empty() ? "" : "; files in ", run_dir_.c_str());
 }
 
 bool Recorder::WarnDue(ros::WallTime* last) {
@@ -227,24 +209,26 @@ void Recorder::OnPositions(const Robot_Positions::ConstPtr& msg) {
     }
     return;
   }
-  if (!history_.empty() && msg->tick <= history_.back().tick) {
+  const bool has_frames = metrics_->has_frames();
+  const std::uint64_t newest = metrics_->newest_tick();
+  if (has_frames && msg->tick <= newest) {
     // The latched message again (a reconnection), or a restarted simulator.
-    if (msg->tick < history_.back().tick && WarnDue(&last_tick_warning_)) {
+    if (msg->tick < newest && WarnDue(&last_tick_warning_)) {
       ROS_WARN(
           "%s: /flock/positions went back from tick %llu to %llu; ignored until it passes "
           "tick %llu again",
-          kNode, static_cast<unsigned long long>(history_.back().tick),
-          static_cast<unsigned long long>(msg->tick),
-          static_cast<unsigned long long>(history_.back().tick));
+          kNode, static_cast<unsigned long long>(newest),
+          static_cast<unsigned long long>(msg->tick), static_cast<unsigned long long>(newest));
     }
     return;
   }
-  if (!history_.empty() && msg->tick > history_.back().tick + 1 && WarnDue(&last_tick_warning_)) {
+  if (has_frames && msg->tick > newest + 1 && WarnDue(&last_tick_warning_)) {
     ROS_WARN("%s: missed /flock/positions ticks %llu..%llu (queue overflow or late start)", kNode,
-             static_cast<unsigned long long>(history_.back().tick + 1),
+             static_cast<unsigned long long>(newest + 1),
              static_cast<unsigned long long>(msg->tick - 1));
   }
-  Frame frame;
+  // Physical robots with finite positions, ascending ids, the first of duplicate ids.
+  core::MetricsFrame frame;
   frame.tick = msg->tick;
   frame.sim_time_s = msg->sim_time;
   std::vector<std::pair<std::uint16_t, core::Vec2>> robots;
@@ -269,47 +253,22 @@ void Recorder::OnPositions(const Robot_Positions::ConstPtr& msg) {
     frame.ids.push_back(r.first);
     frame.positions.push_back(r.second);
   }
-  history_.push_back(std::move(frame));
-  const std::size_t capacity = HistoryCapacity(history_.back().positions.size());
-  while (history_.size() > capacity) {
-    // The oldest frame leaves: windows whose end is not known yet take it in now.
-    FeedMissions(false, history_.front().tick);
-    history_.pop_front();
-  }
-  SampleIfDue(history_.back());
-  FeedMissions(false);
-  WriteFinished(false);
+  std::optional<core::SwarmSample> sample;
+  metrics_->AddFrame(std::move(frame), &sample);
+  if (sample) Publish(*sample);
+  WriteMissions(true);
 }
 
-void Recorder::SampleIfDue(const Frame& frame) {
-  if (first_sample_time_s_ && frame.sim_time_s + kSampleEpsS < next_sample_time_s_) return;
-  if (!first_sample_time_s_) first_sample_time_s_ = frame.sim_time_s;
-  // Due times stay on the grid first + k * period; a jump skips the missed ones.
-  const double since = frame.sim_time_s - *first_sample_time_s_;
-  const double k = std::floor((since + kSampleEpsS) / params_.sample_period_s) + 1.0;
-  next_sample_time_s_ = *first_sample_time_s_ + k * params_.sample_period_s;
-
-  const core::SwarmComponents swarms(frame.positions, params_.swarm.flocking.local_range_m);
-  ++samples_;
-  swarm_count_sum_ += static_cast<double>(swarms.SwarmCount());
-  std::size_t live = 0;
-  for (const auto& kv : missions_) live += kv.second.final_state ? 0 : 1;
-
+void Recorder::Publish(const core::SwarmSample& sample) {
   Swarm_Stats stats;
-  stats.tick = frame.tick;
-  stats.sim_time = frame.sim_time_s;
-  stats.robots = Clamp16(frame.positions.size());
-  stats.swarm_count = Clamp16(swarms.SwarmCount());
-  stats.largest_swarm = Clamp16(swarms.LargestSwarm());
-  stats.live_missions = Clamp16(live);
+  stats.tick = sample.tick;
+  stats.sim_time = sample.sim_time_s;
+  stats.robots = Clamp16(sample.robots);
+  stats.swarm_count = Clamp16(sample.swarm_count);
+  stats.largest_swarm = Clamp16(sample.largest_swarm);
+  stats.live_missions = Clamp16(sample.live_missions);
   stats_pub_.publish(stats);
-
-  if (swarm_csv_.is_open()) {
-    swarm_csv_.Append(Num(frame.tick) + "," + Num(frame.sim_time_s) + "," +
-                      Num(static_cast<std::uint64_t>(frame.positions.size())) + "," +
-                      Num(static_cast<std::uint64_t>(swarms.SwarmCount())) + "," +
-                      Num(static_cast<std::uint64_t>(swarms.LargestSwarm())));
-  }
+  if (swarm_csv_.is_open()) swarm_csv_.Append(RunMetrics::SwarmRow(sample));
 }
 
 void Recorder::OnMissionNew(const New_Mission::ConstPtr& msg) {
@@ -323,35 +282,11 @@ void Recorder::OnMissionNew(const New_Mission::ConstPtr& msg) {
     }
     return;
   }
-  // Known from the tick it reached us, or (lock-step) from the later tick it is stamped with.
-  const std::uint64_t newest =
-      std::max<std::uint64_t>(history_.empty() ? 0 : history_.back().tick, msg->start_tick);
-  written_.erase(spec.id);  // a finished mission's id is used again
-  auto it = missions_.find(spec.id);
-  if (it != missions_.end()) {
-    MissionRecord& m = it->second;
-    // Its status came first (the order is latched and may arrive later): attach the order.
-    // A second order for a live id is a duplicate the dispatcher rejects: keep the first.
-    if (!m.has_spec && !m.final_state) {
-      m.spec = spec;
-      m.has_spec = true;
-      if (!m.known_tick) m.known_tick = newest;
-      FeedMissions(false);
-      WriteFinished(false);
-    }
-    return;
+  const std::string not_followed = metrics_->AddOrder(spec, msg->start_tick);
+  if (!not_followed.empty() && WarnDue(&last_bad_mission_warning_)) {
+    ROS_WARN("%s: %s", kNode, not_followed.c_str());
   }
-  if (missions_.size() >= kMaxMissions) {
-    if (WarnDue(&last_bad_mission_warning_)) {
-      ROS_WARN("%s: not following mission %u: %zu missions followed already", kNode, spec.id,
-               missions_.size());
-    }
-    return;
-  }
-  MissionRecord& m = missions_[spec.id];
-  m.spec = spec;
-  m.has_spec = true;
-  m.known_tick = newest;
+  WriteMissions(true);
 }
 
 void Recorder::OnStatus(const Mission_Status::ConstPtr& msg) {
@@ -365,260 +300,34 @@ void Recorder::OnStatus(const Mission_Status::ConstPtr& msg) {
     }
     return;
   }
-  const auto phase = static_cast<MissionPhase>(msg->state);
-  auto it = missions_.find(msg->mission_id);
-  if (phase == MissionPhase::kRejected) {
-    // A rejected order (a raw New_Mission the dispatcher refused) is forgotten; a REJECTED
-    // naming a mission that was accepted (QUEUED or later) is about a refused duplicate of
-    // its id, and the accepted one goes on.
-    if (it != missions_.end() && !it->second.final_state) {
-      const auto& entered = it->second.entered;
-      const bool accepted = std::any_of(entered.begin(), entered.end(),
-                                        [](const auto& tick) { return tick.has_value(); });
-      if (!accepted) missions_.erase(it);
-    }
-    return;
+  const std::string not_followed =
+      metrics_->AddStatus(msg->mission_id, static_cast<MissionPhase>(msg->state), msg->tick,
+                          core::Vec2{msg->object_position_x, msg->object_position_y});
+  if (!not_followed.empty() && WarnDue(&last_bad_mission_warning_)) {
+    ROS_WARN("%s: %s", kNode, not_followed.c_str());
   }
-  if (written_.count(msg->mission_id) > 0) {
-    if (phase != MissionPhase::kQueued) return;  // late news of a mission already written
-    written_.erase(msg->mission_id);             // its id is used again
-  }
-  if (it == missions_.end()) {
-    // An end with neither order nor phases before it leaves nothing to record.
-    if (phase == MissionPhase::kDone || phase == MissionPhase::kAborted) return;
-    if (missions_.size() >= kMaxMissions) {
-      if (WarnDue(&last_bad_mission_warning_)) {
-        ROS_WARN("%s: not following mission %u: %zu missions followed already", kNode,
-                 msg->mission_id, missions_.size());
-      }
-      return;
-    }
-    it = missions_.emplace(msg->mission_id, MissionRecord()).first;
-  }
-  MissionRecord& m = it->second;
-  if (m.final_state) return;  // late news of a finished mission
-  // Every phase, QUEUED included, is reported by the mission's first leader with its tick, 0
-  // included (taking the newest frame instead put a GATHERING of tick 0 at tick 64 when frames
-  // came in first).
-  const std::uint64_t tick = msg->tick;
-  auto& entered = m.entered[PhaseIndex(phase)];
-  if (!entered) entered = tick;
-  m.object = core::Vec2{msg->object_position_x, msg->object_position_y};
-  if (phase == MissionPhase::kDone || phase == MissionPhase::kAborted) m.final_state = phase;
-  FeedMissions(false);
-  WriteFinished(false);
+  WriteMissions(true);
 }
 
-std::optional<std::uint64_t> Recorder::WindowStart(const MissionRecord& m) {
-  if (!m.has_spec) return std::nullopt;
-  const auto& e = m.entered;
-  if (!m.spec.LeaderOnly()) return e[PhaseIndex(MissionPhase::kTransport)];
-  // A leader-only mission starts with its order: the leader leads as soon as it holds it.
-  std::optional<std::uint64_t> start = m.known_tick;
-  for (MissionPhase p :
-       {MissionPhase::kQueued, MissionPhase::kGathering, MissionPhase::kTransport}) {
-    const auto& tick = e[PhaseIndex(p)];
-    if (tick && (!start || *tick < *start)) start = tick;
-  }
-  return start;
-}
-
-std::optional<std::uint64_t> Recorder::WindowEnd(const MissionRecord& m) {
-  std::vector<MissionPhase> ends = {MissionPhase::kDone, MissionPhase::kAborted};
-  // A transport ends at arrival, when the first leader reports UNLOADING.
-  if (m.has_spec && !m.spec.LeaderOnly()) ends.push_back(MissionPhase::kUnloading);
-  std::optional<std::uint64_t> end = m.arrival_tick;
-  for (MissionPhase p : ends) {
-    const auto& tick = m.entered[PhaseIndex(p)];
-    if (tick && (!end || *tick < *end)) end = tick;
-  }
-  return end;
-}
-
-std::size_t Recorder::HistoryCapacity(std::size_t robots) {
-  return std::clamp(kHistoryPositions / std::max<std::size_t>(robots, 1), kMinHistoryFrames,
-                    kMaxHistoryFrames);
-}
-
-void Recorder::FeedMissions(bool drain, std::optional<std::uint64_t> through) {
-  if (history_.empty()) return;
-  const std::uint64_t newest = history_.back().tick;
-  for (auto& kv : missions_) {
-    MissionRecord& m = kv.second;
-    const auto start = WindowStart(m);
-    if (!start) continue;
-    std::uint64_t limit = 0;
-    if (drain || WindowEnd(m)) {
-      limit = newest;
-    } else if (through) {
-      limit = *through;
-    } else {
-      continue;
-    }
-    if (!m.fed_through && history_.front().tick > *start && !m.warned_history) {
-      m.warned_history = true;
-      ROS_WARN(
-          "%s: mission %u began at tick %llu, before the oldest kept frame (tick %llu); its "
-          "metrics start there",
-          kNode, kv.first, static_cast<unsigned long long>(*start),
-          static_cast<unsigned long long>(history_.front().tick));
-    }
-    for (const Frame& frame : history_) {
-      // The end may become known while feeding (a leader's arrival).
-      const auto end = WindowEnd(m);
-      if (frame.tick > limit || (end && frame.tick > *end)) break;
-      if (frame.tick < *start || (m.fed_through && frame.tick <= *m.fed_through)) continue;
-      Feed(&m, frame);
-      m.fed_through = frame.tick;
+void Recorder::WriteMissions(bool run) {
+  const std::vector<std::string> rows = metrics_->TakeMissionRows();
+  for (const std::string& row : rows) {
+    if (missions_csv_.is_open() && !missions_csv_.Append(row)) {
+      ROS_ERROR("%s: could not write a row of %s/missions.csv", kNode, run_dir_.c_str());
     }
   }
-}
-
-void Recorder::Feed(MissionRecord* m, const Frame& frame) {
-  const core::MissionSpec& spec = m->spec;
-  bool complete = true;
-  if (spec.LeaderOnly()) {
-    const long leader = frame.IndexOf(spec.FirstLeader());
-    complete = leader >= 0;
-    if (complete) {
-      if (!m->leader) m->leader.emplace(spec.target, params_.swarm.flocking.local_range_m);
-      m->leader->Feed(frame.tick, frame.positions, static_cast<std::size_t>(leader));
-      if (!m->arrival_tick &&
-          m->leader->DistanceToTarget() <= params_.swarm.leader.goal_tolerance_m) {
-        m->arrival_tick = frame.tick;
-        if (!m->final_state) {
-          // Its DONE is on the way, or was lost (published before we were connected).
-          ROS_INFO("%s: mission %u: leader %u within %.3f m of its target at tick %llu: done",
-                   kNode, spec.id, spec.FirstLeader(), params_.swarm.leader.goal_tolerance_m,
-                   static_cast<unsigned long long>(frame.tick));
-          m->final_state = MissionPhase::kDone;
-          auto& done = m->entered[PhaseIndex(MissionPhase::kDone)];
-          if (!done) done = frame.tick;
-        }
-      }
-    }
-  } else {
-    const std::vector<std::uint16_t> assigned = spec.Assigned();
-    std::vector<core::Vec2> positions;
-    std::vector<bool> leaders;
-    positions.reserve(assigned.size());
-    leaders.reserve(assigned.size());
-    for (std::uint16_t id : assigned) {
-      const long index = frame.IndexOf(id);
-      if (index < 0) {
-        complete = false;
-        break;
-      }
-      positions.push_back(frame.positions[static_cast<std::size_t>(index)]);
-      leaders.push_back(spec.IsLeader(id));
-    }
-    if (complete) {
-      // Contact = within the local range, where a passive robot can align with a leader.
-      if (!m->transport.started()) {
-        m->transport = core::TransportTracker(params_.swarm.flocking.local_range_m);
-      }
-      m->transport.Feed(frame.tick, positions, leaders);
-    }
-  }
-  if (!complete && !m->warned_missing) {
-    m->warned_missing = true;
-    ROS_WARN(
-        "%s: mission %u: a robot of the mission is missing from /flock/positions at tick "
-        "%llu; such ticks are skipped",
-        kNode, spec.id, static_cast<unsigned long long>(frame.tick));
-  }
-}
-
-void Recorder::WriteFinished(bool drain) {
-  const std::uint64_t newest = history_.empty() ? 0 : history_.back().tick;
-  bool wrote = false;
-  for (auto it = missions_.begin(); it != missions_.end();) {
-    const MissionRecord& m = it->second;
-    const auto start = WindowStart(m);
-    const auto end = WindowEnd(m);
-    // Its metrics are complete when every frame up to the window's end is in.
-    const bool ready = m.final_state && (drain || !start || (end && newest >= *end));
-    if (!ready) {
-      ++it;
-      continue;
-    }
-    WriteMission(it->first, m);
-    written_.insert(it->first);
-    (*m.final_state == MissionPhase::kDone ? missions_done_ : missions_aborted_) += 1;
-    it = missions_.erase(it);
-    wrote = true;
-  }
-  if (wrote && !drain) WriteRun();
-}
-
-void Recorder::WriteMission(std::uint16_t id, const MissionRecord& m) {
-  const bool done = m.final_state && *m.final_state == MissionPhase::kDone;
-  const bool leader_only = m.has_spec && m.spec.LeaderOnly();
-  const char* kind = !m.has_spec ? "unknown" : leader_only ? "leader" : "transport";
-  std::string transport_ticks, slip, distance, waits, fraction, swarm, error, contact;
-  if (m.has_spec && !leader_only) {
-    if (m.transport.started()) {
-      transport_ticks = Num(m.transport.ticks());
-      slip = Num(m.transport.SlipPerRobot());
-      distance = Num(m.transport.DistancePerRobot());
-      waits = Num(m.transport.LeaderWaits());
-      if (const auto c = m.transport.LeaderContact()) contact = Num(*c);
-    }
-    if (m.object) error = Num(core::Distance(*m.object, m.spec.target));
-  } else if (leader_only && m.leader) {
-    waits = Num(m.leader->LeaderWaits());
-    error = Num(m.leader->DistanceToTarget());
-    if (done) {
-      fraction = Num(m.leader->PathFractionAttached());
-      swarm = Num(static_cast<std::uint64_t>(m.leader->SwarmAtLastTick()));
-    }
-  }
-  const auto& e = m.entered;
-  std::ostringstream row;
-  row << id << "," << kind << ","
-      << (m.has_spec ? Num(static_cast<std::uint64_t>(m.spec.Assigned().size())) : "") << ","
-      << (m.has_spec ? Num(static_cast<std::uint64_t>(m.spec.Leaders().size())) : "") << ","
-      << (m.final_state ? core::PhaseName(*m.final_state) : "") << ","
-      << Opt(e[PhaseIndex(MissionPhase::kQueued)]) << ","
-      << Opt(e[PhaseIndex(MissionPhase::kGathering)]) << ","
-      << Opt(e[PhaseIndex(MissionPhase::kLoading)]) << ","
-      << Opt(e[PhaseIndex(MissionPhase::kTransport)]) << ","
-      << Opt(e[PhaseIndex(MissionPhase::kUnloading)]) << ","
-      << Opt(e[PhaseIndex(MissionPhase::kDone)]) << "," << transport_ticks << "," << slip << ","
-      << distance << "," << waits << "," << fraction << "," << swarm << "," << error << ","
-      << contact;
-  if (missions_csv_.is_open() && !missions_csv_.Append(row.str())) {
-    ROS_ERROR("%s: could not write a row of %s/missions.csv", kNode, run_dir_.c_str());
-  }
-  ROS_INFO("%s: mission %u %s: %s", kNode, id,
-           m.final_state ? core::PhaseName(*m.final_state) : "?", row.str().c_str());
+  if (run && !rows.empty()) WriteRun();
 }
 
 void Recorder::WriteRun() {
   if (run_dir_.empty()) return;
-  std::size_t robots = 0;
-  std::size_t final_count = 0;
-  std::uint64_t ticks = 0;
-  double sim_time_s = 0.0;
-  if (!history_.empty()) {
-    const Frame& last = history_.back();
-    robots = last.positions.size();
-    ticks = last.tick;
-    sim_time_s = last.sim_time_s;
-    final_count =
-        core::SwarmComponents(last.positions, params_.swarm.flocking.local_range_m).SwarmCount();
-  }
-  std::ostringstream row;
-  row << params_.run_name << "," << params_.seed << "," << robots << "," << ticks << ","
-      << Num(sim_time_s) << "," << samples_ << ","
-      << (samples_ > 0 ? Num(swarm_count_sum_ / static_cast<double>(samples_)) : "") << ","
-      << final_count << "," << missions_done_ << "," << missions_aborted_;
+  const std::string row = metrics_->RunRow(params_.run_name, params_.seed);
   // Written aside and renamed over the old file: a reader never sees half a file.
   const std::string path = run_dir_ + "/run.csv";
   const std::string temporary = path + ".tmp";
   std::string error;
   CsvFile file;
-  if (!file.Open(temporary, kRunHeader, &error) || !file.Append(row.str())) {
+  if (!file.Open(temporary, RunMetrics::kRunHeader, &error) || !file.Append(row)) {
     ROS_ERROR("%s: %s", kNode,
               error.empty() ? ("cannot write " + temporary).c_str() : error.c_str());
     return;

@@ -4,22 +4,16 @@
 
 #include <ros/ros.h>
 
-#include <array>
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
-#include <deque>
-#include <map>
 #include <optional>
-#include <set>
 #include <string>
-#include <vector>
 
 #include "swarm_transport/Mission_Status.h"
 #include "swarm_transport/New_Mission.h"
 #include "swarm_transport/Robot_Positions.h"
-#include "swarm_transport/core/metrics.h"
-#include "swarm_transport/core/mission.h"
+#include "swarm_transport/core/run_metrics.h"
 #include "swarm_transport/ros/params.h"
 
 namespace swarm_transport {
@@ -59,17 +53,10 @@ class CsvFile {
 // publishes /flock/stats at every sample; writes swarm_count.csv (one row per sample),
 // missions.csv (one row per DONE / ABORTED mission) and run.csv (one summary row, rewritten
 // after every finished mission and at shutdown) to <output_dir>/<run_name>/.
-// Mission phases come from the first leader's Mission_Status ticks; a mission's metrics are
-// fed from buffered /flock/positions frames inside its window once the window's end is known,
-// or a frame when it leaves the history (HistoryCapacity frames), so a status that arrives
-// after later frames still cuts the window at its own tick (in lock-step at thousands of
-// ticks per second, hundreds of frames may come first). A transport's window is
-// TRANSPORT .. UNLOADING. A
-// leader-only mission's runs from its order (the leader leads as soon as it holds it; its
-// first status may come much later, see RobotNode::MissionOutletsReady) to its DONE, or to
-// the first tick the leader is within goal_tolerance_m of the target - the leader's own
-// arrival test, which also stands for a DONE that was lost. Single-threaded (Run() spins
-// the global queue).
+// The bookkeeping - the sampling grid, each mission's phases, window and metrics, the rows -
+// is core::RunMetrics; this node validates the messages (warning about bad ones at most once
+// per warning period), turns them into frames, orders and statuses, and moves the results to
+// /flock/stats and the files. Single-threaded (Run() spins the global queue).
 class Recorder {
  public:
   Recorder(ros::NodeHandle nh, ros::NodeHandle private_nh);
@@ -85,41 +72,7 @@ class Recorder {
   // roscpp's, whose shutdown would stop the logging of the closing summary.
   static void RequestStop();
 
-  // Frames kept for missions whose status arrives late: as many as hold kHistoryPositions
-  // robot positions, within [kMinHistoryFrames, kMaxHistoryFrames].
-  static constexpr std::size_t kHistoryPositions = 4000000;
-  static constexpr std::size_t kMinHistoryFrames = 256;
-  static constexpr std::size_t kMaxHistoryFrames = 20000;
-  static std::size_t HistoryCapacity(std::size_t robots);
-  // Missions followed at once; more are ignored with a warning.
-  static constexpr std::size_t kMaxMissions = 4096;
-
  private:
-  // One /flock/positions message: physical robots with finite positions, ascending ids.
-  struct Frame {
-    std::uint64_t tick = 0;
-    double sim_time_s = 0.0;
-    std::vector<std::uint16_t> ids;
-    std::vector<core::Vec2> positions;
-    // Index of robot `id`, or -1.
-    long IndexOf(std::uint16_t id) const;
-  };
-  // What the recorder knows of one mission.
-  struct MissionRecord {
-    core::MissionSpec spec;
-    bool has_spec = false;
-    std::optional<std::uint64_t> known_tick;              // its New_Mission arrived
-    std::array<std::optional<std::uint64_t>, 8> entered;  // first tick of each phase
-    std::optional<std::uint64_t> arrival_tick;      // leader-only: leader seen within tolerance
-    std::optional<core::MissionPhase> final_state;  // DONE or ABORTED once reported
-    std::optional<core::Vec2> object;               // last reported object centre
-    std::optional<std::uint64_t> fed_through;       // last frame fed to the trackers
-    core::TransportTracker transport;
-    std::optional<core::LeaderTracker> leader;
-    bool warned_missing = false;  // a frame lacked one of its robots
-    bool warned_history = false;  // its window began before the oldest kept frame
-  };
-
   bool LoadParams(std::string* error);
   bool OpenFiles(std::string* error);
 
@@ -127,19 +80,12 @@ class Recorder {
   void OnMissionNew(const New_Mission::ConstPtr& msg);
   void OnStatus(const Mission_Status::ConstPtr& msg);
 
-  // Samples the newest frame when its sample time has come.
-  void SampleIfDue(const Frame& frame);
-  // The window (start, end] of frames that feed the mission's metrics.
-  static std::optional<std::uint64_t> WindowStart(const MissionRecord& m);
-  static std::optional<std::uint64_t> WindowEnd(const MissionRecord& m);
-  // Feeds every mission the buffered frames it is due: all of them when its window's end is
-  // known or `drain` (shutdown), else those up to tick `through` (a frame leaving the
-  // history), else none.
-  void FeedMissions(bool drain, std::optional<std::uint64_t> through = std::nullopt);
-  void Feed(MissionRecord* m, const Frame& frame);
-  // Writes and forgets finished missions whose frames are all in; `drain`: all of them.
-  void WriteFinished(bool drain);
-  void WriteMission(std::uint16_t id, const MissionRecord& m);
+  // Publishes /flock/stats and appends the swarm_count.csv row of a sample.
+  void Publish(const core::SwarmSample& sample);
+  // Appends the missions.csv rows the metrics wrote since the last call; then, when there
+  // were any and `run`, rewrites run.csv.
+  void WriteMissions(bool run);
+  // Rewrites run.csv: written aside and renamed over the old file.
   void WriteRun();
   // True at most once per warning period (wall clock) for one kind of warning.
   static bool WarnDue(ros::WallTime* last);
@@ -159,15 +105,7 @@ class Recorder {
   ros::Subscriber mission_new_sub_;
   ros::Subscriber status_sub_;
 
-  std::deque<Frame> history_;  // newest at the back
-  std::map<std::uint16_t, MissionRecord> missions_;
-  std::set<std::uint16_t> written_;  // ids of rows written; late news of them is ignored
-  std::optional<double> first_sample_time_s_;
-  double next_sample_time_s_ = 0.0;
-  std::size_t samples_ = 0;
-  double swarm_count_sum_ = 0.0;
-  std::size_t missions_done_ = 0;
-  std::size_t missions_aborted_ = 0;
+  std::optional<core::RunMetrics> metrics_;  // made once the parameters are loaded
   ros::WallTime last_bad_position_warning_;
   ros::WallTime last_bad_status_warning_;
   ros::WallTime last_bad_mission_warning_;
