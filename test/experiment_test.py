@@ -91,7 +91,8 @@ class ExperimentRunner(unittest.TestCase):
     def test_smoke_preset_end_to_end_and_reproducible(self):
         first, text = self.smoke('a')
         settings = param('settings').split()
-        self.assertIn('RESULT preset=%s deploy=process runs=%d ' % (param('preset'),
+        # The default engine: every run in an experiment_batch process, no ROS master.
+        self.assertIn('RESULT preset=%s deploy=batch runs=%d ' % (param('preset'),
                                                      param('runs') * len(settings)), text)
         header, rows = read_summary(os.path.join(first, 'summary.csv'))
         self.assertEqual(header, SUMMARY_HEADER)
@@ -158,16 +159,19 @@ class ExperimentRunner(unittest.TestCase):
                                                     'swarm_count.png')))
 
     def test_transport_repeats_in_every_deployment(self):
-        """A transport preset in one process per robot and in one process for all (host_sim):
-        the same seeds give the same missions.csv rows, byte for byte. Under load a mission
-        used to start at a scheduling-dependent tick (a first leader waited tick by tick for
-        its subscribers); two runs at a time (--jobs 2) keep both cores busy."""
+        """A transport preset launched in one process per robot and in one process for all
+        (host_sim), and in the batch engine: the same seeds give the same missions.csv rows,
+        byte for byte. Under load a mission used to start at a scheduling-dependent tick (a
+        first leader waited tick by tick for its subscribers); two runs at a time (--jobs 2)
+        keep both cores busy."""
         preset = param('transport_preset')
         rows = {}
-        for deploy in ('process', 'host_sim'):
+        for deploy in ('process', 'host_sim', 'batch'):
             out = os.path.join(self.tmp, 'deploy_' + deploy, preset)
-            text = self.run_experiment('run', preset, '--runs', '1', '--jobs', '2', '--deploy',
-                                       deploy, '--out', out)
+            engine = ['--engine', 'batch'] if deploy == 'batch' else [
+                '--engine', 'launch', '--deploy', deploy]
+            text = self.run_experiment('run', preset, '--runs', '1', '--jobs', '2',
+                                       '--out', out, *engine)
             self.assertIn('RESULT preset=%s deploy=%s ' % (preset, deploy), text)
             for setting in param('transport_settings').split():
                 run_dir = os.path.join(out, 'raw', setting, 'run_0')
@@ -183,8 +187,66 @@ class ExperimentRunner(unittest.TestCase):
                 self.assertGreater(int(row['transport_ticks']), 0, run_dir)
                 self.assertTrue(0.0 <= float(row['leader_contact']) <= 1.0, run_dir)
                 rows.setdefault(setting, []).append(lines[1])
-        for setting, (process, host_sim) in rows.items():
+        for setting, (process, host_sim, batch) in rows.items():
             self.assertEqual(process, host_sim, '%s: process and host_sim differ' % setting)
+            self.assertEqual(batch, host_sim, '%s: batch and host_sim differ' % setting)
+
+    def test_batch_rows_equal_launched_rows(self):
+        """The batch engine (fresh world and swarm per run in one process, no master) against
+        fresh launched processes (host_sim), same presets and seeds: a flocking run's files
+        are identical; a leader run's missions.csv, leader_track.csv and phases are identical,
+        and its swarm samples are the launched run's up to the arrival (a launched run ticks
+        on until its runner stops it)."""
+        def run(preset, engine):
+            out = os.path.join(self.tmp, 'equal_' + engine, preset)
+            args = ['--engine', engine] + (['--deploy', 'host_sim'] if engine == 'launch'
+                                           else [])
+            self.run_experiment('run', preset, '--runs', str(param('runs')), '--jobs', '2',
+                                '--seed-base', str(param('seed_base')), '--out', out, *args)
+            return out
+
+        def lines(path):
+            with open(path) as f:
+                return f.read().splitlines()
+
+        compared = arrived = 0
+        for preset, settings, kind in (
+                (param('preset'), param('settings').split(), 'flocking'),
+                (param('leader_preset'), param('leader_settings').split(), 'leader')):
+            launched, batch = run(preset, 'launch'), run(preset, 'batch')
+            for s in settings:
+                for k in range(param('runs')):
+                    a = os.path.join(launched, 'raw', s, 'run_%d' % k)
+                    b = os.path.join(batch, 'raw', s, 'run_%d' % k)
+                    where = '%s/%s/run_%d' % (preset, s, k)
+                    if kind == 'flocking':
+                        for f in ('swarm_count.csv', 'run.csv'):
+                            self.assertEqual(lines(os.path.join(a, f)),
+                                             lines(os.path.join(b, f)), '%s %s' % (where, f))
+                    else:
+                        with open(os.path.join(a, 'result.json')) as f:
+                            ra = json.load(f)
+                        with open(os.path.join(b, 'result.json')) as f:
+                            rb = json.load(f)
+                        for key in ('end', 'phases', 'last_status'):
+                            self.assertEqual(ra[key], rb[key], '%s %s' % (where, key))
+                        arrived += rb['end'] == 'DONE'
+                        self.assertEqual(lines(os.path.join(a, 'missions.csv')),
+                                         lines(os.path.join(b, 'missions.csv')), where)
+                        # Up to the end; a track ends at an arrival in both engines.
+                        for f in ('swarm_count.csv', 'leader_track.csv'):
+                            ours = lines(os.path.join(b, f))
+                            self.assertGreater(len(ours), 1 if f == 'swarm_count.csv' else 10,
+                                               '%s %s' % (where, f))
+                            theirs = lines(os.path.join(a, f))
+                            if f == 'leader_track.csv' and rb['end'] == 'DONE':
+                                self.assertEqual(theirs, ours, '%s %s' % (where, f))
+                            else:
+                                self.assertEqual(theirs[:len(ours)], ours, '%s %s' % (where, f))
+                    compared += 1
+        self.assertEqual(compared, param('runs') * (len(param('settings').split()) +
+                                                    len(param('leader_settings').split())))
+        self.assertGreater(arrived, 0, 'no leader arrived: the tracks were compared only in part')
 
     def test_trimmed_mean_drops_the_thesis_outliers(self):
         self.assertEqual(presets.trim_each_end(10), 2)   # middle 6 of 10 (thesis 7.2)

@@ -6,13 +6,18 @@ thesis (mean, median, mean of the middle runs), plotted and written up.
   scripts/experiment run PRESET [--runs K] [--jobs J] [--out DIR] [--seed-base S] [--report]
   scripts/experiment report DIR [DIR ...] [--out docs/results.md]
 
-Each run is a separate process with its own private ROS master (experiment_worker.py);
-docs/experiments.md describes presets, metrics and output files."""
+By default (--engine batch) runs go through experiment_batch: the lock-step tick of a host_sim
+launch, the dispatcher's and the recorder's part composed in one process without a ROS master,
+a fresh world and swarm per run (the same rows as a launched run, no start-up cost). With
+--engine launch each run is a separate process with its own private ROS master and roslaunch
+(experiment_worker.py, --deploy chooses the robots' processes). docs/experiments.md describes
+presets, metrics and output files."""
 
 import argparse
 import json
 import os
 import shutil
+import select
 import signal
 import subprocess
 import sys
@@ -57,10 +62,14 @@ def parse_args(argv):
                    help='results page written by --report (default docs/results.md)')
     r.add_argument('--keep-logs', action='store_true',
                    help='keep every run\'s ROS logs (default: only of failed runs)')
+    r.add_argument('--engine', default='batch', choices=('batch', 'launch'),
+                   help='batch (default): every run in an experiment_batch process without a '
+                        'ROS master, J processes in parallel; launch: each run a roslaunch of '
+                        'swarm.launch on its own master (see --deploy)')
     r.add_argument('--deploy', default='process', choices=('process', 'host', 'host_sim'),
-                   help='process: one process per robot (the thesis\'s architecture, default); '
-                        'host_sim: simulator and robots in one process over direct links, the '
-                        'same runs much faster (swarm.launch deploy:=...)')
+                   help='--engine launch: process: one process per robot (the thesis\'s '
+                        'architecture, default); host_sim: simulator and robots in one process '
+                        'over direct links, the same runs much faster (swarm.launch deploy:=...)')
     r.add_argument('--trace', action='store_true',
                    help='also write every run\'s trace.csv: each robot\'s pose at every tick')
     r.add_argument('--retries', type=int, default=1,
@@ -254,6 +263,95 @@ class Pool(object):
         self.running = []
 
 
+class BatchPool(object):
+    """Runs the jobs in `size` experiment_batch processes: each takes one job.json path per
+    line on stdin and answers one line when the run's files are written; a process gets its
+    next job when it answered. A process that dies fails its job (restarted `retries` times
+    in a new process)."""
+
+    def __init__(self, size, retries):
+        self.size, self.retries = size, retries
+        self.exe = os.path.join(ROOT, '.catkin_ws', 'devel', 'lib', 'swarm_transport',
+                                'experiment_batch')
+        self.procs = []  # [Popen, job or None, attempt, logfile, buffer]
+
+    def _spawn(self, log_path):
+        logfile = open(log_path, 'a')
+        p = subprocess.Popen([self.exe, '--base-config', os.path.join(ROOT, 'config',
+                                                                        'swarm.yaml')],
+                             stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=logfile)
+        return [p, None, 0, logfile, b'']
+
+    def _give(self, slot, job, attempt):
+        slot[1], slot[2] = job, attempt
+        path = os.path.join(job['run_dir'], 'result.json')
+        if os.path.exists(path):
+            os.remove(path)
+        slot[0].stdin.write((os.path.join(job['run_dir'], 'job.json') + '\n').encode())
+        slot[0].stdin.flush()
+
+    def run(self, jobs, on_done, log_dir):
+        if not os.path.exists(self.exe):
+            raise presets.PresetError('%s is not built (scripts/build)' % self.exe)
+        queue = [(j, 0) for j in jobs]
+        os.makedirs(log_dir, exist_ok=True)
+        try:
+            for k in range(min(self.size, len(queue))):
+                self.procs.append(self._spawn(os.path.join(log_dir, 'batch_%d.log' % k)))
+            for slot in self.procs:
+                if queue:
+                    self._give(slot, *queue.pop(0))
+            while any(slot[1] is not None for slot in self.procs):
+                busy = [slot for slot in self.procs if slot[1] is not None]
+                ready, _, _ = select.select([slot[0].stdout for slot in busy], [], [], 1.0)
+                for slot in busy:
+                    if slot[0].stdout not in ready:
+                        continue
+                    chunk = os.read(slot[0].stdout.fileno(), 65536)
+                    if not chunk:  # the process died with this job
+                        job, attempt = slot[1], slot[2]
+                        slot[0].wait()
+                        slot[3].close()
+                        log_path = slot[3].name
+                        slot[:] = self._spawn(log_path)
+                        if attempt < self.retries:
+                            log('  %s run %d: experiment_batch exited (%s); restarting it'
+                                % (job['setting'], job['run'], slot[0].returncode))
+                            self._give(slot, job, attempt + 1)
+                        else:
+                            on_done(job, {'status': 'error', 'error': 'experiment_batch '
+                                          'exited during the run (see %s)' % log_path})
+                            if queue:
+                                self._give(slot, *queue.pop(0))
+                        continue
+                    slot[4] += chunk
+                    if b'\n' not in slot[4]:
+                        continue
+                    slot[4] = slot[4].split(b'\n', 1)[1]
+                    job = slot[1]
+                    slot[1] = None
+                    on_done(job, _read_result(job))
+                    if queue:
+                        self._give(slot, *queue.pop(0))
+        finally:
+            self.stop()
+
+    def stop(self):
+        for slot in self.procs:
+            try:
+                slot[0].stdin.close()
+            except OSError:
+                pass
+        for slot in self.procs:
+            try:
+                slot[0].wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                slot[0].kill()
+                slot[0].wait()
+            slot[3].close()
+        self.procs = []
+
+
 def experiment_worker_flag():
     import experiment_worker
     return experiment_worker.TICKED_FLAG
@@ -283,14 +381,14 @@ def cmd_run(a):
     os.makedirs(out, exist_ok=True)
     thesis_runs = preset['runs']
     preset['runs'] = runs  # what the tables and the trimmed mean refer to
-    jobs = prepare_jobs(preset, out, runs, seed_base, only, a.keep_logs, a.trace,
-                        a.deploy)
+    deploy = 'batch' if a.engine == 'batch' else a.deploy
+    jobs = prepare_jobs(preset, out, runs, seed_base, only, a.keep_logs, a.trace, deploy)
     settings_run = sorted({j['setting'] for j in jobs}, key=[
         v['name'] for v in presets.settings(preset)].index)
     log('experiment %s: %s' % (preset['name'], preset['description']))
-    log('  %d settings x %d runs = %d runs, seeds %d..%d, %d in parallel, deploy %s, output %s'
+    log('  %d settings x %d runs = %d runs, seeds %d..%d, %d in parallel, %s, output %s'
         % (len(settings_run), runs, len(jobs), seed_base, seed_base + runs - 1, a.jobs,
-           a.deploy, out))
+           'engine batch' if a.engine == 'batch' else 'deploy %s' % a.deploy, out))
     started = time.time()
     done = []
 
@@ -311,10 +409,13 @@ def cmd_run(a):
                _duration(elapsed), _duration(eta)))
 
     meta = {'preset': preset, 'runs': runs, 'preset_runs': thesis_runs,
-            'seed_base': seed_base, 'jobs': a.jobs, 'deploy': a.deploy,
+            'seed_base': seed_base, 'jobs': a.jobs, 'deploy': deploy, 'engine': a.engine,
             'settings': settings_run, 'started': time.strftime('%Y-%m-%d %H:%M:%S'),
             'command': 'scripts/experiment ' + ' '.join(sys.argv[1:])}
-    Pool(a.jobs, a.retries).run(jobs, on_done)
+    if a.engine == 'batch':
+        BatchPool(a.jobs, a.retries).run(jobs, on_done, os.path.join(out, 'logs'))
+    else:
+        Pool(a.jobs, a.retries).run(jobs, on_done)
     wall = time.time() - started
     ok = [r for _, r in done if r.get('status') == 'ok']
     failed = [(j, r) for j, r in done if r.get('status') != 'ok']
@@ -340,15 +441,18 @@ def cmd_run(a):
                                                    if r.get('ros_log') else ''))
     n = max(1, len(ok))
     log('RESULT preset=%s deploy=%s runs=%d wall_s=%.1f sim_ticks=%d ticks_per_s=%.1f'
-        % (preset['name'], a.deploy, len(done), wall, timing['sim_ticks'],
+        % (preset['name'], deploy, len(done), wall, timing['sim_ticks'],
            timing['sim_ticks'] / wall if wall > 0 else 0.0))
-    log('  wall time split (per-run clocks summed; %d ticking at a time, a run\'s shutdown '
-        'overlaps the next start-up): start-up %.1f s (%.2f s/run: master, roslaunch, first '
-        'tick), ticking %.1f s (%.2f s/run, %.0f ticks/s per run), shutdown %.1f s (%.2f s/run); '
-        'wall per run %.2f s'
-        % (a.jobs, timing['startup_s'], timing['startup_s'] / n, timing['ticking_s'],
+    log('  wall time split (per-run clocks summed; %d ticking at a time%s): start-up %.1f s '
+        '(%.2f s/run: %s), ticking %.1f s (%.2f s/run, %.0f ticks/s per run), %s %.1f s '
+        '(%.2f s/run); wall per run %.2f s'
+        % (a.jobs, '' if a.engine == 'batch' else
+           ', a run\'s shutdown overlaps the next start-up', timing['startup_s'],
+           timing['startup_s'] / n, 'configuration, placement, robots' if a.engine == 'batch'
+           else 'master, roslaunch, first tick', timing['ticking_s'],
            timing['ticking_s'] / n,
            timing['sim_ticks'] / timing['ticking_s'] if timing['ticking_s'] > 0 else 0,
+           'writing files' if a.engine == 'batch' else 'shutdown',
            timing['shutdown_s'], timing['shutdown_s'] / n, wall / max(1, len(done))))
     if a.report:
         report.cmd_report([os.path.dirname(out)], a.report_out)

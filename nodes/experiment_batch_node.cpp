@@ -1,0 +1,46 @@
+// Experiment runs in this process, one after the other, without a ROS master (issue 10, item 9):
+//   experiment_batch --base-config config/swarm.yaml < job_paths
+// reads one job.json path per line from stdin, runs it (swarm_transport::RunBatchJob: the
+// run's files and result.json go where the job says) and answers one line per job on stdout,
+// "ok <path>" or "error <path>: <why>", so that scripts/experiment can hand it the next job.
+#include <iostream>
+#include <string>
+
+#include "swarm_transport/ros/batch_run.h"
+#include "swarm_transport/ros/params.h"
+
+int main(int argc, char** argv) {
+  std::string base_path;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--base-config" && i + 1 < argc) {
+      base_path = argv[++i];
+    } else {
+      std::cerr << "usage: experiment_batch --base-config SWARM_YAML < job.json paths\n";
+      return 2;
+    }
+  }
+  if (base_path.empty()) {
+    std::cerr << "experiment_batch: --base-config is required (config/swarm.yaml)\n";
+    return 2;
+  }
+  XmlRpc::XmlRpcValue base;
+  std::string error;
+  if (!swarm_transport::XmlRpcFromYamlFile(base_path, &base, &error)) {
+    std::cerr << "experiment_batch: " << error << "\n";
+    return 2;
+  }
+  std::string path;
+  while (std::getline(std::cin, path)) {
+    if (path.empty()) continue;
+    swarm_transport::BatchJob job;
+    error.clear();
+    if (!swarm_transport::ReadBatchJob(path, &job, &error) ||
+        !swarm_transport::RunBatchJob(job, base, &error)) {
+      std::cout << "error " << path << ": " << error << std::endl;
+      continue;
+    }
+    std::cout << "ok " << path << std::endl;
+  }
+  return 0;
+}
