@@ -319,6 +319,13 @@ def find_outputs(dirs):
     return found
 
 
+def _engine_text(meta):
+    """How the runs were made: the batch engine, or launched with a deployment."""
+    if meta.get('engine', 'launch') == 'batch' or meta.get('deploy') == 'batch':
+        return '--engine batch'
+    return '--engine launch --deploy %s' % meta.get('deploy', 'process')
+
+
 def cmd_report(dirs, out_md):
     outputs = find_outputs(dirs)
     if not outputs:
@@ -357,13 +364,13 @@ def cmd_report(dirs, out_md):
         fewer = (' — **fewer than the thesis\'s %d**: `scripts/experiment run %s` repeats it '
                  'in full' % (full, preset['name'])) if full and meta.get('runs', 0) < full else ''
         lines.append('Runs: %d per setting (seeds %d..%d), %s%s. Measured: %d runs in %s wall '
-                     '(%d simulated ticks, %.0f ticks/s overall, %d in parallel, `--deploy %s`).'
+                     '(%d simulated ticks, %.0f ticks/s overall, %d in parallel, `%s`).'
                      % (meta.get('runs', 0), meta.get('seed_base', 0),
                         meta.get('seed_base', 0) + meta.get('runs', 1) - 1, _trim_text(preset),
                         fewer,
                         t.get('runs', 0), _hms(t.get('wall_s', 0)), t.get('sim_ticks', 0),
                         t.get('sim_ticks', 0) / t['wall_s'] if t.get('wall_s') else 0,
-                        meta.get('jobs', 1), meta.get('deploy', 'process')))
+                        meta.get('jobs', 1), _engine_text(meta)))
         lines.append('')
         dest = os.path.join(img_root, preset['name'])
         os.makedirs(dest, exist_ok=True)
