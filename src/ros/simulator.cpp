@@ -488,7 +488,11 @@ void Simulator::UpdateLiveness() {
     const std::uint16_t id = entry.first;
     RobotIo& io = entry.second;
     const bool live = barrier_.Live(id);
-    if (!live && Ready(&io)) {
+    if (io.silent && !io.direct && io.neighbors_subscribers == 0) {
+      io.silent = false;  // gone: a process that connects under its id is a fresh start
+      io.connected_since = ros::WallTime();
+    }
+    if (!live && !io.silent && Ready(&io)) {
       barrier_.MakeLive(id);
       if (tick_ > 0) {
         ROS_INFO("lockstep: robot %u connected at tick %llu", id,
@@ -522,12 +526,20 @@ void Simulator::WaitForAnswers() {
   TakeAnswers();
   if (barrier_.AllAnswered() || !Running()) return;
   const std::vector<std::uint16_t> late = barrier_.Late();
+  const std::size_t live = barrier_.LiveCount();
+  // Out of the barrier until they answer again: a hung or dead robot must not cost the
+  // timeout every tick. They stand; they still are in the world and heard by the others.
+  for (std::uint16_t id : late) {
+    barrier_.MakeNotLive(id);
+    auto it = io_.find(id);
+    if (it != io_.end()) it->second.silent = true;
+  }
   if (WallThrottle(&last_late_warning_wall_, kWarnPeriodS)) {
     ROS_WARN(
         "lockstep tick %llu: %zu of %zu robots did not answer within %.2f s (first: robot "
-        "%d); they stand this tick",
-        static_cast<unsigned long long>(tick_), late.size(), barrier_.LiveCount(),
-        params_.lockstep_timeout_s, late.empty() ? -1 : static_cast<int>(late.front()));
+        "%d); they stand and are not waited for until they answer again",
+        static_cast<unsigned long long>(tick_), late.size(), live, params_.lockstep_timeout_s,
+        late.empty() ? -1 : static_cast<int>(late.front()));
   }
 }
 
@@ -803,8 +815,19 @@ void Simulator::OnAnswer(std::uint16_t id, const Tick_Answer& answer) {
       // A late answer's command is past, but what it says still holds: relayed a tick late.
       answers_.emplace_back(id, answer);
       break;
-    case sim::LockstepBarrier::Answer::kUnsolicited:
     case sim::LockstepBarrier::Answer::kOutside:
+      if (io_.at(id).silent) {
+        // A robot that let a tick time out answered at last (its late answer): it is waited
+        // for again from the next tick on. What it said still holds.
+        io_.at(id).silent = false;
+        answers_.emplace_back(id, answer);
+        ROS_INFO("lockstep: robot %u answers again (tick %llu, its answer to tick %llu)", id,
+                 static_cast<unsigned long long>(tick_),
+                 static_cast<unsigned long long>(answer.tick));
+        break;
+      }
+      [[fallthrough]];
+    case sim::LockstepBarrier::Answer::kUnsolicited:
       if (WallThrottle(&last_unsolicited_warning_wall_, kWarnPeriodS)) {
         ROS_WARN("lockstep: robot %u answered tick %llu, which it was not asked (tick %llu); "
                  "ignored", id, static_cast<unsigned long long>(answer.tick),

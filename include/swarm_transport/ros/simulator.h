@@ -131,6 +131,9 @@ class Simulator : public RobotOutlet {
     int pose_subscribers = 0;
     std::uint64_t generation = 0;      // tells this robot's callbacks from a killed namesake's
     ros::WallTime connected_since;     // lock-step: both links up since (zero: not connected)
+    // Lock-step: it let a tick time out and is out of the barrier until it answers again (a
+    // hung robot costs lockstep_timeout_s once, not every tick; issue 11).
+    bool silent = false;
     ros::Subscriber answer;            // lock-step: its Tick_Answer
   };
   using Mission = sim::LiveMission;

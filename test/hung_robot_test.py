@@ -1,0 +1,76 @@
+#!/usr/bin/env python3
+"""A hung robot in lock-step (issue 11): a robot process stopped with SIGSTOP costs the
+simulator's lockstep_timeout_s once, not every tick - the others go on at full speed while it
+stands - and once it is continued (SIGCONT) it answers again and moves with the swarm."""
+
+import os
+import signal
+import sys
+import time
+import unittest
+import xmlrpc.client
+
+import rosgraph
+import rosnode
+import rospy
+import rostest
+
+import swarm_testing as st
+
+
+def node_pid(name):
+    api = rosnode.get_api_uri(rosgraph.Master('/hung_robot_test'), name)
+    code, _, pid = xmlrpc.client.ServerProxy(api).getPid('/hung_robot_test')
+    assert code == 1, 'no pid for %s' % name
+    return pid
+
+
+class HungRobot(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        cls.robots = rospy.get_param('~robots')
+        cls.timeout = rospy.get_param('~timeout_s')
+        cls.log = st.PositionLog()
+        cls.swarm = st.launch_swarm(robots=cls.robots, seed=rospy.get_param('~seed'),
+                                    lockstep=True, max_ticks=0)
+        assert cls.log.wait_tick(5, cls.timeout), 'the swarm never ticked'
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.swarm.shutdown()
+        cls.log.close()
+
+    def test_a_hung_robot_is_waited_for_once_and_rejoins(self):
+        hung = rospy.get_param('~hung_robot')
+        window = rospy.get_param('~window_s')
+        pid = node_pid('/robot_%d/robot' % hung)
+        os.kill(pid, signal.SIGSTOP)
+        try:
+            start_tick = self.log.latest_tick()
+            time.sleep(window)
+            stopped_ticks = self.log.latest_tick() - start_tick
+            # Waiting lockstep_timeout_s (2 s) every tick would give window / 2 ticks.
+            self.assertGreaterEqual(stopped_ticks, rospy.get_param('~min_ticks_while_hung'),
+                                    '%d ticks in %.0f s with robot %d stopped'
+                                    % (stopped_ticks, window, hung))
+            # It stands while stopped (the last ticks of the window).
+            end = self.log.latest_tick()
+            a, b = self.log.at(end - 20), self.log.at(end)
+            self.assertLessEqual(st.moved(a[hung], b[hung]), rospy.get_param('~still_m'),
+                                 'the stopped robot moved')
+        finally:
+            os.kill(pid, signal.SIGCONT)
+        # Continued, it answers again and drives with the others.
+        resumed = self.log.latest_tick()
+        self.assertTrue(self.log.wait_tick(resumed + rospy.get_param('~rejoin_ticks'),
+                                           self.timeout))
+        later = self.log.latest_tick()
+        a, b = self.log.at(resumed + rospy.get_param('~rejoin_ticks') // 2), self.log.at(later)
+        self.assertGreater(st.moved(a[hung], b[hung]), rospy.get_param('~moves_m'),
+                           'robot %d did not move again after SIGCONT' % hung)
+
+
+if __name__ == '__main__':
+    rospy.init_node('hung_robot_test')
+    rostest.rosrun('swarm_transport', 'hung_robot', HungRobot, sys.argv)
