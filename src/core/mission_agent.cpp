@@ -206,12 +206,18 @@ void MissionAgent::RunFirstLeader(Live* live, const Pose2& self, const Group& gr
     EnterPhase(live, spec.LeaderOnly() ? MissionPhase::kTransport : MissionPhase::kGathering,
                tick, 0, outbox);
   }
-  if (spec.LeaderOnly()) return;  // ends in LeaderArrived
-
   const std::uint16_t inside = group.inside;
+  // A report within the phase every progress_every_ticks, in every phase: also the first
+  // leader's heartbeat (the dispatcher ends a mission whose first leader fell silent).
   const bool periodic = params_.progress_every_ticks > 0 &&
                         (tick - live->phase_tick) % params_.progress_every_ticks == 0 &&
                         tick != live->phase_tick;
+  if (spec.LeaderOnly()) {  // ends in LeaderArrived
+    if (periodic && live->phase == MissionPhase::kTransport) {
+      outbox->statuses.push_back(Report(*live, inside));
+    }
+    return;
+  }
 
   if (tick - live->phase_tick > params_.phase_timeout_ticks &&
       live->phase != MissionPhase::kDone) {
@@ -236,6 +242,7 @@ void MissionAgent::RunFirstLeader(Live* live, const Pose2& self, const Group& gr
       }
       break;
     case MissionPhase::kLoading:
+      if (periodic) outbox->statuses.push_back(Report(*live, inside));
       if (live->loaded && tick >= live->signal_tick) {
         outbox->resume = spec.AssignedRuns();
         live->transport_ticks = 0;
@@ -260,6 +267,7 @@ void MissionAgent::RunFirstLeader(Live* live, const Pose2& self, const Group& gr
       break;
     }
     case MissionPhase::kUnloading:
+      if (periodic) outbox->statuses.push_back(Report(*live, inside));
       if (live->unloaded && tick >= live->signal_tick) {
         outbox->resume = spec.AssignedRuns();
         outbox->delete_object = spec.id;

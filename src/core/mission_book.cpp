@@ -129,6 +129,7 @@ MissionBook::Verdict MissionBook::Submit(MissionSpec spec, const std::string& so
   m.robots_assigned = Clamp16(spec.Assigned().size());
   if (!spec.LeaderOnly()) m.distance_to_target_m = Distance(spec.object_centre, spec.target);
   m.phase = MissionPhase::kQueued;
+  m.heard_s = now_s;
   m.entered[static_cast<std::size_t>(MissionPhase::kQueued)] = now_s;
   m.reached = 1u << static_cast<unsigned>(MissionPhase::kQueued);
   verdict.message = "mission " + std::to_string(spec.id) + " queued: " + DescribeMission(spec);
@@ -169,6 +170,7 @@ MissionBook::StatusOutcome MissionBook::OnStatus(const MissionReport& report, do
   if (report.robots_assigned > 0) m.robots_assigned = report.robots_assigned;
   m.robots_inside = report.robots_inside;
   m.distance_to_target_m = report.distance_to_target_m;
+  m.heard_s = now_s;
   if (report.tick > 0) m.phase_tick = report.tick;
   if (!report.reason.empty()) m.reason = report.reason;
   if (phase != m.phase || m.reached == 0) {
@@ -178,10 +180,11 @@ MissionBook::StatusOutcome MissionBook::OnStatus(const MissionReport& report, do
   return out;
 }
 
-void MissionBook::OnProgress(const MissionReport& report) {
+void MissionBook::OnProgress(const MissionReport& report, double now_s) {
   auto it = entries_.find(report.mission_id);
   if (it == entries_.end() || !it->second.Live()) return;
   Entry& m = it->second;
+  m.heard_s = now_s;
   if (report.robots_assigned > 0) m.robots_assigned = report.robots_assigned;
   m.robots_inside = report.robots_inside;
   m.distance_to_target_m = report.distance_to_target_m;
@@ -212,6 +215,34 @@ void MissionBook::EnterPhase(std::uint16_t id, Entry* m, MissionPhase phase, dou
     finished_.emplace_back(id, m->generation);
     Forget();  // never the mission just finished: it is the newest
   }
+}
+
+std::vector<std::pair<std::uint16_t, std::string>> MissionBook::Silent(double now_s) const {
+  std::vector<std::pair<std::uint16_t, std::string>> silent;
+  if (params_.silent_after_s < 0.0) return silent;
+  for (const auto& kv : entries_) {
+    const Entry& m = kv.second;
+    // QUEUED waits its turn (its first leader reports nothing until it starts).
+    const bool running = m.phase >= MissionPhase::kGathering && m.phase <= MissionPhase::kUnloading;
+    if (!running || now_s - m.heard_s <= params_.silent_after_s) continue;
+    std::ostringstream why;
+    why << "first leader";
+    if (m.has_spec) why << " (robot " << m.spec.FirstLeader() << ")";
+    why << " silent for " << std::setprecision(4) << now_s - m.heard_s << " s in "
+        << PhaseName(m.phase) << " (last report at its tick " << m.phase_tick
+        << "): lost; the mission ends";
+    silent.emplace_back(kv.first, why.str());
+  }
+  return silent;
+}
+
+bool MissionBook::Abort(std::uint16_t mission_id, const std::string& reason, double now_s) {
+  auto it = entries_.find(mission_id);
+  if (it == entries_.end() || !it->second.Live()) return false;
+  it->second.reason = reason;
+  std::vector<DueSignal> none;
+  EnterPhase(mission_id, &it->second, MissionPhase::kAborted, now_s, &none);
+  return true;
 }
 
 std::string MissionBook::Signal(std::uint16_t mission_id, MissionEventKind kind) {

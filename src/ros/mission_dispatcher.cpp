@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "swarm_transport/Delete_Object.h"
 #include "swarm_transport/Mission_Event.h"
 #include "swarm_transport/Mission_Schedule.h"
 #include "swarm_transport/Robot_Position.h"
@@ -173,6 +174,8 @@ std::string DispatcherOptions::Validate() const {
     os << "~start_delay_s must be a finite number >= 0 (s) but is " << start_delay_s;
   } else if (max_live_missions < 1 || max_live_missions > 65535) {
     os << "~max_live_missions must be in [1, 65535] but is " << max_live_missions;
+  } else if (silent_abort_ticks < 0) {
+    os << "~silent_abort_ticks must be >= 0 (ticks; 0: never) but is " << silent_abort_ticks;
   }
   return os.str();
 }
@@ -214,7 +217,8 @@ bool MissionDispatcher::LoadOptions(std::string* error) {
       !ReadPrivate(private_nh_, "unloaded_delay_s", &options_.unloaded_delay_s, error) ||
       !ReadPrivate(private_nh_, "missions_file", &options_.missions_file, error) ||
       !ReadPrivate(private_nh_, "start_delay_s", &options_.start_delay_s, error) ||
-      !ReadPrivate(private_nh_, "max_live_missions", &options_.max_live_missions, error)) {
+      !ReadPrivate(private_nh_, "max_live_missions", &options_.max_live_missions, error) ||
+      !ReadPrivate(private_nh_, "silent_abort_ticks", &options_.silent_abort_ticks, error)) {
     return false;
   }
   *error = options_.Validate();
@@ -225,6 +229,9 @@ bool MissionDispatcher::LoadOptions(std::string* error) {
   book.loaded_delay_s = options_.loaded_delay_s;
   book.unloaded_delay_s = options_.unloaded_delay_s;
   book.max_live_missions = options_.max_live_missions;
+  book.silent_after_s = options_.silent_abort_ticks > 0
+                            ? options_.silent_abort_ticks * config_.tick_period_s
+                            : -1.0;
   book_ = std::make_unique<core::MissionBook>(book);
   if (options_.missions_file.empty()) return true;
 
@@ -266,6 +273,7 @@ bool MissionDispatcher::Initialize() {
   new_pub_ = nh_.advertise<New_Mission>(names::kMissionNew, 10, true);
   status_pub_ = nh_.advertise<Mission_Status>(names::kMissionStatus, 100);
   event_pub_ = nh_.advertise<Mission_Event>(names::kMissionEvent, 10);
+  delete_pub_ = nh_.advertise<Delete_Object>(names::kObjectDelete, 10);
   lockstep_ = ros::Time::isSimTime();
   if (lockstep_) schedule_pub_ = nh_.advertise<Mission_Schedule>(names::kMissionSchedule, 1, true);
   positions_sub_ = nh_.subscribe(names::kPositions, 1, &MissionDispatcher::OnPositions, this);
@@ -277,6 +285,12 @@ bool MissionDispatcher::Initialize() {
   submit_srv_ = private_nh_.advertiseService("submit", &MissionDispatcher::OnSubmit, this);
   signal_srv_ = private_nh_.advertiseService("signal", &MissionDispatcher::OnSignal, this);
   status_srv_ = private_nh_.advertiseService("status", &MissionDispatcher::OnStatusService, this);
+  if (options_.silent_abort_ticks > 0) {
+    // On ros::Time (simulated in lock-step), ten times per silence limit.
+    watchdog_timer_ = nh_.createTimer(
+        ros::Duration(options_.silent_abort_ticks * config_.tick_period_s / 10.0),
+        &MissionDispatcher::OnWatchdog, this);
+  }
 
   const auto delay = [](double s) {
     std::ostringstream os;
@@ -299,7 +313,10 @@ bool MissionDispatcher::Initialize() {
   return true;
 }
 
-void MissionDispatcher::Shutdown() { start_timer_.stop(); }
+void MissionDispatcher::Shutdown() {
+  start_timer_.stop();
+  watchdog_timer_.stop();
+}
 
 bool MissionDispatcher::FromSelf(const std::string& publisher) const {
   return publisher == ros::this_node::getName();
@@ -316,13 +333,13 @@ std::set<std::uint16_t> MissionDispatcher::KnownRobots() const {
 }
 
 void MissionDispatcher::PublishStatus(const core::MissionSpec& spec, MissionPhase phase,
-                                      const std::string& reason) {
+                                      const std::string& reason, std::uint64_t tick) {
   Mission_Status msg;
   msg.mission_id = spec.id;
   msg.state = static_cast<std::uint8_t>(phase);
   msg.reason = reason;
   msg.stamp = ros::Time::now();
-  msg.tick = 0;
+  msg.tick = tick;
   msg.robots_assigned =
       static_cast<std::uint16_t>(std::min<std::size_t>(spec.Assigned().size(), 65535));
   if (spec.all_finite && !spec.LeaderOnly()) {
@@ -414,6 +431,21 @@ void MissionDispatcher::OnPositions(const Robot_Positions::ConstPtr& msg) {
 
 void MissionDispatcher::OnStartTimer(const ros::TimerEvent& /*event*/) { SubmitFileMissions(); }
 
+void MissionDispatcher::OnWatchdog(const ros::TimerEvent& /*event*/) {
+  const double now_s = ros::Time::now().toSec();
+  for (const auto& silent : book_->Silent(now_s)) {
+    const std::uint16_t id = silent.first;
+    const core::MissionSpec spec = book_->Find(id)->spec;
+    if (!book_->Abort(id, silent.second, now_s)) continue;
+    ROS_WARN("%s: mission %u ABORTED: %s", kNode, id, silent.second.c_str());
+    PublishStatus(spec, MissionPhase::kAborted, silent.second, positions_ ? positions_->tick : 0);
+    // Its robots drop the mission and its object (and those frozen for it move again).
+    Delete_Object msg;
+    msg.mission_id = id;
+    delete_pub_.publish(msg);
+  }
+}
+
 void MissionDispatcher::OnNewMission(const ros::MessageEvent<New_Mission const>& event) {
   // The dispatcher hears its own publications on this topic; those are tracked already.
   if (FromSelf(event.getPublisherName())) return;
@@ -458,7 +490,7 @@ void MissionDispatcher::OnStatus(const ros::MessageEvent<Mission_Status const>& 
 
 void MissionDispatcher::OnProgress(const Mission_Status::ConstPtr& msg) {
   if (!std::isfinite(msg->distance_to_target)) return;
-  book_->OnProgress(ToReport(*msg));
+  book_->OnProgress(ToReport(*msg), ros::Time::now().toSec());
 }
 
 void MissionDispatcher::SendEvent(std::uint16_t id, core::MissionEventKind kind,

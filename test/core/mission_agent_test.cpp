@@ -371,6 +371,36 @@ TEST(MissionAgentTest, AnObjectUpdateMustStayInTheArenaAndWithinReachOfItsRobots
   EXPECT_NEAR(MaxObjectStep(1, 0.1), 0.4, 1e-12);
 }
 
+TEST(MissionAgentTest, AFirstLeaderReportsInEveryRunningPhaseAsItsHeartbeat) {
+  MissionAgentParams params;
+  params.progress_every_ticks = 10;
+  MissionAgent leader(0, params);
+  std::string why;
+  MissionSpec spec = Thesis();
+  spec.range_to = 1;  // the leader alone: gathered as soon as it is inside
+  ASSERT_TRUE(leader.OnNewMission(spec, &why)) << why;
+  MissionOutbox out;
+  std::uint64_t loading_tick = 0;
+  for (std::uint64_t t = 1; t < 60 && loading_tick == 0; ++t) {
+    out = MissionOutbox();
+    leader.Tick(PoseAt(7.0, 7.0), {}, t, &out);
+    for (const StatusReport& r : out.statuses) {
+      if (r.phase == MissionPhase::kLoading) loading_tick = t;
+    }
+  }
+  ASSERT_GT(loading_tick, 0u);
+  // No LOADED comes (a user's signal, say): LOADING is reported every 10 ticks meanwhile.
+  std::vector<std::uint64_t> reports;
+  for (std::uint64_t t = loading_tick + 1; t <= loading_tick + 30; ++t) {
+    out = MissionOutbox();
+    leader.Tick(PoseAt(7.0, 7.0), {}, t, &out);
+    for (const StatusReport& r : out.statuses) {
+      if (r.phase == MissionPhase::kLoading) reports.push_back(t - loading_tick);
+    }
+  }
+  EXPECT_EQ(reports, (std::vector<std::uint64_t>{10, 20, 30}));
+}
+
 }  // namespace
 }  // namespace core
 }  // namespace swarm_transport

@@ -130,6 +130,34 @@ TEST(MissionBookTest, ForgetsTheOldestFinishedMissionsFirst) {
   EXPECT_NE(book.Find(6), nullptr);
 }
 
+TEST(MissionBookTest, ARunningMissionWhoseFirstLeaderFellSilentIsEnded) {
+  MissionBookParams p = Params();
+  p.silent_after_s = 30.0;
+  MissionBook book(p);
+  ASSERT_TRUE(book.Submit(Thesis(7), "service", false, false, Robots(25), 0.0).accepted);
+  // QUEUED waits its turn however long: not silent.
+  EXPECT_TRUE(book.Silent(100.0).empty());
+  book.OnStatus(Report(7, MissionPhase::kGathering, 90), 100.0);
+  book.OnProgress(Report(7, MissionPhase::kGathering, 140), 120.0);  // a heartbeat
+  EXPECT_TRUE(book.Silent(150.0).empty());
+  const auto silent = book.Silent(150.5);
+  ASSERT_EQ(silent.size(), 1u);
+  EXPECT_EQ(silent[0].first, 7);
+  EXPECT_NE(silent[0].second.find("first leader (robot 0) silent for 30.5 s in GATHERING"),
+            std::string::npos)
+      << silent[0].second;
+  EXPECT_TRUE(book.Abort(7, silent[0].second, 150.5));
+  EXPECT_EQ(book.Find(7)->phase, MissionPhase::kAborted);
+  EXPECT_EQ(book.Find(7)->reason, silent[0].second);
+  EXPECT_FALSE(book.Abort(7, "again", 151.0));  // not live any more
+  EXPECT_TRUE(book.Silent(500.0).empty());
+  // Without a limit nothing is ever silent.
+  MissionBook patient(Params());
+  ASSERT_TRUE(patient.Submit(Thesis(7), "service", false, false, Robots(25), 0.0).accepted);
+  patient.OnStatus(Report(7, MissionPhase::kTransport, 1), 0.0);
+  EXPECT_TRUE(patient.Silent(1e6).empty());
+}
+
 }  // namespace
 }  // namespace core
 }  // namespace swarm_transport

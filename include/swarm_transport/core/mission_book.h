@@ -28,6 +28,9 @@ struct MissionBookParams {
   double loaded_delay_s = 2.0;    // LOADED this long after LOADING; < 0: only on a signal
   double unloaded_delay_s = 2.0;  // UNLOADED this long after UNLOADING; < 0: only on a signal
   int max_live_missions = 64;     // more are refused
+  // A running mission (GATHERING .. UNLOADING) whose first leader said nothing (no phase, no
+  // progress report) for this long is silent: its first leader is lost (< 0: never).
+  double silent_after_s = -1.0;
 };
 
 // A LOADED / UNLOADED the dispatcher must send now, taking effect at `not_before_tick`.
@@ -72,6 +75,7 @@ class MissionBook {
     bool unloaded_sent = false;
     std::uint64_t generation = 0;  // tells a reused id's new entry from the forgotten one
     std::uint64_t phase_tick = 0;  // the first leader's tick of its latest report
+    double heard_s = 0.0;          // when its first leader (or its order) was last heard of
     bool Live() const;
   };
 
@@ -106,11 +110,18 @@ class MissionBook {
   // as a tick (SignalTick). Ignored: a finished mission's late news, a REJECTED from elsewhere,
   // a new mission beyond the live limit.
   StatusOutcome OnStatus(const MissionReport& report, double now_s);
-  // A report within a phase: robots inside, distance to go.
-  void OnProgress(const MissionReport& report);
+  // A report within a phase: robots inside, distance to go (and its first leader is alive).
+  void OnProgress(const MissionReport& report, double now_s);
   // A user's LOADED / UNLOADED for a live mission (takes effect at once). Empty when it is to
   // be sent, else why not.
   std::string Signal(std::uint16_t mission_id, MissionEventKind kind);
+
+  // Running missions whose first leader has been silent for silent_after_s at `now_s`, with
+  // the reason to end them for (naming the first leader and the last word heard).
+  std::vector<std::pair<std::uint16_t, std::string>> Silent(double now_s) const;
+  // Ends a live mission as ABORTED with `reason` (the dispatcher's own decision). False when
+  // it is not live.
+  bool Abort(std::uint16_t mission_id, const std::string& reason, double now_s);
 
   // The status table: one line per mission, seconds per phase up to `now_s`.
   std::string Table(double now_s) const;

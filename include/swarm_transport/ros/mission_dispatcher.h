@@ -32,6 +32,10 @@ struct DispatcherOptions {
   std::string missions_file;      // ~missions_file: YAML with `missions:`; "" = none
   double start_delay_s = 1.0;     // ~start_delay_s: after the first /flock/positions, >= 0
   int max_live_missions = 64;     // ~max_live_missions: more are rejected, [1, 65535]
+  // ~silent_abort_ticks: a running mission whose first leader said nothing (phase or progress
+  // report, one every 50 ticks) for this many ticks is ABORTED - its first leader is lost
+  // (issue 11); 0: never.
+  int silent_abort_ticks = 300;
   std::string Validate() const;
 };
 
@@ -74,7 +78,7 @@ class MissionDispatcher {
   // The physical robots of the latest /flock/positions (a mission must name only those).
   std::set<std::uint16_t> KnownRobots() const;
   void PublishStatus(const core::MissionSpec& spec, core::MissionPhase phase,
-                     const std::string& reason);
+                     const std::string& reason, std::uint64_t tick = 0);
   // Before a new order: waits (at most kListenerWaitS) until every registered subscriber of
   // the order topic is connected.
   void AwaitListeners();
@@ -88,6 +92,8 @@ class MissionDispatcher {
   // A first leader's report within a phase: robots inside, object, distance to go.
   void OnProgress(const Mission_Status::ConstPtr& msg);
   void OnStartTimer(const ros::TimerEvent& event);
+  // Ends the missions whose first leader fell silent: ABORTED with the reason, Delete_Object.
+  void OnWatchdog(const ros::TimerEvent& event);
   bool OnSubmit(Submit_Mission::Request& req, Submit_Mission::Response& res);
   bool OnSignal(Mission_Signal::Request& req, Mission_Signal::Response& res);
   bool OnStatusService(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
@@ -112,6 +118,8 @@ class MissionDispatcher {
   ros::ServiceServer signal_srv_;
   ros::ServiceServer status_srv_;
   ros::Timer start_timer_;
+  ros::Timer watchdog_timer_;
+  ros::Publisher delete_pub_;
 
   Robot_Positions::ConstPtr positions_;
   std::unique_ptr<core::MissionBook> book_;  // made by LoadOptions
