@@ -232,15 +232,39 @@ void MissionAgent::RunFirstLeader(Live* live, const Pose2& self, const Group& gr
   }
 
   switch (live->phase) {
-    case MissionPhase::kGathering:
-      if (inside == spec.Assigned().size() &&
+    case MissionPhase::kGathering: {
+      // Members silent for lost_after_ticks are dropped: the rest gathers without them.
+      for (std::uint16_t member : spec.Assigned()) {
+        const auto heard = live->heard_tick.find(member);
+        if (member == self_id_ || heard == live->heard_tick.end()) continue;
+        if (tick - heard->second > params_.lost_after_ticks) live->lost.insert(member);
+      }
+      const std::size_t left = spec.Assigned().size() - live->lost.size();
+      std::ostringstream lost;
+      for (std::uint16_t id : live->lost) lost << (lost.tellp() > 0 ? ", " : "") << id;
+      if (!live->lost.empty() && left < static_cast<std::size_t>(spec.leader_number)) {
+        outbox->resume = spec.AssignedRuns();
+        outbox->delete_object = spec.id;
+        EnterPhase(live, MissionPhase::kAborted, tick, inside, outbox);
+        outbox->statuses.back().reason = "robot(s) " + lost.str() + " lost (not heard for " +
+                                         std::to_string(params_.lost_after_ticks) +
+                                         " ticks): fewer robots than leaders left";
+        return;
+      }
+      if (inside == left &&
           (!params_.transport.gather_one_chain || group.OneChain(params_.local_range_m))) {
         outbox->freeze = spec.AssignedRuns();
         EnterPhase(live, MissionPhase::kLoading, tick, inside, outbox);
+        if (!live->lost.empty()) {
+          outbox->statuses.back().reason = "without robot(s) " + lost.str() +
+                                           " (lost: not heard for " +
+                                           std::to_string(params_.lost_after_ticks) + " ticks)";
+        }
       } else if (periodic) {
         outbox->statuses.push_back(Report(*live, inside));
       }
       break;
+    }
     case MissionPhase::kLoading:
       if (periodic) outbox->statuses.push_back(Report(*live, inside));
       if (live->loaded && tick >= live->signal_tick) {
@@ -291,6 +315,9 @@ MissionPlan MissionAgent::Tick(const Pose2& self, const std::vector<Neighbour>& 
     if (!spec.LeaderOnly()) {
       group = Locate(live, self, heard);
       UpdateCentre(&live, self, &group);
+      // Heartbeats: a member heard now; one never heard counts from the mission's first tick.
+      for (std::uint16_t member : spec.Assigned()) live.heard_tick.emplace(member, tick);
+      for (const auto& kv : group.where) live.heard_tick[kv.first] = tick;
     }
     if (outbox != nullptr && spec.FirstLeader() == self_id_) {
       RunFirstLeader(&live, self, group, tick, outbox);

@@ -622,7 +622,16 @@ void Simulator::PublishRadio() {
     e.position = {entry.second.pos_x, entry.second.pos_y};
     extras.push_back(e);
   }
-  radio_->Begin(*world_, std::move(extras), missions_);
+  // Robots that do not answer their ticks (dead, hung, not connected yet) are silent on the
+  // radio: their peers lose them (issue 11). Directly linked robots always answer.
+  std::set<std::uint16_t> quiet;
+  for (const auto& entry : io_) {
+    if (entry.second.direct) continue;
+    const bool answering = lockstep_ ? barrier_.Live(entry.first)
+                                     : entry.second.neighbors_subscribers > 0;
+    if (!answering) quiet.insert(entry.first);
+  }
+  radio_->Begin(*world_, std::move(extras), missions_, quiet);
   // Virtual copies are relayed at their owner's true pose, the others where announced.
   std::vector<Robot_Position> relayed;
   relayed.reserve(relayed_.size());

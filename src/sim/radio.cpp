@@ -17,7 +17,7 @@ long Radio::IndexOf(std::uint16_t id) const {
 bool Radio::Lost() { return params_.loss > 0.0 && loss_rng_->Uniform(0.0, 1.0) < params_.loss; }
 
 void Radio::Begin(const World2D& world, std::vector<RadioExtra> extras,
-                  const LiveMissions& missions) {
+                  const LiveMissions& missions, const std::set<std::uint16_t>& quiet) {
   ids_.clear();
   positions_.clear();
   ids_.reserve(world.size());
@@ -49,6 +49,15 @@ void Radio::Begin(const World2D& world, std::vector<RadioExtra> extras,
     }
   }
   lists_ = world.NeighbourLists(params_.range_m);
+  quiet_.assign(ids_.size(), 0);
+  if (!quiet.empty()) {
+    for (std::size_t i = 0; i < ids_.size(); ++i) quiet_[i] = quiet.count(ids_[i]) > 0 ? 1 : 0;
+    for (auto& list : lists_) {
+      list.erase(std::remove_if(list.begin(), list.end(),
+                                [&quiet](std::uint16_t id) { return quiet.count(id) > 0; }),
+                 list.end());
+    }
+  }
   heard_.assign(ids_.size(), 0);
   touched_.clear();
 }
@@ -106,7 +115,10 @@ void Radio::Hear(std::size_t i, RadioRound* out) {
   for (std::size_t m : missions_of_[i]) {
     for (std::uint16_t member : member_lists_[m]) {
       const long j = IndexOf(member);
-      if (member == id || j < 0 || heard_[static_cast<std::size_t>(j)]) continue;
+      if (member == id || j < 0 || heard_[static_cast<std::size_t>(j)] ||
+          quiet_[static_cast<std::size_t>(j)]) {
+        continue;
+      }
       mark(static_cast<std::size_t>(j));
       out->peers.push_back(static_cast<std::size_t>(j));
     }

@@ -401,6 +401,53 @@ TEST(MissionAgentTest, AFirstLeaderReportsInEveryRunningPhaseAsItsHeartbeat) {
   EXPECT_EQ(reports, (std::vector<std::uint64_t>{10, 20, 30}));
 }
 
+TEST(MissionAgentTest, AFirstLeaderDropsAMemberSilentInGatheringOrAbortsWithoutEnough) {
+  MissionAgentParams params;
+  params.lost_after_ticks = 5;
+  MissionSpec spec = Thesis();  // robots [0, 3), robot 0 the only leader, object at (7, 7)
+  MissionAgent leader(0, params);
+  std::string why;
+  ASSERT_TRUE(leader.OnNewMission(spec, &why)) << why;
+  // Robot 1 is inside and heard every tick; robot 2 is never heard (its radio is silent).
+  const std::vector<Neighbour> heard = {At(1, 7.2, 7.0)};
+  MissionOutbox out;
+  std::vector<MissionPhase> phases;
+  std::string reason;
+  for (std::uint64_t t = 1; t <= 10; ++t) {
+    out = MissionOutbox();
+    leader.Tick(PoseAt(7.0, 7.0), heard, t, &out);
+    for (const StatusReport& r : out.statuses) {
+      phases.push_back(r.phase);
+      if (r.phase == MissionPhase::kLoading) reason = r.reason;
+    }
+  }
+  // Gathered without it once it was silent for more than 5 ticks (from the first tick on).
+  ASSERT_EQ(phases, (std::vector<MissionPhase>{MissionPhase::kGathering,
+                                               MissionPhase::kLoading}));
+  EXPECT_NE(reason.find("without robot(s) 2 (lost"), std::string::npos) << reason;
+
+  // With 2 leaders and both others silent, fewer robots than leaders are left: ABORTED.
+  spec.id = 8;
+  spec.leader_number = 2;
+  MissionAgent alone(0, params);
+  ASSERT_TRUE(alone.OnNewMission(spec, &why)) << why;
+  phases.clear();
+  for (std::uint64_t t = 1; t <= 10; ++t) {
+    out = MissionOutbox();
+    alone.Tick(PoseAt(7.0, 7.0), {}, t, &out);
+    for (const StatusReport& r : out.statuses) {
+      phases.push_back(r.phase);
+      if (r.phase == MissionPhase::kAborted) {
+        reason = r.reason;
+        EXPECT_EQ(out.delete_object, std::optional<std::uint16_t>(8));  // its object goes
+      }
+    }
+  }
+  ASSERT_EQ(phases, (std::vector<MissionPhase>{MissionPhase::kGathering,
+                                               MissionPhase::kAborted}));
+  EXPECT_NE(reason.find("robot(s) 1, 2 lost"), std::string::npos) << reason;
+}
+
 }  // namespace
 }  // namespace core
 }  // namespace swarm_transport

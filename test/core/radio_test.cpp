@@ -118,6 +118,22 @@ TEST(RadioTest, LossDropsPositionsButNotTheMissionChannel) {
   for (std::size_t i = 0; i < 3; ++i) EXPECT_EQ(HearOne(&ra, i).in_range, HearOne(&rb, i).in_range);
 }
 
+TEST(RadioTest, AQuietRobotIsHeardByNobodyButHearsTheOthers) {
+  // Robot 1 (dead or hung: it does not answer its ticks) stands between 0 and 2.
+  const World2D world = Line({1.0, 1.9, 2.8, 6.0});
+  LiveMissions missions;
+  missions[4].members = {0, 1, 3};
+  core::Rng rng(1, 0);
+  Radio radio(Range(1.0, 16), &rng);
+  radio.Begin(world, {}, missions, {1});
+  const RadioRound first = HearOne(&radio, 0);
+  EXPECT_TRUE(first.in_range.empty());  // not 1; 2 is beyond range without 1 to relay it
+  EXPECT_TRUE(first.chain.empty());
+  EXPECT_EQ(first.peers, (Indices{3}));  // not 1 over the mission channel either
+  EXPECT_EQ(HearOne(&radio, 1).in_range, (Indices{0, 2}));  // it still hears
+  EXPECT_EQ(HearOne(&radio, 3).peers, (Indices{0}));
+}
+
 }  // namespace
 }  // namespace sim
 }  // namespace swarm_transport

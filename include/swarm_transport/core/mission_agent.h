@@ -32,6 +32,11 @@ struct MissionAgentParams {
   // last known centre than the object's robots can carry it in the ticks since (issue 11).
   double world_size_m = 11.088889;
   double speed_m_per_tick = 0.1;    // the robots' top speed: the object moves no faster
+  // A member of a running mission not heard for this many ticks is lost for the mission (its
+  // radio is silent: a dead or hung robot). In GATHERING the first leader drops it: the group
+  // gathers without it, or the mission ends ABORTED when fewer robots than leaders are left.
+  // Every member is heard every tick over the mission channel while it answers its ticks.
+  std::uint64_t lost_after_ticks = 20;
 };
 
 // How far an object may move in `ticks` ticks when its robots drive at most `speed_m_per_tick`:
@@ -147,6 +152,8 @@ class MissionAgent {
     bool unloaded = false;     // first-leader: UNLOADED arrived during UNLOADING
     std::uint64_t signal_tick = 0;  // ... and takes effect at this tick
     bool self_arrived = false; // this leader reached its leader-only goal
+    std::map<std::uint16_t, std::uint64_t> heard_tick;  // each member's last tick heard
+    std::set<std::uint16_t> lost;  // first leader: members dropped as lost (GATHERING)
   };
   // Where a transport mission's robots are, as this robot hears them.
   struct Group {

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <set>
 #include <vector>
 
 #include "swarm_transport/sim/live_mission.h"
@@ -51,7 +52,11 @@ class Radio {
   // Starts a round over `world`'s current poses. A virtual copy whose owner is in the world
   // stands at its owner's true pose (what a neighbour hears does not depend on when the copy's
   // message arrived); other extras where they were announced.
-  void Begin(const World2D& world, std::vector<RadioExtra> extras, const LiveMissions& missions);
+  // `quiet`: robots whose radio is silent this round (dead or hung: they do not answer their
+  // ticks) - nobody hears them, in range, hop by hop or over the mission channel; they still
+  // hear the others.
+  void Begin(const World2D& world, std::vector<RadioExtra> extras, const LiveMissions& missions,
+             const std::set<std::uint16_t>& quiet = {});
   // The round of the robot at index `i` of the world's robots. Losses are drawn in call order:
   // call in ascending `i` for a reproducible round.
   void Hear(std::size_t i, RadioRound* out);
@@ -75,6 +80,7 @@ class Radio {
   std::vector<std::vector<std::size_t>> missions_of_;  // per robot: its missions' member lists
   std::vector<std::vector<std::uint16_t>> member_lists_;
   std::vector<char> heard_;
+  std::vector<char> quiet_;  // per robot index
   std::vector<std::size_t> touched_;
   std::vector<std::size_t> ring_;
 };

@@ -1,8 +1,11 @@
 #!/usr/bin/env python3
-"""A first leader lost in TRANSPORT (issue 11): its process killed (SIGKILL) in lock-step, the
-mission does not hang - the dispatcher hears nothing from the first leader (no phase, no
-progress report) for its silence limit, ends the mission ABORTED with a reason naming the robot,
-and sends Delete_Object, so the other robots of the mission drop it and flock on."""
+"""Robots lost during a mission (issue 11), their processes killed (SIGKILL) in lock-step:
+- a passive robot in GATHERING: its radio falls silent, the first leader drops it after
+  lost_after_ticks and the rest gathers, loads and carries without it (LOADING names it);
+- the first leader in TRANSPORT: the mission does not hang - the dispatcher hears nothing from
+  the first leader (no phase, no progress report) for its silence limit, ends the mission
+  ABORTED with a reason naming the robot, and sends Delete_Object, so the other robots of the
+  mission drop it and flock on."""
 
 import os
 import signal
@@ -21,13 +24,40 @@ import swarm_testing as st
 
 
 def node_pid(name):
-    api = rosnode.get_api_uri(rosgraph.Master('/leader_lost_test'), name)
-    code, _, pid = xmlrpc.client.ServerProxy(api).getPid('/leader_lost_test')
+    api = rosnode.get_api_uri(rosgraph.Master('/robot_loss_test'), name)
+    code, _, pid = xmlrpc.client.ServerProxy(api).getPid('/robot_loss_test')
     assert code == 1, 'no pid for %s' % name
     return pid
 
 
-class LeaderLost(unittest.TestCase):
+class RobotLoss(unittest.TestCase):
+
+    def test_a_passive_robot_lost_in_gathering_is_dropped(self):
+        g = lambda k: rospy.get_param('~' + k)  # noqa: E731
+        timeout = g('timeout_s')
+        lost = g('lost_robot')
+        status = st.StatusLog()
+        pub = rospy.Publisher('/flock/mission/new', New_Mission, queue_size=10)
+        swarm = st.launch_swarm(robots=g('robots'), seed=g('seed'), lockstep=True, max_ticks=0)
+        log = None
+        try:
+            why = st.submit_before_first_tick(
+                pub, st.mission(6, 0, g('group'), 1, (7.0, 7.0, 2.0, 2.0), (3.0, 3.0)), timeout)
+            self.assertEqual(why, '')
+            log = st.PositionLog()
+            self.assertTrue(st.wait_for(lambda: status.first(6, 1) is not None, timeout),
+                            'no GATHERING; states so far %s' % status.states(6))
+            os.kill(node_pid('/robot_%d/robot' % lost), signal.SIGKILL)
+            self.assertTrue(st.wait_for(lambda: status.final(6), timeout),
+                            'mission 6 never ended; states %s' % status.states(6))
+            self.assertEqual(status.states(6), ['QUEUED', 'GATHERING', 'LOADING', 'TRANSPORT',
+                                                'UNLOADING', 'DONE'])
+            loading = status.first(6, 2)
+            self.assertIn('without robot(s) %d (lost' % lost, loading.reason)
+        finally:
+            swarm.shutdown()
+            if log:
+                log.close()
 
     def test_the_mission_of_a_lost_first_leader_ends_aborted(self):
         g = lambda k: rospy.get_param('~' + k)  # noqa: E731
@@ -67,5 +97,5 @@ class LeaderLost(unittest.TestCase):
 
 
 if __name__ == '__main__':
-    rospy.init_node('leader_lost_test')
-    rostest.rosrun('swarm_transport', 'leader_lost', LeaderLost, sys.argv)
+    rospy.init_node('robot_loss_test')
+    rostest.rosrun('swarm_transport', 'robot_loss', RobotLoss, sys.argv)
