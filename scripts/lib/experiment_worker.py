@@ -360,6 +360,10 @@ class LeaderTrack(object):
         count, labels = presets.components(pts, self.local_range)
         swarm = sum(1 for lab in labels if lab == labels[li]) - 1
         with self.lock:
+            # Checked again here: arrived() may have ended the track while this frame was
+            # being measured.
+            if self.end is not None and msg.tick > self.end:
+                return
             self.rows.append((msg.tick, progress, swarm, count))
 
     def arrived(self, tick):
