@@ -49,6 +49,10 @@ class BadParams(unittest.TestCase):
         self.check('simulator', ['_placement:=grid', '__name:=sim_bad_placement'], {},
                    "placement must be 'random', 'corner' or 'file'")
 
+    def test_simulator_negative_real_time_factor(self):
+        self.check('simulator', ['_real_time_factor:=-1.0', '__name:=sim_bad_pacing'], {},
+                   'real_time_factor must be a finite number >= 0')
+
 
 if __name__ == '__main__':
     rospy.init_node('bad_params_test')

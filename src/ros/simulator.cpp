@@ -81,6 +81,9 @@ std::string SimulatorParams::Validate() const {
     os << "~lockstep_observers must be >= 0 but is " << lockstep_observers;
   } else if (!std::isfinite(lockstep_start_timeout_s) || lockstep_start_timeout_s < 0.0) {
     os << "~lockstep_start_timeout_s must be >= 0 but is " << lockstep_start_timeout_s;
+  } else if (!std::isfinite(real_time_factor) || real_time_factor < 0.0) {
+    os << "~real_time_factor must be a finite number >= 0 (0: as fast as possible) but is "
+       << real_time_factor;
   } else if (!std::isfinite(integration_step_s) || !(integration_step_s > 0.0) ||
              integration_step_s > swarm.tick_period_s) {
     os << "~integration_step_s must be in (0, tick_period_s = " << swarm.tick_period_s
@@ -126,6 +129,7 @@ bool Simulator::LoadParams(std::string* error) {
       !ReadPrivate(p, "lockstep_timeout_s", &params_.lockstep_timeout_s, error) ||
       !ReadPrivate(p, "lockstep_max_ticks", &params_.lockstep_max_ticks, error) ||
       !ReadPrivate(p, "lockstep_start_timeout_s", &params_.lockstep_start_timeout_s, error) ||
+      !ReadPrivate(p, "real_time_factor", &params_.real_time_factor, error) ||
       !ReadPrivate(p, "lockstep_observers", &params_.lockstep_observers, error) ||
       !ReadPrivate(p, "lockstep_dispatcher", &params_.lockstep_dispatcher, error) ||
       !ReadPrivate(p, "integration_step_s", &params_.integration_step_s, error) ||
@@ -566,6 +570,17 @@ void Simulator::RunLockstep() {
     ApplyAnswers();
     world_->Step(params_.swarm.tick_period_s);
     ++tick_;
+    if (params_.real_time_factor > 0.0) {
+      // Paced: tick k ends no earlier than k * tick_period / factor wall seconds after the
+      // start (a late tick is not made up for by rushing the next ones).
+      const ros::WallTime due =
+          started + ros::WallDuration(static_cast<double>(tick_) * params_.swarm.tick_period_s /
+                                      params_.real_time_factor);
+      while (Running() && ros::WallTime::now() < due) {
+        SpinOnce(std::min(kIdleS, std::max(0.0, (due - ros::WallTime::now()).toSec())));
+        PublishVisualsIfDue();
+      }
+    }
     if (tick_ % 100 == 0) {
       ROS_DEBUG("lockstep: tick %llu, %.1f ticks/s", static_cast<unsigned long long>(tick_),
                 tick_ / std::max(1e-9, (ros::WallTime::now() - started).toSec()));

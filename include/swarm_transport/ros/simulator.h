@@ -61,6 +61,9 @@ struct SimulatorParams {
   // recorder, a test, the demo) so that nobody misses the first ticks.
   int lockstep_observers = 0;
   double lockstep_start_timeout_s = 60.0;  // ~lockstep_start_timeout_s: wait for robots to connect
+  // ~real_time_factor: lock-step pacing, simulated seconds per wall second (1.0: real time, to
+  // watch a deterministic run in rviz and send commands by hand; 0: as fast as possible).
+  double real_time_factor = 0.0;
   // ~lockstep_dispatcher: a mission dispatcher answers LOADING / UNLOADING with a stamped
   // LOADED / UNLOADED (/swarm/loaded_delay_s, unloaded_delay_s >= 0); hold the next tick until
   // it arrived (at most lockstep_timeout_s), so that it applies at its stamped tick however
