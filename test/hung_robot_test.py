@@ -8,21 +8,11 @@ import signal
 import sys
 import time
 import unittest
-import xmlrpc.client
 
-import rosgraph
-import rosnode
 import rospy
 import rostest
 
 import swarm_testing as st
-
-
-def node_pid(name):
-    api = rosnode.get_api_uri(rosgraph.Master('/hung_robot_test'), name)
-    code, _, pid = xmlrpc.client.ServerProxy(api).getPid('/hung_robot_test')
-    assert code == 1, 'no pid for %s' % name
-    return pid
 
 
 class HungRobot(unittest.TestCase):
@@ -44,7 +34,7 @@ class HungRobot(unittest.TestCase):
     def test_a_hung_robot_is_waited_for_once_and_rejoins(self):
         hung = rospy.get_param('~hung_robot')
         window = rospy.get_param('~window_s')
-        pid = node_pid('/robot_%d/robot' % hung)
+        pid = st.node_pid('/robot_%d/robot' % hung)
         os.kill(pid, signal.SIGSTOP)
         try:
             start_tick = self.log.latest_tick()

@@ -11,10 +11,7 @@ import os
 import signal
 import sys
 import unittest
-import xmlrpc.client
 
-import rosgraph
-import rosnode
 import rospy
 import rostest
 from std_srvs.srv import Trigger
@@ -23,77 +20,57 @@ from swarm_transport.msg import New_Mission
 import swarm_testing as st
 
 
-def node_pid(name):
-    api = rosnode.get_api_uri(rosgraph.Master('/robot_loss_test'), name)
-    code, _, pid = xmlrpc.client.ServerProxy(api).getPid('/robot_loss_test')
-    assert code == 1, 'no pid for %s' % name
-    return pid
+def g(key):
+    return rospy.get_param('~' + key)
 
 
 class RobotLoss(unittest.TestCase):
 
-    def test_a_passive_robot_lost_in_gathering_is_dropped(self):
-        g = lambda k: rospy.get_param('~' + k)  # noqa: E731
+    def kill_in_phase(self, mission_id, phase, robot):
+        """Launches the swarm, submits a transport mission of robots [0, group) led by robot 0
+        before tick 0, and kills `robot`'s process once the mission reported `phase`. Returns
+        (status log, position log, the tick of the kill); the swarm is shut down at cleanup."""
         timeout = g('timeout_s')
-        lost = g('lost_robot')
         status = st.StatusLog()
         pub = rospy.Publisher('/flock/mission/new', New_Mission, queue_size=10)
         swarm = st.launch_swarm(robots=g('robots'), seed=g('seed'), lockstep=True, max_ticks=0)
-        log = None
-        try:
-            why = st.submit_before_first_tick(
-                pub, st.mission(6, 0, g('group'), 1, (7.0, 7.0, 2.0, 2.0), (3.0, 3.0)), timeout)
-            self.assertEqual(why, '')
-            log = st.PositionLog()
-            self.assertTrue(st.wait_for(lambda: status.first(6, 1) is not None, timeout),
-                            'no GATHERING; states so far %s' % status.states(6))
-            os.kill(node_pid('/robot_%d/robot' % lost), signal.SIGKILL)
-            self.assertTrue(st.wait_for(lambda: status.final(6), timeout),
-                            'mission 6 never ended; states %s' % status.states(6))
-            self.assertEqual(status.states(6), ['QUEUED', 'GATHERING', 'LOADING', 'TRANSPORT',
-                                                'UNLOADING', 'DONE'])
-            loading = status.first(6, 2)
-            self.assertIn('without robot(s) %d (lost' % lost, loading.reason)
-        finally:
-            swarm.shutdown()
-            if log:
-                log.close()
+        self.addCleanup(swarm.shutdown)
+        why = st.submit_before_first_tick(
+            pub, st.mission(mission_id, 0, g('group'), 1, (7.0, 7.0, 2.0, 2.0), (3.0, 3.0)),
+            timeout)
+        self.assertEqual(why, '')
+        log = st.PositionLog()
+        self.addCleanup(log.close)
+        self.assertTrue(st.wait_for(lambda: status.first(mission_id, phase) is not None, timeout),
+                        'no %s; states so far %s' % (st.NAMES[phase], status.states(mission_id)))
+        os.kill(st.node_pid('/robot_%d/robot' % robot), signal.SIGKILL)
+        killed_at = log.latest_tick()
+        self.assertTrue(st.wait_for(lambda: status.final(mission_id), timeout),
+                        'mission %d never ended after robot %d died; states %s'
+                        % (mission_id, robot, status.states(mission_id)))
+        return status, log, killed_at
+
+    def test_a_passive_robot_lost_in_gathering_is_dropped(self):
+        lost = g('lost_robot')
+        status, _, _ = self.kill_in_phase(6, 1, lost)
+        self.assertEqual(status.states(6), ['QUEUED', 'GATHERING', 'LOADING', 'TRANSPORT',
+                                            'UNLOADING', 'DONE'])
+        self.assertIn('without robot(s) %d (lost' % lost, status.first(6, 2).reason)
 
     def test_the_mission_of_a_lost_first_leader_ends_aborted(self):
-        g = lambda k: rospy.get_param('~' + k)  # noqa: E731
-        timeout = g('timeout_s')
-        status = st.StatusLog()
-        pub = rospy.Publisher('/flock/mission/new', New_Mission, queue_size=10)
-        swarm = st.launch_swarm(robots=g('robots'), seed=g('seed'), lockstep=True, max_ticks=0)
-        log = None
-        try:
-            why = st.submit_before_first_tick(
-                pub, st.mission(5, 0, g('group'), 1, (7.0, 7.0, 2.0, 2.0), (3.0, 3.0)), timeout)
-            self.assertEqual(why, '')
-            log = st.PositionLog()
-            self.assertTrue(st.wait_for(lambda: status.first(5, 3) is not None, timeout),
-                            'no TRANSPORT; states so far %s' % status.states(5))
-            os.kill(node_pid('/robot_0/robot'), signal.SIGKILL)  # the first leader
-            killed_at = log.latest_tick()
-            self.assertTrue(st.wait_for(lambda: status.final(5), timeout),
-                            'mission 5 never ended after its first leader died; states %s'
-                            % status.states(5))
-            end = [m for m in status.of(5) if m.state in (5, 6, 7)][0]
-            self.assertEqual(st.NAMES[end.state], 'ABORTED', end.reason)
-            self.assertIn('robot 0', end.reason)
-            self.assertIn('silent', end.reason)
-            self.assertLessEqual(end.tick - killed_at, g('max_ticks_to_abort'),
-                                 'killed at tick %d, ABORTED at tick %d' % (killed_at, end.tick))
-            # The other robots of the mission dropped it and go on ticking.
-            self.assertTrue(log.wait_tick(end.tick + 20, timeout))
-            srv = rospy.ServiceProxy('/robot_1/robot/describe', Trigger)
-            srv.wait_for_service(timeout)
-            self.assertTrue(st.wait_for(lambda: 'missions=[]' in srv().message, timeout),
-                            srv().message)
-        finally:
-            swarm.shutdown()
-            if log:
-                log.close()
+        status, log, killed_at = self.kill_in_phase(5, 3, 0)  # the first leader in TRANSPORT
+        end = [m for m in status.of(5) if m.state in (5, 6, 7)][0]
+        self.assertEqual(st.NAMES[end.state], 'ABORTED', end.reason)
+        self.assertIn('robot 0', end.reason)
+        self.assertIn('silent', end.reason)
+        self.assertLessEqual(end.tick - killed_at, g('max_ticks_to_abort'),
+                             'killed at tick %d, ABORTED at tick %d' % (killed_at, end.tick))
+        # The other robots of the mission dropped it and go on ticking.
+        self.assertTrue(log.wait_tick(end.tick + 20, g('timeout_s')))
+        srv = rospy.ServiceProxy('/robot_1/robot/describe', Trigger)
+        srv.wait_for_service(g('timeout_s'))
+        self.assertTrue(st.wait_for(lambda: 'missions=[]' in srv().message, g('timeout_s')),
+                        srv().message)
 
 
 if __name__ == '__main__':

@@ -118,6 +118,18 @@ def submit_before_first_tick(pub, msg, timeout):
     return ''
 
 
+def node_pid(name):
+    """The process id of node `name`, from its own XML-RPC API (to stop or kill it by pid)."""
+    import xmlrpc.client
+    import rosgraph
+    import rosnode
+    caller = rospy.get_name()
+    api = rosnode.get_api_uri(rosgraph.Master(caller), name)
+    code, _, pid = xmlrpc.client.ServerProxy(api).getPid(caller)
+    assert code == 1, 'no pid for %s' % name
+    return pid
+
+
 def moved(a, b):
     return math.hypot(a[0] - b[0], a[1] - b[1])
 

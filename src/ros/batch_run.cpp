@@ -497,16 +497,8 @@ void Run::Observe(const Mission_Status& status) {
   // The dispatcher: LOADED / UNLOADED at their stamped ticks (MissionDispatcher::OnStatus).
   if (book_ && status.state < 8 && std::isfinite(status.object_position_x) &&
       std::isfinite(status.object_position_y) && std::isfinite(status.distance_to_target)) {
-    core::MissionReport report;
-    report.mission_id = status.mission_id;
-    report.phase = static_cast<MissionPhase>(status.state);
-    report.reason = status.reason;
-    report.tick = status.tick;
-    report.robots_assigned = status.robots_assigned;
-    report.robots_inside = status.robots_inside;
-    report.distance_to_target_m = status.distance_to_target;
     const double now_s = static_cast<double>(tick_) * config_.tick_period_s;
-    for (const core::DueSignal& due : book_->OnStatus(report, now_s).signals) {
+    for (const core::DueSignal& due : book_->OnStatus(ToMissionReport(status), now_s).signals) {
       Mission_Event e;
       e.mission_id = due.mission_id;
       e.event = static_cast<std::uint8_t>(due.kind);
@@ -555,11 +547,7 @@ void Run::Tick() {
   std::size_t i = 0;
   for (auto robot = world_->robots().begin(); robot != world_->robots().end(); ++robot, ++i) {
     radio_->Hear(i, &heard);
-    Neighbors round;
-    round.tick = tick_;
-    round.sim_time = sim_time;
-    round.pose = ToPoseMsg(robot->second.pose, robot->second.last_velocity);
-    FillRadioRound(heard, truth, no_extras, &round);
+    Neighbors round = RadioRoundMessage(tick_, sim_time, robot->second, heard, truth, no_extras);
     round.missions = current.missions;
     round.object_updates = current.updates;
     round.object_deletes = current.deletes;

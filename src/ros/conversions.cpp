@@ -101,15 +101,34 @@ New_Mission ToNewMission(const core::MissionSpec& spec) {
   return msg;
 }
 
-void FillRadioRound(const sim::RadioRound& round, const std::vector<Robot_Position>& truth,
-                    const std::vector<Robot_Position>& extras, Neighbors* msg) {
-  msg->robots.reserve(round.in_range.size() + round.extras.size());
-  for (std::size_t j : round.in_range) msg->robots.push_back(truth[j]);
-  for (std::size_t e : round.extras) msg->robots.push_back(extras[e]);
-  msg->relayed.reserve(round.chain.size());
-  for (std::size_t j : round.chain) msg->relayed.push_back(truth[j]);
-  msg->mission_peers.reserve(round.peers.size());
-  for (std::size_t j : round.peers) msg->mission_peers.push_back(truth[j]);
+Neighbors RadioRoundMessage(std::uint64_t tick, double sim_time, const sim::Robot& robot,
+                            const sim::RadioRound& round,
+                            const std::vector<Robot_Position>& truth,
+                            const std::vector<Robot_Position>& extras) {
+  Neighbors msg;
+  msg.tick = tick;
+  msg.sim_time = sim_time;
+  msg.pose = ToPoseMsg(robot.pose, robot.last_velocity);
+  msg.robots.reserve(round.in_range.size() + round.extras.size());
+  for (std::size_t j : round.in_range) msg.robots.push_back(truth[j]);
+  for (std::size_t e : round.extras) msg.robots.push_back(extras[e]);
+  msg.relayed.reserve(round.chain.size());
+  for (std::size_t j : round.chain) msg.relayed.push_back(truth[j]);
+  msg.mission_peers.reserve(round.peers.size());
+  for (std::size_t j : round.peers) msg.mission_peers.push_back(truth[j]);
+  return msg;
+}
+
+core::MissionReport ToMissionReport(const Mission_Status& msg) {
+  core::MissionReport r;
+  r.mission_id = msg.mission_id;
+  r.phase = static_cast<core::MissionPhase>(msg.state);
+  r.reason = msg.reason;
+  r.tick = msg.tick;
+  r.robots_assigned = msg.robots_assigned;
+  r.robots_inside = msg.robots_inside;
+  r.distance_to_target_m = msg.distance_to_target;
+  return r;
 }
 
 core::Perception ToPerception(std::uint16_t id, const Neighbors& msg) {

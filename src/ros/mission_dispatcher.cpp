@@ -148,18 +148,6 @@ bool MissionFromXmlRpc(XmlRpcValue& e, core::MissionSpec* spec, std::string* err
   return true;
 }
 
-core::MissionReport ToReport(const Mission_Status& msg) {
-  core::MissionReport r;
-  r.mission_id = msg.mission_id;
-  r.phase = static_cast<MissionPhase>(msg.state);
-  r.reason = msg.reason;
-  r.tick = msg.tick;
-  r.robots_assigned = msg.robots_assigned;
-  r.robots_inside = msg.robots_inside;
-  r.distance_to_target_m = msg.distance_to_target;
-  return r;
-}
-
 const char* EventName(core::MissionEventKind kind) {
   return kind == core::MissionEventKind::kLoaded ? "LOADED" : "UNLOADED";
 }
@@ -467,7 +455,7 @@ void MissionDispatcher::OnStatus(const ros::MessageEvent<Mission_Status const>& 
              msg.mission_id, event.getPublisherName().c_str());
     return;
   }
-  core::MissionReport report = ToReport(msg);
+  core::MissionReport report = ToMissionReport(msg);
   const core::MissionBook::StatusOutcome outcome =
       book_->OnStatus(report, ros::Time::now().toSec());
   if (outcome.ignored == "too many live missions") {
@@ -490,7 +478,7 @@ void MissionDispatcher::OnStatus(const ros::MessageEvent<Mission_Status const>& 
 
 void MissionDispatcher::OnProgress(const Mission_Status::ConstPtr& msg) {
   if (!std::isfinite(msg->distance_to_target)) return;
-  book_->OnProgress(ToReport(*msg), ros::Time::now().toSec());
+  book_->OnProgress(ToMissionReport(*msg), ros::Time::now().toSec());
 }
 
 void MissionDispatcher::SendEvent(std::uint16_t id, core::MissionEventKind kind,

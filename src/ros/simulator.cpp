@@ -673,11 +673,7 @@ void Simulator::PublishRadio() {
                   : io->second.direct || io->second.neighbors_subscribers > 0;
     if (!deliver) continue;
     radio_->Hear(i, &round);
-    Neighbors msg;
-    msg.tick = tick_;
-    msg.sim_time = sim_time;
-    msg.pose = ToPoseMsg(robot->second.pose, robot->second.last_velocity);
-    FillRadioRound(round, truth, relayed, &msg);
+    Neighbors msg = RadioRoundMessage(tick_, sim_time, robot->second, round, truth, relayed);
     if (lockstep_) FillRelay(&msg);
     if (io->second.direct) {
       direct_->Deliver(robot->first, boost::make_shared<const Neighbors>(std::move(msg)));

@@ -1,7 +1,7 @@
 // Experiment runs in one process without a ROS master [issue 10, item 9]: the lock-step tick of
 // swarm.launch with deploy:=host_sim, the dispatcher's part in an experiment and the recorder,
 // composed from the same parts the nodes use (World2D and its placement, the Radio,
-// FillRadioRound / ToPerception, RobotBrain and its StatusSequencer, RegisterMission and
+// RadioRoundMessage / ToPerception, RobotBrain and its StatusSequencer, RegisterMission and
 // UpdateMissionObject, the dispatcher's MissionBook, the recorder's RunMetrics), so
 // that a run gives the same rows as a launched one while costing no start-up: a fresh world,
 // robots and generators per run, nothing kept between runs. `scripts/experiment run` uses it by

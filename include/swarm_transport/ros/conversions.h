@@ -13,7 +13,9 @@
 #include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/core/flocking.h"
 #include "swarm_transport/core/kinematics.h"
+#include "swarm_transport/Mission_Status.h"
 #include "swarm_transport/core/mission.h"
+#include "swarm_transport/core/mission_book.h"
 #include "swarm_transport/sim/radio.h"
 
 namespace swarm_transport {
@@ -35,16 +37,21 @@ geometry_msgs::Twist ToTwist(const core::Velocity& velocity);
 bool IsFinite(const Robot_Position& msg);
 bool IsFinite(const geometry_msgs::Twist& msg);
 
-// The part of a Neighbors message the radio decides (`robots`, `relayed`, `mission_peers`):
-// `truth` holds the round's physical robots as positions (index = the radio's robot index),
-// `extras` its relayed extras. The simulator and the in-process batch runner build every
+// A robot's Neighbors message of tick `tick` without the relayed mission messages: its own pose
+// and what the radio decided (`robots`, `relayed`, `mission_peers`); `truth` holds the round's
+// physical robots as positions (index = the radio's robot index), `extras` its relayed extras. The simulator and the in-process batch runner build every
 // robot's round with this, so both hand a robot the same bytes.
-void FillRadioRound(const sim::RadioRound& round, const std::vector<Robot_Position>& truth,
-                    const std::vector<Robot_Position>& extras, Neighbors* msg);
+Neighbors RadioRoundMessage(std::uint64_t tick, double sim_time, const sim::Robot& robot,
+                            const sim::RadioRound& round,
+                            const std::vector<Robot_Position>& truth,
+                            const std::vector<Robot_Position>& extras);
 // What robot `id` perceives of a round when it listens to the radio (comm local): its own
 // pose, then the robots in range, those relayed hop by hop and its mission peers, each list in
 // order; a position with a non-finite value is dropped (the radio relays what robots sent).
 core::Perception ToPerception(std::uint16_t id, const Neighbors& msg);
+
+// A first leader's (or the dispatcher's) Mission_Status -> the report the dispatcher books.
+core::MissionReport ToMissionReport(const Mission_Status& msg);
 
 // New_Mission -> core mission; all_finite records whether every float of the message is finite
 // (ValidateMission rejects the mission otherwise).
