@@ -444,43 +444,16 @@ void Run::RobotTick(Robot* robot, const Neighbors& round, Relay* next, core::Vel
   core::MissionOutbox& outbox = step.outbox;
   std::vector<core::StatusReport> progress;
   robot->statuses.Sequence(true, &outbox.statuses, &progress);
-  if (outbox.update_object) {
-    Update_Object u;
-    u.mission_id = outbox.update_object->first;
-    u.object_position_x = static_cast<float>(outbox.update_object->second.x);
-    u.object_position_y = static_cast<float>(outbox.update_object->second.y);
-    next->updates.push_back(u);
-  }
-  for (const auto& run : outbox.freeze) {
-    Robot_Freeze f;
-    f.robot_index_from = run.first;
-    f.robot_index_to = run.second;
-    next->freezes.push_back(f);
-  }
-  for (const auto& run : outbox.resume) {
-    Robot_Continue c;
-    c.robot_index_from = run.first;
-    c.robot_index_to = run.second;
-    next->continues.push_back(c);
-  }
-  if (outbox.delete_object) {
-    Delete_Object d;
-    d.mission_id = *outbox.delete_object;
-    next->deletes.push_back(d);
-  }
-  for (const core::StatusReport& r : outbox.statuses) {
-    Mission_Status m;
-    m.mission_id = r.mission_id;
-    m.state = static_cast<std::uint8_t>(r.phase);
-    m.reason = r.reason;
-    m.tick = round.tick;
-    m.robots_assigned = r.assigned;
-    m.robots_inside = r.inside;
-    m.object_position_x = static_cast<float>(r.object.x);
-    m.object_position_y = static_cast<float>(r.object.y);
-    m.distance_to_target = static_cast<float>(r.distance_to_target);
-    next->statuses.push_back(m);
-  }
+  const Tick_Answer said =
+      ToAnswerMessages(outbox, progress, round.tick, ros::Time(round.sim_time));
+  const auto append = [](auto* to, const auto& from) {
+    to->insert(to->end(), from.begin(), from.end());
+  };
+  append(&next->updates, said.object_updates);
+  append(&next->freezes, said.freezes);
+  append(&next->continues, said.continues);
+  append(&next->deletes, said.object_deletes);
+  append(&next->statuses, said.statuses);
   // The simulator's OnCmdVel: a non-finite command stands.
   const geometry_msgs::Twist twist = ToTwist(step.command);
   *command = IsFinite(twist) ? ToVelocity(twist) : core::Velocity();

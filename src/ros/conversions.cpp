@@ -119,6 +119,53 @@ Neighbors RadioRoundMessage(std::uint64_t tick, double sim_time, const sim::Robo
   return msg;
 }
 
+Tick_Answer ToAnswerMessages(const core::MissionOutbox& outbox,
+                             const std::vector<core::StatusReport>& progress,
+                             std::uint64_t tick, const ros::Time& stamp) {
+  const auto status = [tick, &stamp](const core::StatusReport& r) {
+    Mission_Status m;
+    m.mission_id = r.mission_id;
+    m.state = static_cast<std::uint8_t>(r.phase);
+    m.reason = r.reason;
+    m.stamp = stamp;
+    m.tick = tick;
+    m.robots_assigned = r.assigned;
+    m.robots_inside = r.inside;
+    m.object_position_x = static_cast<float>(r.object.x);
+    m.object_position_y = static_cast<float>(r.object.y);
+    m.distance_to_target = static_cast<float>(r.distance_to_target);
+    return m;
+  };
+  Tick_Answer m;
+  if (outbox.update_object) {
+    Update_Object u;
+    u.mission_id = outbox.update_object->first;
+    u.object_position_x = static_cast<float>(outbox.update_object->second.x);
+    u.object_position_y = static_cast<float>(outbox.update_object->second.y);
+    m.object_updates.push_back(u);
+  }
+  for (const auto& run : outbox.freeze) {
+    Robot_Freeze f;
+    f.robot_index_from = run.first;
+    f.robot_index_to = run.second;
+    m.freezes.push_back(f);
+  }
+  for (const auto& run : outbox.resume) {
+    Robot_Continue c;
+    c.robot_index_from = run.first;
+    c.robot_index_to = run.second;
+    m.continues.push_back(c);
+  }
+  if (outbox.delete_object) {
+    Delete_Object d;
+    d.mission_id = *outbox.delete_object;
+    m.object_deletes.push_back(d);
+  }
+  for (const core::StatusReport& r : outbox.statuses) m.statuses.push_back(status(r));
+  for (const core::StatusReport& r : progress) m.progress.push_back(status(r));
+  return m;
+}
+
 core::MissionReport ToMissionReport(const Mission_Status& msg) {
   core::MissionReport r;
   r.mission_id = msg.mission_id;

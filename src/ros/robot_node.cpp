@@ -373,38 +373,10 @@ bool RobotNode::MissionOutletsReady() {
 
 Tick_Answer RobotNode::MissionMessages(const core::MissionOutbox& outbox,
                                        const std::vector<core::StatusReport>& progress) const {
-  Tick_Answer m;
-  if (outbox.update_object) {
-    Update_Object u;
-    u.mission_id = outbox.update_object->first;
-    u.object_position_x = static_cast<float>(outbox.update_object->second.x);
-    u.object_position_y = static_cast<float>(outbox.update_object->second.y);
-    m.object_updates.push_back(u);
-  }
-  for (const auto& run : outbox.freeze) {
-    Robot_Freeze f;
-    f.robot_index_from = run.first;
-    f.robot_index_to = run.second;
-    m.freezes.push_back(f);
-  }
-  for (const auto& run : outbox.resume) {
-    Robot_Continue c;
-    c.robot_index_from = run.first;
-    c.robot_index_to = run.second;
-    m.continues.push_back(c);
-  }
-  if (outbox.delete_object) {
-    Delete_Object d;
-    d.mission_id = *outbox.delete_object;
-    m.object_deletes.push_back(d);
-  }
-  // The sequencer kept one report per phase; its repeats carry progress only.
   for (const core::StatusReport& r : outbox.statuses) {
-    m.statuses.push_back(ToStatus(r));
     ROS_INFO("robot %u: mission %u %s", id_, r.mission_id, core::PhaseName(r.phase));
   }
-  for (const core::StatusReport& r : progress) m.progress.push_back(ToStatus(r));
-  return m;
+  return ToAnswerMessages(outbox, progress, perception_->tick, ros::Time::now());
 }
 
 void RobotNode::Publish(const Tick_Answer& m) {
@@ -423,21 +395,6 @@ void RobotNode::Publish(const Tick_Answer& m) {
   if (progress_pub_) {
     for (const auto& st : m.progress) progress_pub_.publish(st);
   }
-}
-
-Mission_Status RobotNode::ToStatus(const core::StatusReport& r) const {
-  Mission_Status m;
-  m.mission_id = r.mission_id;
-  m.state = static_cast<std::uint8_t>(r.phase);
-  m.reason = r.reason;
-  m.stamp = ros::Time::now();
-  m.tick = perception_->tick;
-  m.robots_assigned = r.assigned;
-  m.robots_inside = r.inside;
-  m.object_position_x = static_cast<float>(r.object.x);
-  m.object_position_y = static_cast<float>(r.object.y);
-  m.distance_to_target = static_cast<float>(r.distance_to_target);
-  return m;
 }
 
 void RobotNode::Tick() {

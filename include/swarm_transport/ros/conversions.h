@@ -14,6 +14,8 @@
 #include "swarm_transport/core/flocking.h"
 #include "swarm_transport/core/kinematics.h"
 #include "swarm_transport/Mission_Status.h"
+#include "swarm_transport/Tick_Answer.h"
+#include "swarm_transport/core/mission_agent.h"
 #include "swarm_transport/core/mission.h"
 #include "swarm_transport/core/mission_book.h"
 #include "swarm_transport/sim/radio.h"
@@ -49,6 +51,14 @@ Neighbors RadioRoundMessage(std::uint64_t tick, double sim_time, const sim::Robo
 // pose, then the robots in range, those relayed hop by hop and its mission peers, each list in
 // order; a position with a non-finite value is dropped (the radio relays what robots sent).
 core::Perception ToPerception(std::uint16_t id, const Neighbors& msg);
+
+// What a first leader says in tick `tick`, as messages (a Tick_Answer's lists, without tick
+// and command): its outbox (statuses already sequenced: one per phase) and its progress
+// reports, every status stamped `tick` and `stamp`. The robot node and the batch engine both
+// build them here.
+Tick_Answer ToAnswerMessages(const core::MissionOutbox& outbox,
+                             const std::vector<core::StatusReport>& progress,
+                             std::uint64_t tick, const ros::Time& stamp);
 
 // A first leader's (or the dispatcher's) Mission_Status -> the report the dispatcher books.
 core::MissionReport ToMissionReport(const Mission_Status& msg);

@@ -110,7 +110,6 @@ class RobotNode {
                               const std::vector<core::StatusReport>& progress) const;
   // Real time: publishes them on the mission topics (/flock/mission/status, .../progress, ...).
   void Publish(const Tick_Answer& messages);
-  Mission_Status ToStatus(const core::StatusReport& report) const;
   // Logs a rejected message: one line per kind per kRejectLogPeriodS, with how many of that
   // kind it did not log since.
   void Rejected(const std::string& kind, const std::string& why);
