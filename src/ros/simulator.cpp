@@ -26,6 +26,8 @@ constexpr int kMaxRobots = 65536;
 constexpr std::uint32_t kNeighborsQueue = 2;
 constexpr std::uint32_t kPoseQueue = 10;
 constexpr std::uint32_t kCmdVelQueue = 10;
+// Lock-step answers: one per robot and tick; late ones may queue behind the current one.
+constexpr std::uint32_t kAnswerQueue = 10;
 constexpr std::uint32_t kPositionQueue = 10000;
 constexpr std::uint32_t kPositionsQueue = 100;
 // Lock-step runs thousands of ticks per second in one process (deploy:=host_sim): a recorder
@@ -298,7 +300,7 @@ void Simulator::AddRobotIo(std::uint16_t id) {
   }
   if (lockstep_ && !io.direct) {
     ros::SubscribeOptions answer_ops = ros::SubscribeOptions::create<Tick_Answer>(
-        names::kAnswer, kCmdVelQueue,
+        names::kAnswer, kAnswerQueue,
         [this, id](const Tick_Answer::ConstPtr& msg) { OnAnswer(id, *msg); }, ros::VoidConstPtr(),
         &cmd_queue_);
     answer_ops.transport_hints = ros::TransportHints().tcpNoDelay();
