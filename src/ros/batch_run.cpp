@@ -30,7 +30,9 @@
 #include "swarm_transport/core/robot_brain.h"
 #include "swarm_transport/core/run_metrics.h"
 #include "swarm_transport/ros/conversions.h"
+#include "swarm_transport/ros/mission_relay.h"
 #include "swarm_transport/ros/params.h"
+#include "swarm_transport/ros/simulator_params.h"
 #include "swarm_transport/sim/live_mission.h"
 #include "swarm_transport/sim/radio.h"
 #include "swarm_transport/sim/world2d.h"
@@ -43,6 +45,8 @@ using Clock = std::chrono::steady_clock;
 
 // As launch/simulator.launch and launch/recorder.launch set them for an experiment.
 constexpr double kIntegrationStepS = 0.01;
+// The relay's sender of the run's order and the dispatcher's events.
+constexpr char kDispatcherSender[] = "/mission_dispatcher";
 constexpr double kSamplePeriodS = 10.0;
 
 double Seconds(Clock::time_point from) {
@@ -179,18 +183,6 @@ class LeaderTrack {
   std::vector<Row> rows_;
 };
 
-// One tick's mission messages, relayed in every robot's round of the next tick (the lock-step
-// simulator's relay lists; every list here has one sender, so arrival order is send order).
-struct Relay {
-  std::vector<New_Mission> missions;
-  std::vector<Update_Object> updates;
-  std::vector<Delete_Object> deletes;
-  std::vector<Robot_Freeze> freezes;
-  std::vector<Robot_Continue> continues;
-  std::vector<Mission_Event> events;
-  std::vector<Mission_Status> statuses;
-};
-
 struct Robot {
   std::uint16_t id;
   core::RobotBrain brain;
@@ -240,13 +232,12 @@ class Run {
 
  private:
   void TakeFrame();
-  void RobotTick(Robot* robot, const Neighbors& round, Relay* next, core::Velocity* command);
-  void AfterTick(const Relay& next);
+  // One robot's tick on its round: what it says (its answer) and its command.
+  void RobotTick(Robot* robot, const Neighbors& round, Tick_Answer* said, core::Velocity* command);
   void Observe(const Mission_Status& status);
 
   const BatchJob& job_;
   SwarmConfig config_;
-  double radio_loss_ = 0.0;
   std::unique_ptr<sim::World2D> world_;
   std::unique_ptr<core::Rng> radio_rng_;
   std::unique_ptr<sim::Radio> radio_;
@@ -261,7 +252,7 @@ class Run {
   CsvOut swarm_csv_;
   CsvOut missions_csv_;
   CsvOut trace_csv_;
-  Relay relay_;
+  MissionRelay relay_;  // the simulator's lock-step relay
   std::uint64_t tick_ = 0;
   bool over_ = false;
   std::string end_;
@@ -285,28 +276,30 @@ bool Run::SetUp(const XmlRpc::XmlRpcValue& base_config, std::string* error) {
     *error = "/swarm: " + *error;
     return false;
   }
-  *error = config_.Validate();
-  if (!error->empty()) return false;
+  // The simulator's parameters as swarm.launch sets them for a lock-step host_sim run.
+  SimulatorParams sim_params;
+  sim_params.swarm = config_;
   if (swarm.hasMember("radio_loss")) {
     XmlRpc::XmlRpcValue& loss = swarm["radio_loss"];
     if (loss.getType() == XmlRpc::XmlRpcValue::TypeDouble) {
-      radio_loss_ = static_cast<double>(loss);
+      sim_params.radio_loss = static_cast<double>(loss);
     } else if (loss.getType() == XmlRpc::XmlRpcValue::TypeInt) {
-      radio_loss_ = static_cast<int>(loss);
+      sim_params.radio_loss = static_cast<int>(loss);
     } else {
       *error = "/swarm/radio_loss must be a number";
       return false;
     }
   }
-
-  sim::WorldParams world;
-  world.world_size_m = config_.flocking.world_size_m;
-  world.robot_radius_m = config_.flocking.robot_radius_m;
-  world.integration_step_s = kIntegrationStepS;
-  world.command_duration_s = config_.tick_period_s;
-  *error = world.Validate();
+  sim_params.robots = job_.robots;
+  sim_params.placement = job_.placement;
+  sim_params.placement_file = job_.placement_file;
+  sim_params.clock = core::Clock::kLockstep;
+  sim_params.integration_step_s = kIntegrationStepS;
+  sim_params.radio_range_m = config_.flocking.local_range_m;
+  *error = sim_params.Validate();
+  if (error->empty()) *error = WorldParamsOf(sim_params).Validate();
   if (!error->empty()) return false;
-  world_ = std::make_unique<sim::World2D>(world);
+  world_ = std::make_unique<sim::World2D>(WorldParamsOf(sim_params));
   int robots = job_.robots;
   if (!sim::PlaceInitialRobots(job_.placement, config_.seed, job_.placement_file, &robots,
                                world_.get(), error)) {
@@ -314,12 +307,7 @@ bool Run::SetUp(const XmlRpc::XmlRpcValue& base_config, std::string* error) {
     return false;
   }
   radio_rng_ = std::make_unique<core::Rng>(config_.seed, sim::kRadioLossStream);
-  sim::RadioParams radio;
-  radio.range_m = config_.flocking.local_range_m;
-  radio.hops =
-      config_.flocking.neighbourhood == core::Neighbourhood::kChain ? config_.chain_hops : 1;
-  radio.loss = radio_loss_;
-  radio_ = std::make_unique<sim::Radio>(radio, radio_rng_.get());
+  radio_ = std::make_unique<sim::Radio>(RadioParamsOf(sim_params), radio_rng_.get());
   for (const auto& entry : world_->robots()) {
     robots_.push_back(std::make_unique<Robot>(entry.first, config_));
     known_robots_.insert(entry.first);
@@ -415,7 +403,8 @@ void Run::TakeFrame() {
   }
 }
 
-void Run::RobotTick(Robot* robot, const Neighbors& round, Relay* next, core::Velocity* command) {
+void Run::RobotTick(Robot* robot, const Neighbors& round, Tick_Answer* said,
+                    core::Velocity* command) {
   core::RobotBrain& brain = robot->brain;
   // RobotNode::ApplyRelayed, in its order.
   for (const New_Mission& m : round.missions) {
@@ -444,16 +433,7 @@ void Run::RobotTick(Robot* robot, const Neighbors& round, Relay* next, core::Vel
   core::MissionOutbox& outbox = step.outbox;
   std::vector<core::StatusReport> progress;
   robot->statuses.Sequence(true, &outbox.statuses, &progress);
-  const Tick_Answer said =
-      ToAnswerMessages(outbox, progress, round.tick, ros::Time(round.sim_time));
-  const auto append = [](auto* to, const auto& from) {
-    to->insert(to->end(), from.begin(), from.end());
-  };
-  append(&next->updates, said.object_updates);
-  append(&next->freezes, said.freezes);
-  append(&next->continues, said.continues);
-  append(&next->deletes, said.object_deletes);
-  append(&next->statuses, said.statuses);
+  *said = ToAnswerMessages(outbox, progress, round.tick, ros::Time(round.sim_time));
   // The simulator's OnCmdVel: a non-finite command stands.
   const geometry_msgs::Twist twist = ToTwist(step.command);
   *command = IsFinite(twist) ? ToVelocity(twist) : core::Velocity();
@@ -476,7 +456,7 @@ void Run::Observe(const Mission_Status& status) {
       e.mission_id = due.mission_id;
       e.event = static_cast<std::uint8_t>(due.kind);
       e.not_before_tick = due.not_before_tick;
-      relay_.events.push_back(e);
+      relay_.Add(kDispatcherSender, e);
     }
   }
   // The recorder.
@@ -499,9 +479,10 @@ void Run::Tick() {
     over_ = true;
     return;
   }
-  if (tick_ == 0 && order_) {
-    sim::RegisterMission(ToMissionSpec(*order_), *world_, &missions_);
-    relay_.missions.push_back(*order_);
+  if (tick_ == 0 && order_) relay_.AddOrder(kDispatcherSender, *order_);
+  // The simulator's PublishRadio: orders due enter the relay and the books, then every round.
+  for (const New_Mission& order : relay_.ReleaseOrders(tick_)) {
+    sim::RegisterMission(ToMissionSpec(order), *world_, &missions_);
   }
   const double sim_time = static_cast<double>(tick_) * config_.tick_period_s;
   std::vector<Robot_Position> truth;
@@ -512,33 +493,33 @@ void Run::Tick() {
   radio_->Begin(*world_, {}, missions_);
   TakeFrame();
 
-  Relay current = std::move(relay_);
-  relay_ = Relay();
   const std::vector<Robot_Position> no_extras;
   std::vector<core::Velocity> commands(robots_.size());
+  std::vector<Tick_Answer> answers(robots_.size());
   sim::RadioRound heard;
   std::size_t i = 0;
   for (auto robot = world_->robots().begin(); robot != world_->robots().end(); ++robot, ++i) {
     radio_->Hear(i, &heard);
     Neighbors round = RadioRoundMessage(tick_, sim_time, robot->second, heard, truth, no_extras);
-    round.missions = current.missions;
-    round.object_updates = current.updates;
-    round.object_deletes = current.deletes;
-    round.freezes = current.freezes;
-    round.continues = current.continues;
-    round.mission_events = current.events;
-    round.statuses = current.statuses;
-    RobotTick(robots_[i].get(), round, &relay_, &commands[i]);
+    relay_.Fill(&round);
+    RobotTick(robots_[i].get(), round, &answers[i], &commands[i]);
   }
-  // The simulator's own books (object updates and deletes), then the observers of the
-  // statuses; the dispatcher's events join the next tick's relay.
-  for (const Update_Object& u : relay_.updates) {
-    sim::UpdateMissionObject(u.mission_id, {u.object_position_x, u.object_position_y}, *world_,
-                             &missions_);
+  relay_.Clear();
+  // The lock-step session's TakeAnswers, by robot id: the next relay, the simulator's own books
+  // (object updates and deletes), then the observers of the statuses (the dispatcher's events
+  // join the next tick's relay).
+  for (i = 0; i < robots_.size(); ++i) {
+    const Tick_Answer& a = answers[i];
+    relay_.AddAnswer(robots_[i]->id, a);
+    for (const Update_Object& u : a.object_updates) {
+      sim::UpdateMissionObject(u.mission_id, {u.object_position_x, u.object_position_y}, *world_,
+                               &missions_);
+    }
+    for (const Delete_Object& d : a.object_deletes) missions_.erase(d.mission_id);
   }
-  for (const Delete_Object& d : relay_.deletes) missions_.erase(d.mission_id);
-  const std::vector<Mission_Status> statuses = relay_.statuses;
-  for (const Mission_Status& s : statuses) Observe(s);
+  for (const Tick_Answer& a : answers) {
+    for (const Mission_Status& s : a.statuses) Observe(s);
+  }
   // All answers apply together, then the world steps one tick.
   i = 0;
   for (const auto& entry : world_->robots()) world_->SetCommand(entry.first, commands[i++], nullptr);

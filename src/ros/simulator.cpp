@@ -4,7 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+#include <set>
 #include <type_traits>
 
 #include "swarm_transport/Pose.h"
@@ -18,16 +18,9 @@ namespace swarm_transport {
 namespace {
 
 constexpr char kClockTopic[] = "/clock";
-constexpr int kMaxRobots = 65536;
-// Queue sizes. Neighbors: one message per tick, a robot is never more than one tick behind.
-// cmd_vel: lock-step sends one per tick; real time may burst. /flock/position: every robot
-// publishes every tick and only virtual copies / statists matter, so it must hold a whole
-// swarm's tick. /flock/positions: the recorder must see every lock-step tick.
-constexpr std::uint32_t kNeighborsQueue = 2;
-constexpr std::uint32_t kPoseQueue = 10;
-constexpr std::uint32_t kCmdVelQueue = 10;
-// Lock-step answers: one per robot and tick; late ones may queue behind the current one.
-constexpr std::uint32_t kAnswerQueue = 10;
+// Queue sizes. /flock/position: every robot publishes every tick and only virtual copies /
+// statists matter, so it must hold a whole swarm's tick. /flock/positions: the recorder must
+// see every lock-step tick.
 constexpr std::uint32_t kPositionQueue = 10000;
 constexpr std::uint32_t kPositionsQueue = 100;
 // Lock-step runs thousands of ticks per second in one process (deploy:=host_sim): a recorder
@@ -35,22 +28,10 @@ constexpr std::uint32_t kPositionsQueue = 100;
 // later tick). Memory is used only while a subscriber lags.
 constexpr std::uint32_t kLockstepPositionsQueue = 10000;
 constexpr std::uint32_t kMissionQueue = 100;
-// Polling period of the lock-step wait (s): also bounds a robot-less tick to ~1 ms.
-constexpr double kPollS = 0.001;
 // Period of the idle loop after the last lock-step tick and of the start wait (s).
 constexpr double kIdleS = 0.01;
-// A robot must be connected this long (wall s) before lock-step counts on its answers.
-constexpr double kSettleS = 0.2;
-// At most one warning of a kind per this many wall seconds (ROS_*_THROTTLE uses ros::Time,
-// which stands still at 0 under use_sim_time before /clock runs).
+// At most one warning of a kind per this many wall seconds (see WallThrottle).
 constexpr double kWarnPeriodS = 5.0;
-// True (and `last` updated) when `period_s` of wall time passed since the last true.
-bool WallThrottle(ros::WallTime* last, double period_s) {
-  const ros::WallTime now = ros::WallTime::now();
-  if (!last->isZero() && (now - *last).toSec() < period_s) return false;
-  *last = now;
-  return true;
-}
 
 // A teleport service's answer: OK, or ERROR with the reason (also logged).
 template <typename Response>
@@ -64,40 +45,6 @@ bool Reply(bool ok, const char* service, std::uint16_t id, const std::string& er
 
 }  // namespace
 
-std::string SimulatorParams::Validate() const {
-  std::ostringstream os;
-  const std::string swarm_error = swarm.Validate();
-  if (!swarm_error.empty()) {
-    os << "/swarm: " << swarm_error;
-  } else if (!std::isfinite(radio_loss) || radio_loss < 0.0 || radio_loss > 1.0) {
-    os << "/swarm/radio_loss must be a probability in [0, 1] but is " << radio_loss;
-  } else if (placement == core::Placement::kFile && placement_file.empty()) {
-    os << "~placement_file must name a file when ~placement is file";
-  } else if (robots > kMaxRobots || robots < (placement == core::Placement::kFile ? -1 : 0)) {
-    os << "~robots must be in [0, " << kMaxRobots << "] but is " << robots;
-  } else if (!std::isfinite(lockstep_timeout_s) || !(lockstep_timeout_s > 0.0)) {
-    os << "~lockstep_timeout_s must be > 0 but is " << lockstep_timeout_s;
-  } else if (lockstep_max_ticks < 0) {
-    os << "~lockstep_max_ticks must be >= 0 (0: unbounded) but is " << lockstep_max_ticks;
-  } else if (lockstep_observers < 0) {
-    os << "~lockstep_observers must be >= 0 but is " << lockstep_observers;
-  } else if (!std::isfinite(lockstep_start_timeout_s) || lockstep_start_timeout_s < 0.0) {
-    os << "~lockstep_start_timeout_s must be >= 0 but is " << lockstep_start_timeout_s;
-  } else if (!std::isfinite(real_time_factor) || real_time_factor < 0.0) {
-    os << "~real_time_factor must be a finite number >= 0 (0: as fast as possible) but is "
-       << real_time_factor;
-  } else if (!std::isfinite(integration_step_s) || !(integration_step_s > 0.0) ||
-             integration_step_s > swarm.tick_period_s) {
-    os << "~integration_step_s must be in (0, tick_period_s = " << swarm.tick_period_s
-       << "] but is " << integration_step_s;
-  } else if (!std::isfinite(markers_rate_hz) || markers_rate_hz < 0.0) {
-    os << "~markers_rate_hz must be >= 0 (0: off) but is " << markers_rate_hz;
-  } else if (!std::isfinite(radio_range_m) || !(radio_range_m > 0.0)) {
-    os << "~radio_range_m must be > 0 but is " << radio_range_m;
-  }
-  return os.str();
-}
-
 volatile std::sig_atomic_t Simulator::stop_requested_ = 0;
 
 Simulator::Simulator(ros::NodeHandle nh, ros::NodeHandle private_nh)
@@ -107,78 +54,73 @@ void Simulator::RequestStop() { stop_requested_ = 1; }
 
 bool Simulator::Running() { return stop_requested_ == 0 && ros::ok(); }
 
-bool Simulator::LoadParams(std::string* error) {
-  XmlRpc::XmlRpcValue swarm;
-  if (nh_.getParam("/swarm", swarm) && !ConfigFromXmlRpc(swarm, &params_.swarm, error)) {
-    *error = "/swarm: " + *error;
-    return false;
-  }
-  if (nh_.hasParam("/swarm/radio_loss") && !nh_.getParam("/swarm/radio_loss", params_.radio_loss)) {
-    *error = "/swarm/radio_loss must be a number";
-    return false;
-  }
-  params_.radio_range_m = params_.swarm.flocking.local_range_m;
-  // Directly linked robots (a robot_host that runs the simulator) go without pose topics
-  // unless asked for.
-  params_.pose_topics = direct_ == nullptr;
-  const ros::NodeHandle& p = private_nh_;
-  if (!ReadPrivate(p, "placement", &params_.placement, error)) return false;
-  // With a placement file, robots defaults to every line of it.
-  if (params_.placement == core::Placement::kFile) params_.robots = -1;
-  if (!ReadPrivate(p, "robots", &params_.robots, error) ||
-      !ReadPrivate(p, "placement_file", &params_.placement_file, error) ||
-      !ReadPrivate(p, "clock", &params_.clock, error) ||
-      !ReadPrivate(p, "lockstep_timeout_s", &params_.lockstep_timeout_s, error) ||
-      !ReadPrivate(p, "lockstep_max_ticks", &params_.lockstep_max_ticks, error) ||
-      !ReadPrivate(p, "lockstep_start_timeout_s", &params_.lockstep_start_timeout_s, error) ||
-      !ReadPrivate(p, "real_time_factor", &params_.real_time_factor, error) ||
-      !ReadPrivate(p, "lockstep_observers", &params_.lockstep_observers, error) ||
-      !ReadPrivate(p, "lockstep_dispatcher", &params_.lockstep_dispatcher, error) ||
-      !ReadPrivate(p, "integration_step_s", &params_.integration_step_s, error) ||
-      !ReadPrivate(p, "markers_rate_hz", &params_.markers_rate_hz, error) ||
-      !ReadPrivate(p, "tf", &params_.tf, error) ||
-      !ReadPrivate(p, "range_circles", &params_.range_circles, error) ||
-      !ReadPrivate(p, "radio_range_m", &params_.radio_range_m, error) ||
-      !ReadPrivate(p, "pose_topics", &params_.pose_topics, error)) {
-    return false;
-  }
-  *error = params_.Validate();
-  if (!error->empty()) return false;
-
-  sim::WorldParams world;
-  world.world_size_m = params_.swarm.flocking.world_size_m;
-  world.robot_radius_m = params_.swarm.flocking.robot_radius_m;
-  world.integration_step_s = params_.integration_step_s;
-  // A command is one tick's move: it is held exactly one tick (turtlesim holds 1 s).
-  world.command_duration_s = params_.swarm.tick_period_s;
-  *error = world.Validate();
-  if (!error->empty()) return false;
-  world_ = std::make_unique<sim::World2D>(world);
-  lockstep_ = params_.clock == core::Clock::kLockstep;
-  return true;
-}
-
-bool Simulator::PlaceInitialRobots(std::string* error) {
-  return sim::PlaceInitialRobots(params_.placement, params_.swarm.seed, params_.placement_file,
-                                 &params_.robots, world_.get(), error);
-}
-
 bool Simulator::Initialize() {
   thread_ = std::this_thread::get_id();
   std::string error;
-  if (!LoadParams(&error) || !PlaceInitialRobots(&error)) {
+  bool ok = ReadSimulatorParams(nh_, private_nh_, direct_ != nullptr, &params_, &error);
+  if (ok) {
+    world_ = std::make_unique<sim::World2D>(WorldParamsOf(params_));
+    ok = sim::PlaceInitialRobots(params_.placement, params_.swarm.seed, params_.placement_file,
+                                 &params_.robots, world_.get(), &error);
+    if (!ok && error.empty()) error = "the initial robots do not fit the arena";
+  }
+  if (!ok) {
     ROS_FATAL("simulator: invalid parameters: %s", error.c_str());
     return false;
   }
+  lockstep_ = params_.clock == core::Clock::kLockstep;
   radio_rng_ = std::make_unique<core::Rng>(params_.swarm.seed, sim::kRadioLossStream);
-  sim::RadioParams radio;
-  radio.range_m = params_.radio_range_m;
-  radio.hops = params_.swarm.flocking.neighbourhood == core::Neighbourhood::kChain
-                   ? params_.swarm.chain_hops
-                   : 1;
-  radio.loss = params_.radio_loss;
-  radio_ = std::make_unique<sim::Radio>(radio, radio_rng_.get());
+  radio_ = std::make_unique<sim::Radio>(RadioParamsOf(params_), radio_rng_.get());
+  RobotLinkHandlers handlers;
+  handlers.cmd_vel = [this](std::uint16_t id, const geometry_msgs::Twist& m) { OnCmdVel(id, m); };
+  handlers.answer = [this](std::uint16_t id, const Tick_Answer& m) { OnAnswer(id, m); };
+  handlers.teleport_absolute = [this](std::uint16_t id, TeleportAbsolute::Request& req,
+                                      TeleportAbsolute::Response& res) {
+    return OnTeleportAbsolute(id, req, res);
+  };
+  handlers.teleport_relative = [this](std::uint16_t id, TeleportRelative::Request& req,
+                                      TeleportRelative::Response& res) {
+    return OnTeleportRelative(id, req, res);
+  };
+  links_ = std::make_unique<RobotLinks>(nh_, &cmd_queue_, direct_, lockstep_,
+                                        params_.pose_topics, std::move(handlers));
+  if (lockstep_) {
+    LockstepHooks hooks;
+    hooks.running = &Simulator::Running;
+    hooks.spin = [this](double wait_s) { SpinOnce(wait_s); };
+    hooks.spin_robots = [this] { SpinRobots(); };
+    hooks.visuals = [this] { PublishVisualsIfDue(); };
+    hooks.books = [this](const Tick_Answer& a) {
+      for (const Update_Object& u : a.object_updates) {
+        sim::UpdateMissionObject(u.mission_id, {u.object_position_x, u.object_position_y},
+                                 *world_, &missions_);
+      }
+      for (const Delete_Object& d : a.object_deletes) missions_.erase(d.mission_id);
+    };
+    session_ = std::make_unique<LockstepSession>(nh_, params_, links_.get(), &cmd_queue_,
+                                                 std::move(hooks));
+  }
+  Connect();
+  for (const auto& entry : world_->robots()) AddRobot(entry.first);
+  PublishRobotList();
 
+  bool use_sim_time = false;
+  nh_.getParam("/use_sim_time", use_sim_time);
+  if (!lockstep_ && use_sim_time) {
+    ROS_WARN("simulator: realtime clock but /use_sim_time is true: nobody publishes /clock");
+  }
+  ROS_INFO(
+      "simulator: %zu robots (%s placement), %s clock, tick %.3f s, step %.3f s, "
+      "arena %.3f m, radius %.3f m, radio range %.3f m, loss %.2f, seed %llu",
+      world_->size(), core::PlacementName(params_.placement), core::ClockName(params_.clock),
+      params_.swarm.tick_period_s, params_.integration_step_s,
+      params_.swarm.flocking.world_size_m, params_.swarm.flocking.robot_radius_m,
+      params_.radio_range_m, params_.radio_loss,
+      static_cast<unsigned long long>(params_.swarm.seed));
+  return true;
+}
+
+void Simulator::Connect() {
   // Latched: a late subscriber (a test after the last lock-step tick) still gets the state.
   positions_pub_ = nh_.advertise<Robot_Positions>(
       names::kPositions, lockstep_ ? kLockstepPositionsQueue : kPositionsQueue, true);
@@ -209,165 +151,19 @@ bool Simulator::Initialize() {
       nh_.subscribe(names::kObjectUpdate, kMissionQueue, &Simulator::OnObjectUpdate, this);
   object_delete_sub_ =
       nh_.subscribe(names::kObjectDelete, kMissionQueue, &Simulator::OnObjectDelete, this);
-  if (lockstep_) {
-    // The lock-step barrier for mission messages: what arrives during tick k is relayed in
-    // every Neighbors of tick k + 1 (robots in lock-step do not subscribe to these topics).
-    // The relay orders messages by their publishing node (and skips what this node publishes
-    // itself), so the callbacks must get the connection header: a lambda given to subscribe<M>() would be wrapped as a
-    // `const M::ConstPtr&` callback, whose MessageEvent names every sender "unknown_publisher"
-    // (the dispatcher's statuses then counted as a robot's, and a tick could close early).
-    auto relay = [this](const char* topic, auto* list) {
-      using M = typename std::remove_pointer_t<decltype(list)>::value_type::second_type;
-      ros::SubscribeOptions ops;
-      ops.initByFullCallbackType<const ros::MessageEvent<const M>&>(
-          topic, kMissionQueue, [this, list](const ros::MessageEvent<const M>& event) {
-            Relay(event, list);
-          });
-      relay_subs_.push_back(nh_.subscribe(ops));
-    };
-    relay(names::kMissionNew, &pending_missions_);
-    relay(names::kObjectUpdate, &relay_updates_);
-    relay(names::kObjectDelete, &relay_deletes_);
-    relay(names::kFreeze, &relay_freezes_);
-    relay(names::kContinue, &relay_continues_);
-    relay(names::kMissionEvent, &relay_events_);
-    relay(names::kMissionStatus, &relay_statuses_);
-    // What the robots say in their answers, for observers (robots in lock-step publish no
-    // mission topics).
-    status_pub_ = nh_.advertise<Mission_Status>(names::kMissionStatus, kMissionQueue);
-    progress_pub_ = nh_.advertise<Mission_Status>(names::kMissionProgress, kMissionQueue);
-    update_pub_ = nh_.advertise<Update_Object>(names::kObjectUpdate, kMissionQueue);
-    delete_pub_ = nh_.advertise<Delete_Object>(names::kObjectDelete, kMissionQueue);
-    freeze_pub_ = nh_.advertise<Robot_Freeze>(names::kFreeze, kMissionQueue);
-    continue_pub_ = nh_.advertise<Robot_Continue>(names::kContinue, kMissionQueue);
-    if (params_.lockstep_dispatcher) {
-      // Its file missions enter at stamped ticks; tick 1 on waits for its schedule.
-      barrier_.ExpectSchedule();
-      schedule_sub_ = nh_.subscribe(names::kMissionSchedule, kMissionQueue,
-                                    &Simulator::OnSchedule, this);
-      ROS_INFO("lockstep: a dispatcher sends LOADED %s, UNLOADED %s; ticks wait for them",
-               params_.swarm.loaded_delay_s >= 0.0 ? "on its own" : "never (waits for you)",
-               params_.swarm.unloaded_delay_s >= 0.0 ? "on its own" : "never (waits for you)");
-    }
-  }
-  for (const auto& entry : world_->robots()) AddRobotIo(entry.first);
-  PublishRobotList();
-
-  bool use_sim_time = false;
-  nh_.getParam("/use_sim_time", use_sim_time);
-  if (!lockstep_ && use_sim_time) {
-    ROS_WARN("simulator: realtime clock but /use_sim_time is true: nobody publishes /clock");
-  }
-  ROS_INFO(
-      "simulator: %zu robots (%s placement), %s clock, tick %.3f s, step %.3f s, "
-      "arena %.3f m, radius %.3f m, radio range %.3f m, loss %.2f, seed %llu",
-      world_->size(), core::PlacementName(params_.placement), core::ClockName(params_.clock), params_.swarm.tick_period_s,
-      params_.integration_step_s, params_.swarm.flocking.world_size_m,
-      params_.swarm.flocking.robot_radius_m, params_.radio_range_m, params_.radio_loss,
-      static_cast<unsigned long long>(params_.swarm.seed));
-  return true;
+  if (lockstep_) session_->Connect();
 }
 
-void Simulator::AddRobotIo(std::uint16_t id) {
-  ros::NodeHandle robot_nh(nh_, names::RobotNamespace(id));
-  RobotIo io;
-  io.generation = ++next_generation_;
-  const std::uint64_t generation = io.generation;
-  // Status callbacks run on the global queue, i.e. from our own loop like everything else.
-  auto counter = [this, id, generation](int RobotIo::*field, int delta) {
-    return [this, id, generation, field, delta](const ros::SingleSubscriberPublisher&) {
-      CountSubscriber(id, generation, field, delta);
-    };
-  };
-  if (params_.pose_topics) {
-    io.pose =
-        robot_nh.advertise<Pose>(names::kPose, kPoseQueue, counter(&RobotIo::pose_subscribers, 1),
-                                 counter(&RobotIo::pose_subscribers, -1));
-  }
-  // A robot of this process linked directly: its round, command and answer bypass roscpp.
-  io.direct = direct_ != nullptr && direct_->Hosts(id);
-  if (!io.direct) {
-    io.neighbors = robot_nh.advertise<Neighbors>(names::kNeighbors, kNeighborsQueue,
-                                                 counter(&RobotIo::neighbors_subscribers, 1),
-                                                 counter(&RobotIo::neighbors_subscribers, -1));
-    ros::SubscribeOptions ops = ros::SubscribeOptions::create<geometry_msgs::Twist>(
-        names::kCmdVel, kCmdVelQueue,
-        [this, id](const geometry_msgs::Twist::ConstPtr& msg) { OnCmdVel(id, *msg); },
-        ros::VoidConstPtr(), &cmd_queue_);
-    // A tick's command is one small message: Nagle's algorithm would delay it by ~40 ms.
-    ops.transport_hints = ros::TransportHints().tcpNoDelay();
-    io.cmd_vel = robot_nh.subscribe(ops);
-  }
-  if (lockstep_ && !io.direct) {
-    ros::SubscribeOptions answer_ops = ros::SubscribeOptions::create<Tick_Answer>(
-        names::kAnswer, kAnswerQueue,
-        [this, id](const Tick_Answer::ConstPtr& msg) { OnAnswer(id, *msg); }, ros::VoidConstPtr(),
-        &cmd_queue_);
-    answer_ops.transport_hints = ros::TransportHints().tcpNoDelay();
-    io.answer = robot_nh.subscribe(answer_ops);
-  }
-  io.teleport_absolute =
-      robot_nh.advertiseService<TeleportAbsolute::Request, TeleportAbsolute::Response>(
-          names::kTeleportAbsolute,
-          [this, id](TeleportAbsolute::Request& req, TeleportAbsolute::Response& res) {
-            return OnTeleportAbsolute(id, req, res);
-          });
-  io.teleport_relative =
-      robot_nh.advertiseService<TeleportRelative::Request, TeleportRelative::Response>(
-          names::kTeleportRelative,
-          [this, id](TeleportRelative::Request& req, TeleportRelative::Response& res) {
-            return OnTeleportRelative(id, req, res);
-          });
-  io_[id] = io;
-  barrier_.Add(id);
-}
-
-void Simulator::CountSubscriber(std::uint16_t id, std::uint64_t generation, int RobotIo::*field,
-                                int delta) {
-  auto it = io_.find(id);
-  if (it == io_.end() || it->second.generation != generation) return;
-  it->second.*field = std::max(0, it->second.*field + delta);
-}
-
-bool Simulator::Ready(RobotIo* io) {
-  // Nothing to connect: a direct robot hears its first round and answers it for sure.
-  if (io->direct) return true;
-  // Only checked until the robot is live: getNumPublishers() scans every subscription.
-  const bool connected = io->neighbors_subscribers > 0 && io->answer &&
-                         io->answer.getNumPublishers() > 0;
-  const ros::WallTime now = ros::WallTime::now();
-  if (!connected) {
-    io->connected_since = ros::WallTime();
-  } else if (io->connected_since.isZero()) {
-    io->connected_since = now;
-  }
-  // A publisher link counts before its handshake is done: a command sent in that window
-  // would be lost, so a robot must stay connected a moment before it is asked to answer.
-  return connected && (now - io->connected_since).toSec() >= kSettleS;
+void Simulator::AddRobot(std::uint16_t id) {
+  links_->Add(id);
+  if (session_) session_->AddRobot(id);
 }
 
 void Simulator::RemoveRobot(std::uint16_t id) {
   world_->Kill(id, nullptr);
-  auto it = io_.find(id);
-  if (it != io_.end()) {
-    RobotIo& io = it->second;
-    io.neighbors.shutdown();
-    io.pose.shutdown();
-    io.cmd_vel.shutdown();
-    io.answer.shutdown();
-    io.teleport_absolute.shutdown();
-    io.teleport_relative.shutdown();
-    io_.erase(it);
-  }
-  barrier_.Remove(id);
-  // Its virtual copies die with it.
-  for (auto r = relayed_.begin(); r != relayed_.end();) {
-    if (r->first.first == id && r->second.type == Robot_Position::TYPE_VIRTUAL) {
-      r = relayed_.erase(r);
-    } else {
-      ++r;
-    }
-  }
+  links_->Remove(id);
+  if (session_) session_->RemoveRobot(id);
+  relayed_.EraseCopiesOf(id);  // its virtual copies die with it
 }
 
 void Simulator::Run() {
@@ -381,18 +177,11 @@ void Simulator::Run() {
 }
 
 void Simulator::Shutdown() {
-  for (auto& entry : io_) {
-    entry.second.neighbors.shutdown();
-    entry.second.pose.shutdown();
-    entry.second.cmd_vel.shutdown();
-    entry.second.teleport_absolute.shutdown();
-    entry.second.teleport_relative.shutdown();
-  }
-  io_.clear();
+  if (links_) links_->Shutdown();
   position_sub_.shutdown();
   robot_delete_sub_.shutdown();
   mission_new_sub_.shutdown();
-  schedule_sub_.shutdown();
+  if (session_) session_->Shutdown();
   object_update_sub_.shutdown();
   object_delete_sub_.shutdown();
   spawn_srv_.shutdown();
@@ -435,139 +224,23 @@ void Simulator::RunRealtime() {
            static_cast<unsigned long long>(tick_));
 }
 
-bool Simulator::RelaysConnected() const {
-  TopicNodeCounts graph;
-  if (!QueryTopicNodeCounts(&graph)) return false;
-  for (const ros::Subscriber& sub : relay_subs_) {
-    if (!graph.AllConnected(sub)) return false;
-  }
-  // Every subscriber of the (latched) robot list has it: a robot checks a mission's robots
-  // against it, and one without it would accept an order naming a robot that does not exist.
-  return graph.AllConnected(robots_pub_);
-}
-
-void Simulator::WaitForRobots() {
-  const ros::WallTime deadline =
-      ros::WallTime::now() + ros::WallDuration(params_.lockstep_start_timeout_s);
-  std::size_t connected = 0;
-  ros::WallTime ready_since;
-  while (Running()) {
-    connected = 0;
-    for (auto& entry : io_) {
-      if (Ready(&entry.second)) ++connected;
-    }
-    const bool observed = params_.lockstep_observers == 0 ||
-                          positions_pub_.getNumSubscribers() >=
-                              static_cast<std::uint32_t>(params_.lockstep_observers);
-    const ros::WallTime now = ros::WallTime::now();
-    // Asks the master only once the cheap conditions hold.
-    const bool ready = connected == io_.size() && observed && RelaysConnected();
-    if (ready) {
-      // A link counts before its handshake is done (see Ready), and what was published before
-      // the last observer subscribed (a latched mission, one sent just before an experiment's
-      // runner subscribes) may still be on its way: everything must stay connected a moment,
-      // taking it in, so that it is relayed at tick 0 whatever the scheduling.
-      if (ready_since.isZero()) ready_since = now;
-      SpinOnce();
-      if ((now - ready_since).toSec() >= kSettleS) break;
-      ros::WallDuration(kIdleS).sleep();
-      continue;
-    }
-    ready_since = ros::WallTime();
-    if (ros::WallTime::now() >= deadline) {
-      ROS_WARN(
-          "lockstep: only %zu of %zu robots connected (mission relays %s) after %.1f s; "
-          "starting anyway (the others join when they connect)",
-          connected, io_.size(), RelaysConnected() ? "connected" : "not all connected",
-          params_.lockstep_start_timeout_s);
-      break;
-    }
-    SpinOnce();
-    PublishVisualsIfDue();
-    ros::WallDuration(kIdleS).sleep();
-  }
-  ROS_INFO("lockstep: %zu robots connected", connected);
-}
-
-void Simulator::UpdateLiveness() {
-  for (auto& entry : io_) {
-    const std::uint16_t id = entry.first;
-    RobotIo& io = entry.second;
-    const bool live = barrier_.Live(id);
-    if (io.silent && !io.direct && io.neighbors_subscribers == 0) {
-      io.silent = false;  // gone: a process that connects under its id is a fresh start
-      io.connected_since = ros::WallTime();
-    }
-    if (!live && !io.silent && Ready(&io)) {
-      barrier_.MakeLive(id);
-      if (tick_ > 0) {
-        ROS_INFO("lockstep: robot %u connected at tick %llu", id,
-                 static_cast<unsigned long long>(tick_));
-      }
-    } else if (live && !io.direct && io.neighbors_subscribers == 0) {
-      barrier_.MakeNotLive(id);
-      io.connected_since = ros::WallTime();
-      ROS_WARN("lockstep: robot %u disconnected at tick %llu", id,
-               static_cast<unsigned long long>(tick_));
-    }
-  }
-}
-
-void Simulator::WaitForAnswers() {
-  const ros::WallTime deadline =
-      ros::WallTime::now() + ros::WallDuration(params_.lockstep_timeout_s);
-  bool complete = false;
-  do {
-    // Directly linked robots tick here; their answers are in when this returns.
-    SpinRobots();
-    ros::spinOnce();
-    complete = barrier_.AllAnswered();
-    // Block for answers only while some are missing (with direct robots only: none are).
-    cmd_queue_.callAvailable(ros::WallDuration(complete ? 0.0 : kPollS));
-    complete = barrier_.AllAnswered();
-    PublishVisualsIfDue();
-  } while (!complete && Running() && ros::WallTime::now() < deadline);
-  // Whatever robots sent besides their answers (virtual copies) is in before the next round.
-  ros::spinOnce();
-  TakeAnswers();
-  if (barrier_.AllAnswered() || !Running()) return;
-  const std::vector<std::uint16_t> late = barrier_.Late();
-  const std::size_t live = barrier_.LiveCount();
-  // Out of the barrier until they answer again: a hung or dead robot must not cost the
-  // timeout every tick. They stand; they still are in the world and heard by the others.
-  for (std::uint16_t id : late) {
-    barrier_.MakeNotLive(id);
-    auto it = io_.find(id);
-    if (it != io_.end()) it->second.silent = true;
-  }
-  if (WallThrottle(&last_late_warning_wall_, kWarnPeriodS)) {
-    ROS_WARN(
-        "lockstep tick %llu: %zu of %zu robots did not answer within %.2f s (first: robot "
-        "%d); they stand and are not waited for until they answer again",
-        static_cast<unsigned long long>(tick_), late.size(), live, params_.lockstep_timeout_s,
-        late.empty() ? -1 : static_cast<int>(late.front()));
-  }
-}
-
 void Simulator::ApplyAnswers() {
-  for (const auto& entry : io_) {
-    if (!barrier_.Live(entry.first)) continue;
-    world_->SetCommand(entry.first, barrier_.CommandOf(entry.first), nullptr);
+  for (const auto& entry : *links_) {
+    if (!session_->Live(entry.first)) continue;
+    world_->SetCommand(entry.first, session_->CommandOf(entry.first), nullptr);
   }
 }
 
 void Simulator::RunLockstep() {
-  WaitForRobots();
+  session_->WaitForStart(positions_pub_, robots_pub_);
   const ros::WallTime started = ros::WallTime::now();
   const std::uint64_t max_ticks = static_cast<std::uint64_t>(params_.lockstep_max_ticks);
   while (Running() && (max_ticks == 0 || tick_ < max_ticks)) {
-    UpdateLiveness();
-    // A phase status relayed now makes its dispatcher event due in this tick's relay.
-    WaitForDispatcher();
+    session_->BeginTick(tick_);
     PublishClock();
     PublishRadio();
     PublishPoses();
-    WaitForAnswers();
+    session_->WaitForAnswers(tick_);
     // All answers of this tick apply together: the result does not depend on arrival order.
     ApplyAnswers();
     world_->Step(params_.swarm.tick_period_s);
@@ -595,7 +268,7 @@ void Simulator::RunLockstep() {
   // The final state at the final time, for the recorder and tests; then the world stands.
   finished_ = true;
   PublishClock();
-  barrier_.EndAll();  // no Neighbors: nobody is asked to answer
+  session_->Finish();  // no Neighbors: nobody is asked to answer
   PublishRadio();
   PublishPoses();
   Idle();
@@ -624,287 +297,49 @@ void Simulator::PublishClock() {
 }
 
 void Simulator::PublishRadio() {
-  if (lockstep_) ReleaseMissions();
+  if (lockstep_) {
+    // The orders due by this tick enter its relay and the simulator's books together (the
+    // mission channel, markers); the rest wait for their start tick.
+    for (const New_Mission& order : session_->ReleaseOrders(tick_)) RegisterMission(order);
+  }
   const double sim_time = SimTime();
   const auto& robots = world_->robots();
   std::vector<Robot_Position> truth;
   truth.reserve(robots.size());
   for (const auto& entry : robots) truth.push_back(ToRobotPosition(entry.first, entry.second.pose));
-  std::vector<sim::RadioExtra> extras;
-  extras.reserve(relayed_.size());
-  for (const auto& entry : relayed_) {
-    sim::RadioExtra e;
-    e.virtual_copy = entry.second.type == Robot_Position::TYPE_VIRTUAL;
-    e.owner = entry.second.robot_id;
-    e.position = {entry.second.pos_x, entry.second.pos_y};
-    extras.push_back(e);
-  }
   // Robots that do not answer their ticks (dead, hung, not connected yet) are silent on the
   // radio: their peers lose them (issue 11). Directly linked robots always answer.
   std::set<std::uint16_t> quiet;
-  for (const auto& entry : io_) {
+  for (const auto& entry : *links_) {
     if (entry.second.direct) continue;
-    const bool answering = lockstep_ ? barrier_.Live(entry.first)
-                                     : entry.second.neighbors_subscribers > 0;
+    const bool answering =
+        lockstep_ ? session_->Live(entry.first) : entry.second.neighbors_subscribers > 0;
     if (!answering) quiet.insert(entry.first);
   }
-  radio_->Begin(*world_, std::move(extras), missions_, quiet);
+  radio_->Begin(*world_, relayed_.Extras(), missions_, quiet);
   // Virtual copies are relayed at their owner's true pose, the others where announced.
-  std::vector<Robot_Position> relayed;
-  relayed.reserve(relayed_.size());
-  std::size_t k = 0;
-  for (const auto& entry : relayed_) {
-    Robot_Position p = entry.second;
-    const long owner = radio_->extra_owner()[k++];
-    if (owner >= 0) {
-      p.pos_x = truth[static_cast<std::size_t>(owner)].pos_x;
-      p.pos_y = truth[static_cast<std::size_t>(owner)].pos_y;
-      p.angle = truth[static_cast<std::size_t>(owner)].angle;
-    }
-    relayed.push_back(p);
-  }
+  const std::vector<Robot_Position> relayed = relayed_.AtOwners(radio_->extra_owner(), truth);
 
   sim::RadioRound round;
-  barrier_.StartTick(tick_);
+  if (lockstep_) session_->StartRound(tick_);
   std::size_t i = 0;
   for (auto robot = robots.begin(); robot != robots.end(); ++robot, ++i) {
-    auto io = io_.find(robot->first);
-    if (io == io_.end()) continue;
-    const bool deliver =
-        lockstep_ ? barrier_.Live(robot->first)
-                  : io->second.direct || io->second.neighbors_subscribers > 0;
-    if (!deliver) continue;
+    RobotLink* link = links_->Find(robot->first);
+    if (link == nullptr) continue;
+    if (!(lockstep_ ? session_->Live(robot->first) : link->Listening())) continue;
     radio_->Hear(i, &round);
     Neighbors msg = RadioRoundMessage(tick_, sim_time, robot->second, round, truth, relayed);
-    if (lockstep_) FillRelay(&msg);
-    if (io->second.direct) {
-      direct_->Deliver(robot->first, boost::make_shared<const Neighbors>(std::move(msg)));
-    } else {
-      io->second.neighbors.publish(msg);
-    }
-    if (lockstep_) barrier_.Ask(robot->first);
+    if (lockstep_) session_->FillRound(&msg);
+    link->Deliver(robot->first, direct_, std::move(msg));
+    if (lockstep_) session_->Asked(robot->first);
   }
 
-  ClearRelay();
+  if (lockstep_) session_->EndRound();
   Robot_Positions all;
   all.tick = tick_;
   all.sim_time = sim_time;
   all.robots = std::move(truth);
   positions_pub_.publish(all);
-}
-
-template <typename M>
-void Simulator::Relay(const ros::MessageEvent<const M>& event, RelayList<M>* list) {
-  const std::string& from = event.getPublisherName();
-  // What this node publishes are its robots' answers, relayed by TakeAnswers already.
-  if (from == ros::this_node::getName()) return;
-  list->emplace_back(from, *event.getConstMessage());
-  if constexpr (std::is_same_v<M, Mission_Status>) NoteStatus(*event.getConstMessage());
-  if constexpr (std::is_same_v<M, Mission_Event>) NoteEvent(*event.getConstMessage());
-  if constexpr (std::is_same_v<M, New_Mission>) barrier_.OrderArrived(event.getConstMessage()->mission_id);
-}
-
-void Simulator::NoteStatus(const Mission_Status& status) {
-  if (!params_.lockstep_dispatcher) return;
-  const std::uint16_t id = status.mission_id;
-  const auto awaits = [this, id](std::uint8_t kind, double delay_s) {
-    if (delay_s >= 0.0) barrier_.Await({id, kind});
-  };
-  switch (status.state) {
-    case Mission_Status::LOADING:
-      awaits(Mission_Event::LOADED, params_.swarm.loaded_delay_s);
-      break;
-    case Mission_Status::UNLOADING:
-      awaits(Mission_Event::UNLOADED, params_.swarm.unloaded_delay_s);
-      break;
-    case Mission_Status::DONE:
-    case Mission_Status::ABORTED:
-    case Mission_Status::REJECTED:
-      // The id may be used again by a later mission.
-      barrier_.Forget(id);
-      break;
-    default:
-      break;
-  }
-}
-
-void Simulator::NoteEvent(const Mission_Event& event) {
-  if (!params_.lockstep_dispatcher) return;
-  barrier_.Seen({event.mission_id, event.event});
-}
-
-void Simulator::WaitForDispatcher() {
-  const auto holding = [this] {
-    return barrier_.EventsAwaited() || barrier_.OrdersMissing(tick_);
-  };
-  if (!holding()) return;
-  // An order or the schedule is due once per run and may wait for the dispatcher's listeners:
-  // the start-up timeout; a LOADED / UNLOADED the tick timeout.
-  const double timeout_s = barrier_.OrdersMissing(tick_) ? params_.lockstep_start_timeout_s
-                                                         : params_.lockstep_timeout_s;
-  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout_s);
-  while (holding() && Running() && ros::WallTime::now() < deadline) {
-    SpinOnce(kPollS);
-  }
-  if (!holding() || !Running()) return;
-  if (barrier_.ScheduleMissing() && tick_ >= 1) {
-    ROS_WARN("lockstep tick %llu: no %s from the dispatcher within %.2f s; not waiting for it "
-             "any longer", static_cast<unsigned long long>(tick_), names::kMissionSchedule,
-             timeout_s);
-  }
-  for (std::uint16_t id : barrier_.GiveUpOrders(tick_)) {
-    ROS_WARN("lockstep tick %llu: the order of scheduled mission %u did not arrive within "
-             "%.2f s; not waiting for it any longer", static_cast<unsigned long long>(tick_), id,
-             timeout_s);
-  }
-  for (const auto& key : barrier_.GiveUpEvents()) {
-    ROS_WARN("lockstep tick %llu: no %s for mission %u from the dispatcher within %.2f s; "
-             "not waiting for it any longer",
-             static_cast<unsigned long long>(tick_),
-             key.second == Mission_Event::LOADED ? "LOADED" : "UNLOADED", key.first, timeout_s);
-  }
-}
-
-void Simulator::OnSchedule(const Mission_Schedule::ConstPtr& msg) {
-  std::vector<std::pair<std::uint16_t, std::uint64_t>> orders;
-  const std::size_t n = std::min(msg->mission_ids.size(), msg->start_ticks.size());
-  for (std::size_t i = 0; i < n; ++i) orders.emplace_back(msg->mission_ids[i], msg->start_ticks[i]);
-  barrier_.OnSchedule(orders);
-}
-
-void Simulator::ReleaseMissions() {
-  // In arrival order: what is due enters this tick's relay and the simulator's books (the
-  // mission channel, markers) together; the rest waits for its start tick.
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < pending_missions_.size(); ++i) {
-    auto& entry = pending_missions_[i];
-    if (entry.second.start_tick > tick_) {
-      if (kept != i) pending_missions_[kept] = std::move(entry);
-      ++kept;
-      continue;
-    }
-    RegisterMission(entry.second);
-    relay_missions_.push_back(std::move(entry));
-  }
-  pending_missions_.resize(kept);
-}
-
-namespace {
-
-template <typename M>
-std::vector<M> Sorted(std::vector<std::pair<std::string, M>> list) {
-  std::stable_sort(list.begin(), list.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
-  std::vector<M> out;
-  out.reserve(list.size());
-  for (auto& item : list) out.push_back(std::move(item.second));
-  return out;
-}
-
-}  // namespace
-
-void Simulator::FillRelay(Neighbors* msg) const {
-  msg->missions = Sorted(relay_missions_);
-  msg->object_updates = Sorted(relay_updates_);
-  msg->object_deletes = Sorted(relay_deletes_);
-  msg->freezes = Sorted(relay_freezes_);
-  msg->continues = Sorted(relay_continues_);
-  msg->mission_events = Sorted(relay_events_);
-  msg->statuses = Sorted(relay_statuses_);
-}
-
-void Simulator::ClearRelay() {
-  relay_missions_.clear();
-  relay_updates_.clear();
-  relay_deletes_.clear();
-  relay_freezes_.clear();
-  relay_continues_.clear();
-  relay_events_.clear();
-  relay_statuses_.clear();
-}
-
-void Simulator::OnAnswer(std::uint16_t id, const Tick_Answer& answer) {
-  if (finished_ || io_.count(id) == 0) return;
-  const bool finite = IsFinite(answer.command);
-  if (!finite && WallThrottle(&last_bad_cmd_warning_wall_, kWarnPeriodS)) {
-    ROS_WARN("lockstep: robot %u answered with a non-finite command; it stands instead", id);
-  }
-  const auto result =
-      barrier_.OnAnswer(id, answer.tick, finite ? ToVelocity(answer.command) : core::Velocity());
-  switch (result) {
-    case sim::LockstepBarrier::Answer::kAnswer:
-    case sim::LockstepBarrier::Answer::kStale:
-      // A late answer's command is past, but what it says still holds: relayed a tick late.
-      answers_.emplace_back(id, answer);
-      break;
-    case sim::LockstepBarrier::Answer::kOutside:
-      if (io_.at(id).silent) {
-        // A robot that let a tick time out answered at last (its late answer): it is waited
-        // for again from the next tick on. What it said still holds.
-        io_.at(id).silent = false;
-        answers_.emplace_back(id, answer);
-        ROS_INFO("lockstep: robot %u answers again (tick %llu, its answer to tick %llu)", id,
-                 static_cast<unsigned long long>(tick_),
-                 static_cast<unsigned long long>(answer.tick));
-        break;
-      }
-      [[fallthrough]];
-    case sim::LockstepBarrier::Answer::kUnsolicited:
-      if (WallThrottle(&last_unsolicited_warning_wall_, kWarnPeriodS)) {
-        ROS_WARN("lockstep: robot %u answered tick %llu, which it was not asked (tick %llu); "
-                 "ignored", id, static_cast<unsigned long long>(answer.tick),
-                 static_cast<unsigned long long>(tick_));
-      }
-      break;
-  }
-}
-
-namespace {
-
-// The relay's sender of a robot's answer: after every node name (they start with '/'), in
-// ascending robot id.
-std::string AnswerSender(std::uint16_t id) {
-  char name[16];
-  std::snprintf(name, sizeof(name), "robot_%05u", static_cast<unsigned>(id));
-  return name;
-}
-
-}  // namespace
-
-void Simulator::TakeAnswers() {
-  // By robot id, then in arrival order (a late answer before the robot's current one).
-  std::stable_sort(answers_.begin(), answers_.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
-  for (const auto& entry : answers_) {
-    const std::string sender = AnswerSender(entry.first);
-    const Tick_Answer& a = entry.second;
-    for (const Update_Object& u : a.object_updates) {
-      relay_updates_.emplace_back(sender, u);
-      sim::UpdateMissionObject(u.mission_id, {u.object_position_x, u.object_position_y}, *world_,
-                               &missions_);
-      update_pub_.publish(u);
-    }
-    for (const Robot_Freeze& f : a.freezes) {
-      relay_freezes_.emplace_back(sender, f);
-      freeze_pub_.publish(f);
-    }
-    for (const Robot_Continue& c : a.continues) {
-      relay_continues_.emplace_back(sender, c);
-      continue_pub_.publish(c);
-    }
-    for (const Delete_Object& d : a.object_deletes) {
-      relay_deletes_.emplace_back(sender, d);
-      missions_.erase(d.mission_id);
-      delete_pub_.publish(d);
-    }
-    for (const Mission_Status& st : a.statuses) {
-      relay_statuses_.emplace_back(sender, st);
-      NoteStatus(st);
-      status_pub_.publish(st);
-    }
-    for (const Mission_Status& st : a.progress) progress_pub_.publish(st);
-  }
-  answers_.clear();
 }
 
 void Simulator::PublishRobotList() {
@@ -917,7 +352,7 @@ void Simulator::PublishRobotList() {
 }
 
 void Simulator::PublishPoses() {
-  for (const auto& entry : io_) {
+  for (const auto& entry : *links_) {
     if (entry.second.pose_subscribers == 0) continue;
     const sim::Robot* robot = world_->Find(entry.first);
     if (robot != nullptr) entry.second.pose.publish(ToPoseMsg(robot->pose, robot->last_velocity));
@@ -944,14 +379,18 @@ void Simulator::SendAnswer(std::uint16_t id, const Tick_Answer& answer) {
   OnSimulatorThread([this, id, answer]() { OnAnswer(id, answer); });
 }
 
+void Simulator::OnAnswer(std::uint16_t id, const Tick_Answer& answer) {
+  if (finished_ || links_->Find(id) == nullptr) return;
+  session_->OnAnswer(id, answer, tick_);
+}
+
 void Simulator::OnCmdVel(std::uint16_t id, const geometry_msgs::Twist& msg) {
-  auto it = io_.find(id);
-  if (it == io_.end() || finished_) return;
+  if (links_->Find(id) == nullptr || finished_) return;
   const bool finite = IsFinite(msg);
   if (!finite && WallThrottle(&last_bad_cmd_warning_wall_, kWarnPeriodS)) {
     ROS_WARN("simulator: robot %u sent a cmd_vel with a non-finite value; it stands instead", id);
   }
-  if (lockstep_ && barrier_.Live(id)) {
+  if (lockstep_ && session_->Live(id)) {
     // A lock-step robot's command comes in its answer; a cmd_vel beside it would race it.
     if (WallThrottle(&last_unsolicited_warning_wall_, kWarnPeriodS)) {
       ROS_WARN("lockstep: ignored a cmd_vel for robot %u, which answers its ticks (tick %llu)",
@@ -972,7 +411,7 @@ bool Simulator::OnSpawn(Spawn::Request& req, Spawn::Response& res) {
     res.message = error;
     return true;
   }
-  AddRobotIo(req.robot_id);
+  AddRobot(req.robot_id);
   PublishRobotList();
   ROS_INFO("simulator: spawned robot %u at (%.3f, %.3f, %.3f rad)", req.robot_id, req.x, req.y,
            req.theta);
@@ -1017,29 +456,15 @@ bool Simulator::OnTeleportRelative(std::uint16_t id, TeleportRelative::Request& 
 }
 
 void Simulator::OnPosition(const Robot_Position::ConstPtr& msg) {
-  if (msg->type == Robot_Position::TYPE_PHYSICAL) return;  // the world's truth is relayed
-  if (!IsFinite(*msg)) {
-    if (WallThrottle(&last_bad_position_warning_wall_, kWarnPeriodS)) {
-      ROS_WARN("simulator: rejected a Robot_Position of robot %u/%u with a non-finite value",
-               msg->robot_id, msg->sub_id);
-    }
-    return;
+  const std::string why = relayed_.Take(*msg);
+  if (!why.empty() && WallThrottle(&last_bad_position_warning_wall_, kWarnPeriodS)) {
+    ROS_WARN("simulator: rejected a Robot_Position of robot %u/%u: %s", msg->robot_id,
+             msg->sub_id, why.c_str());
   }
-  if (msg->type != Robot_Position::TYPE_VIRTUAL && msg->type != Robot_Position::TYPE_STATIST) {
-    if (WallThrottle(&last_bad_position_warning_wall_, kWarnPeriodS)) {
-      ROS_WARN("simulator: rejected a Robot_Position of robot %u/%u with unknown type %u",
-               msg->robot_id, msg->sub_id, msg->type);
-    }
-    return;
-  }
-  Robot_Position p = *msg;
-  p.angle = static_cast<float>(core::Angle(p.angle).degrees());
-  if (p.angle >= 360.0f) p.angle = 0.0f;
-  relayed_[RelayKey(p.robot_id, p.sub_id)] = p;
 }
 
 void Simulator::OnRobotDelete(const Delete_Robot::ConstPtr& msg) {
-  relayed_.erase(RelayKey(msg->robot_id, msg->sub_id));
+  relayed_.Erase(msg->robot_id, msg->sub_id);
 }
 
 void Simulator::OnMissionNew(const New_Mission::ConstPtr& msg) { RegisterMission(*msg); }

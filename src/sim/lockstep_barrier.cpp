@@ -85,6 +85,30 @@ void LockstepBarrier::Forget(std::uint16_t mission_id) {
   }
 }
 
+void LockstepBarrier::OnPhase(std::uint16_t mission_id, core::MissionPhase phase,
+                              bool loaded_auto, bool unloaded_auto) {
+  using core::MissionEventKind;
+  using core::MissionPhase;
+  switch (phase) {
+    case MissionPhase::kLoading:
+      if (loaded_auto) Await({mission_id, static_cast<std::uint8_t>(MissionEventKind::kLoaded)});
+      break;
+    case MissionPhase::kUnloading:
+      if (unloaded_auto) {
+        Await({mission_id, static_cast<std::uint8_t>(MissionEventKind::kUnloaded)});
+      }
+      break;
+    case MissionPhase::kDone:
+    case MissionPhase::kAborted:
+    case MissionPhase::kRejected:
+      // The id may be used again by a later mission.
+      Forget(mission_id);
+      break;
+    default:
+      break;
+  }
+}
+
 std::vector<LockstepBarrier::EventKey> LockstepBarrier::GiveUpEvents() {
   std::vector<EventKey> given_up(events_awaited_.begin(), events_awaited_.end());
   for (const EventKey& event : given_up) events_seen_.insert(event);

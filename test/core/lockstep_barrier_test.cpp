@@ -128,6 +128,30 @@ TEST(LockstepBarrierTest, HoldsForAwaitedDispatcherEvents) {
   EXPECT_TRUE(b.EventsAwaited());
 }
 
+// A relayed phase status owes the dispatcher's event only when the dispatcher sends it on its
+// own (a delay >= 0); an ended mission releases what was owed for it.
+TEST(LockstepBarrierTest, PhaseStatusesOweTheDispatchersEvents) {
+  using swarm_transport::core::MissionPhase;
+  LockstepBarrier b;
+  b.OnPhase(4, MissionPhase::kGathering, true, true);
+  EXPECT_FALSE(b.EventsAwaited());
+  b.OnPhase(4, MissionPhase::kLoading, false, true);  // LOADED by hand: not waited for
+  EXPECT_FALSE(b.EventsAwaited());
+  b.OnPhase(4, MissionPhase::kLoading, true, true);
+  EXPECT_TRUE(b.EventsAwaited());
+  b.Seen({4, 1});
+  EXPECT_FALSE(b.EventsAwaited());
+  b.OnPhase(4, MissionPhase::kUnloading, true, false);
+  EXPECT_FALSE(b.EventsAwaited());
+  b.OnPhase(4, MissionPhase::kUnloading, true, true);
+  EXPECT_TRUE(b.EventsAwaited());
+  b.OnPhase(4, MissionPhase::kAborted, true, true);
+  EXPECT_FALSE(b.EventsAwaited());
+  // Forgotten: LOADED of the id's next mission is owed again although the old one was seen.
+  b.OnPhase(4, MissionPhase::kLoading, true, true);
+  EXPECT_TRUE(b.EventsAwaited());
+}
+
 // Missions at a defined tick (issue 10, item 4): with a dispatcher, tick 1 waits for its
 // schedule, and each scheduled order's start tick waits until the order arrived, whichever of
 // the two topics delivers first.

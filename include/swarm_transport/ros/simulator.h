@@ -10,9 +10,7 @@
 #include <csignal>
 #include <cstdint>
 #include <functional>
-#include <map>
 #include <memory>
-#include <set>
 #include <string>
 #include <thread>
 #include <utility>
@@ -21,13 +19,9 @@
 #include "swarm_transport/Delete_Object.h"
 #include "swarm_transport/Delete_Robot.h"
 #include "swarm_transport/Kill.h"
-#include "swarm_transport/Mission_Event.h"
-#include "swarm_transport/Mission_Schedule.h"
 #include "swarm_transport/Mission_Status.h"
 #include "swarm_transport/Neighbors.h"
 #include "swarm_transport/New_Mission.h"
-#include "swarm_transport/Robot_Continue.h"
-#include "swarm_transport/Robot_Freeze.h"
 #include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/Spawn.h"
 #include "swarm_transport/TeleportAbsolute.h"
@@ -37,51 +31,16 @@
 #include "swarm_transport/core/modes.h"
 #include "swarm_transport/core/random.h"
 #include "swarm_transport/ros/direct_link.h"
-#include "swarm_transport/ros/params.h"
+#include "swarm_transport/ros/lockstep_session.h"
+#include "swarm_transport/ros/mission_relay.h"
+#include "swarm_transport/ros/robot_links.h"
+#include "swarm_transport/ros/simulator_params.h"
 #include "swarm_transport/sim/live_mission.h"
-#include "swarm_transport/sim/lockstep_barrier.h"
 #include "swarm_transport/sim/radio.h"
 #include "swarm_transport/ros/visuals.h"
 #include "swarm_transport/sim/world2d.h"
 
 namespace swarm_transport {
-
-// Everything the simulator is configured with: the shared /swarm configuration plus its
-// private parameters (~name), units in the names.
-struct SimulatorParams {
-  SwarmConfig swarm;                 // /swarm: world size, radius, range, tick, seed, zones
-  double radio_loss = 0.0;           // /swarm/radio_loss: drop probability per message, [0, 1]
-  int robots = 0;                    // ~robots: initial robots, ids 0..robots-1
-  core::Placement placement = core::Placement::kRandom;  // ~placement: random | corner | file
-  std::string placement_file;        // ~placement_file: lines "x y theta_deg"
-  core::Clock clock = core::Clock::kRealtime;  // ~clock: realtime | lockstep
-  double lockstep_timeout_s = 2.0;   // ~lockstep_timeout_s: wait this long for a tick's answers
-  int lockstep_max_ticks = 0;        // ~lockstep_max_ticks: stop ticking after this many (0: never)
-  // ~lockstep_observers: also wait until /flock/positions has this many subscribers (a
-  // recorder, a test, the demo) so that nobody misses the first ticks.
-  int lockstep_observers = 0;
-  double lockstep_start_timeout_s = 60.0;  // ~lockstep_start_timeout_s: wait for robots to connect
-  // ~real_time_factor: lock-step pacing, simulated seconds per wall second (1.0: real time, to
-  // watch a deterministic run in rviz and send commands by hand; 0: as fast as possible).
-  double real_time_factor = 0.0;
-  // ~lockstep_dispatcher: a mission dispatcher answers LOADING / UNLOADING with a stamped
-  // LOADED / UNLOADED (/swarm/loaded_delay_s, unloaded_delay_s >= 0); hold the next tick until
-  // it arrived (at most lockstep_timeout_s), so that it applies at its stamped tick however
-  // loaded the machine is.
-  bool lockstep_dispatcher = false;
-  double integration_step_s = 0.01;  // ~integration_step_s: world sub-step (real time: loop period)
-  double markers_rate_hz = 10.0;     // ~markers_rate_hz: markers and tf, wall clock (0: off)
-  bool tf = true;                    // ~tf: broadcast world -> robot_<id>/base_link
-  bool range_circles = false;        // ~range_circles: draw each robot's local range
-  double radio_range_m = 1.0;        // ~radio_range_m: default /swarm/local_range_m
-  // ~pose_topics: advertise robot_<id>/pose for every robot. Default true, false when robots
-  // are linked directly (a robot_host that runs the simulator): a publication per robot costs
-  // roscpp time in every publish of the process, and /flock/positions carries every pose.
-  bool pose_topics = true;
-
-  // Empty when valid, else one sentence naming the first bad parameter and its accepted range.
-  std::string Validate() const;
-};
 
 // The turtlesim-like simulator [SPEC 7]: per-robot cmd_vel, pose, neighbors and teleport
 // services, global spawn/kill/reset, /flock/positions, markers, tf, and in lock-step /clock.
@@ -120,67 +79,18 @@ class Simulator : public RobotOutlet {
   static void RequestStop();
 
  private:
-  // The ROS side of one robot (or its direct link); its lock-step bookkeeping is barrier_'s.
-  struct RobotIo {
-    bool direct = false;  // linked directly: no neighbors, cmd_vel or answer topics
-    ros::Publisher neighbors;
-    ros::Publisher pose;
-    ros::Subscriber cmd_vel;
-    ros::ServiceServer teleport_absolute;
-    ros::ServiceServer teleport_relative;
-    // Connected subscribers, counted by connect / disconnect callbacks: getNumSubscribers()
-    // scans every publication of the node, O(robots) per call.
-    int neighbors_subscribers = 0;
-    int pose_subscribers = 0;
-    std::uint64_t generation = 0;      // tells this robot's callbacks from a killed namesake's
-    ros::WallTime connected_since;     // lock-step: both links up since (zero: not connected)
-    // Lock-step: it let a tick time out and is out of the barrier until it answers again (a
-    // hung robot costs lockstep_timeout_s once, not every tick; issue 11).
-    bool silent = false;
-    ros::Subscriber answer;            // lock-step: its Tick_Answer
-  };
   using Mission = sim::LiveMission;
-  using RelayKey = std::pair<std::uint16_t, std::uint8_t>;  // (robot_id, sub_id)
-  // Lock-step: mission messages received this tick, with their sender, to relay in the next
-  // Neighbors (stable-sorted by sender: per sender and topic, arrival is FIFO). Senders are
-  // publishing nodes ("/mission_dispatcher") or robots' answers (AnswerSender: after them, by
-  // robot id).
-  template <typename M>
-  using RelayList = std::vector<std::pair<std::string, M>>;
 
   // ROS is up and no stop was requested.
   static bool Running();
-  bool LoadParams(std::string* error);
-  bool PlaceInitialRobots(std::string* error);
-  void AddRobotIo(std::uint16_t id);
-  // Counts a (dis)connected subscriber of robot `id`'s `field` (+1 / -1).
-  void CountSubscriber(std::uint16_t id, std::uint64_t generation, int RobotIo::*field, int delta);
-  // Lock-step: the robot has listened to its Neighbors and published its answers for kSettleS.
-  bool Ready(RobotIo* io);
+  // Subscribes, advertises and offers the services of the node (not the robots').
+  void Connect();
+  // A robot's links and (lock-step) its place in the barrier.
+  void AddRobot(std::uint16_t id);
   void RemoveRobot(std::uint16_t id);
 
   void RunRealtime();
   void RunLockstep();
-  // Lock-step: waits until every robot is connected (or the start timeout passed).
-  void WaitForRobots();
-  // Lock-step start: every node the master lists as a publisher of a relayed mission topic
-  // (the robots' outlets, a dispatcher, a test) is connected to this simulator's relay, and
-  // every subscriber of the robot list is connected (it got the latched list).
-  bool RelaysConnected() const;
-  // Lock-step: marks connected robots live and disconnected ones not live.
-  void UpdateLiveness();
-  // Lock-step: spins until every live robot answered the current tick or the timeout passed.
-  void WaitForAnswers();
-  // Lock-step: holds until every awaited dispatcher event arrived (at most lockstep_timeout_s)
-  // and, from tick 1, the dispatcher's schedule and every order due by this tick (at most
-  // lockstep_start_timeout_s).
-  void WaitForDispatcher();
-  void OnSchedule(const Mission_Schedule::ConstPtr& msg);
-  // Lock-step: the received orders due by this tick enter its relay and the books.
-  void ReleaseMissions();
-  // Lock-step bookkeeping of awaited dispatcher events, from relayed statuses and events.
-  void NoteStatus(const Mission_Status& status);
-  void NoteEvent(const Mission_Event& event);
   // Lock-step: the current tick's answers (zero for late robots) become the world's commands.
   void ApplyAnswers();
   // Idles after the last lock-step tick: services, markers and tf stay up.
@@ -188,17 +98,8 @@ class Simulator : public RobotOutlet {
 
   // One radio round: Neighbors to every receiving robot, then /flock/positions.
   void PublishRadio();
-  // Lock-step relay of mission messages (Neighbors.msg): record one, fill a perception, clear.
-  template <typename M>
-  void Relay(const ros::MessageEvent<const M>& event, RelayList<M>* list);
-  void FillRelay(Neighbors* msg) const;
-  void ClearRelay();
-  // Lock-step: robot `id`'s answer (its command counts for the barrier; its mission messages,
-  // also those of a late answer, are kept for TakeAnswers).
+  // Lock-step: robot `id`'s answer, for the session (ignored after the last tick).
   void OnAnswer(std::uint16_t id, const Tick_Answer& answer);
-  // Lock-step, once a tick's answers are in: their mission messages, by robot id, into the next
-  // relay, the simulator's own books and the observers' topics.
-  void TakeAnswers();
   // Latched /flock/robots: the robots that exist (robots check missions against it).
   void PublishRobotList();
   void PublishPoses();
@@ -246,30 +147,13 @@ class Simulator : public RobotOutlet {
   // cmd_vel callbacks have their own queue so that lock-step can wait for answers without
   // running services (which may spawn or kill robots) at arbitrary points.
   ros::CallbackQueue cmd_queue_;
-  std::map<std::uint16_t, RobotIo> io_;
-  std::map<RelayKey, Robot_Position> relayed_;  // virtual copies (type 1) and statists (type 2)
+  std::unique_ptr<RobotLinks> links_;
+  RelayedPositions relayed_;  // virtual copies and statists
   sim::LiveMissions missions_;
 
   ros::Publisher positions_pub_;
   ros::Publisher robots_pub_;
-  std::vector<ros::Subscriber> relay_subs_;
-  RelayList<New_Mission> pending_missions_;  // received, waiting for their start tick
-  RelayList<New_Mission> relay_missions_;
-  RelayList<Update_Object> relay_updates_;
-  RelayList<Delete_Object> relay_deletes_;
-  RelayList<Robot_Freeze> relay_freezes_;
-  RelayList<Robot_Continue> relay_continues_;
-  RelayList<Mission_Event> relay_events_;
-  RelayList<Mission_Status> relay_statuses_;
-  std::vector<std::pair<std::uint16_t, Tick_Answer>> answers_;  // lock-step: not taken yet
-  // Lock-step: the answers' mission messages for observers.
-  ros::Publisher status_pub_;
-  ros::Publisher progress_pub_;
-  ros::Publisher update_pub_;
-  ros::Publisher delete_pub_;
-  ros::Publisher freeze_pub_;
-  ros::Publisher continue_pub_;
-  sim::LockstepBarrier barrier_;
+  std::unique_ptr<LockstepSession> session_;  // lock-step only
   ros::Publisher clock_pub_;
   std::unique_ptr<sim::Visuals> visuals_;
   ros::ServiceServer spawn_srv_;
@@ -278,16 +162,13 @@ class Simulator : public RobotOutlet {
   ros::Subscriber position_sub_;
   ros::Subscriber robot_delete_sub_;
   ros::Subscriber mission_new_sub_;
-  ros::Subscriber schedule_sub_;
   ros::Subscriber object_update_sub_;
   ros::Subscriber object_delete_sub_;
 
-  std::uint64_t next_generation_ = 0;
   std::uint64_t tick_ = 0;    // radio rounds so far (lock-step: ticks)
   bool finished_ = false;     // lock-step: max ticks reached, the world is frozen
   ros::WallTime start_wall_;
-  ros::WallTime last_late_warning_wall_;  // wall-clock throttles of repeated warnings
-  ros::WallTime last_bad_cmd_warning_wall_;
+  ros::WallTime last_bad_cmd_warning_wall_;  // wall-clock throttles of repeated warnings
   ros::WallTime last_unsolicited_warning_wall_;
   ros::WallTime last_bad_position_warning_wall_;
 };

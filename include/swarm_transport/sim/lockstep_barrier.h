@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "swarm_transport/core/kinematics.h"
+#include "swarm_transport/core/mission.h"
 
 namespace swarm_transport {
 namespace sim {
@@ -54,6 +55,11 @@ class LockstepBarrier {
   void Await(const EventKey& event);
   void Seen(const EventKey& event);
   void Forget(std::uint16_t mission_id);
+  // A relayed phase status of a mission: LOADING owes a LOADED when `loaded_auto` (the
+  // dispatcher sends it on its own after a delay), UNLOADING an UNLOADED when `unloaded_auto`;
+  // an ended mission is forgotten.
+  void OnPhase(std::uint16_t mission_id, core::MissionPhase phase, bool loaded_auto,
+               bool unloaded_auto);
 
   // A dispatcher's scheduled orders (Mission_Schedule): with ExpectSchedule, tick 1 on waits
   // for the schedule; each order waits from its start tick until it arrived.

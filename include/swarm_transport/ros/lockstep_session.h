@@ -1,0 +1,126 @@
+// The simulator's lock-step protocol over ROS [SPEC 7]: who is live, when a tick is complete,
+// and the relay of the robots' and the dispatcher's mission messages. The decisions are the
+// pure barrier's (sim/lockstep_barrier.h) and relay's (ros/mission_relay.h); this class feeds
+// them from topics and the robots' links, waits, and tells observers what the robots said.
+//
+// A tick, driven by the simulator:
+//   BeginTick    robots that connected become live, gone ones not; holds for the dispatcher
+//   (the simulator publishes /clock and the radio: ReleaseOrders, then per robot FillRound,
+//    deliver, Asked; then EndRound)
+//   WaitForAnswers  until every live robot answered (or the timeout); their mission messages
+//                go into the next round's relay, the simulator's books and observers' topics
+//   CommandOf    each live robot's command for this tick
+#ifndef SWARM_TRANSPORT_ROS_LOCKSTEP_SESSION_H_
+#define SWARM_TRANSPORT_ROS_LOCKSTEP_SESSION_H_
+
+#include <ros/callback_queue.h>
+#include <ros/ros.h>
+
+#include <cstdint>
+#include <functional>
+#include <utility>
+#include <vector>
+
+#include "swarm_transport/Mission_Schedule.h"
+#include "swarm_transport/Mission_Status.h"
+#include "swarm_transport/Neighbors.h"
+#include "swarm_transport/New_Mission.h"
+#include "swarm_transport/Tick_Answer.h"
+#include "swarm_transport/core/kinematics.h"
+#include "swarm_transport/ros/mission_relay.h"
+#include "swarm_transport/ros/robot_links.h"
+#include "swarm_transport/ros/simulator_params.h"
+#include "swarm_transport/sim/lockstep_barrier.h"
+
+namespace swarm_transport {
+
+// What the session needs of the simulator's loop while it waits.
+struct LockstepHooks {
+  std::function<bool()> running;             // ROS is up and no stop was requested
+  std::function<void(double)> spin;          // all queues once, waiting up to s for a command
+  std::function<void()> spin_robots;         // the directly linked robots' pending callbacks
+  std::function<void()> visuals;             // markers and tf when due
+  // A tick's answer's mission messages, for the simulator's own books (object updates and
+  // deletes), in relay order.
+  std::function<void(const Tick_Answer&)> books;
+};
+
+class LockstepSession {
+ public:
+  // `links` and `command_queue` (where answers arrive) must outlive the session.
+  LockstepSession(ros::NodeHandle nh, const SimulatorParams& params, RobotLinks* links,
+                  ros::CallbackQueue* command_queue, LockstepHooks hooks);
+
+  // Subscribes the relayed mission topics (and the dispatcher's schedule), advertises the
+  // observers' topics.
+  void Connect();
+  void Shutdown();
+  void AddRobot(std::uint16_t id) { barrier_.Add(id); }
+  void RemoveRobot(std::uint16_t id) { barrier_.Remove(id); }
+  bool Live(std::uint16_t id) const { return barrier_.Live(id); }
+
+  // Before tick 0: waits until every robot is connected, `positions` has its observers and
+  // every relay and `robot_list` subscriber is connected (or the start timeout passed).
+  void WaitForStart(const ros::Publisher& positions, const ros::Publisher& robot_list);
+  // Tick `tick` begins: liveness, then the dispatcher's awaited events and orders.
+  void BeginTick(std::uint64_t tick);
+  // The held orders due by `tick` (they enter this tick's relay; the simulator's books too).
+  std::vector<New_Mission> ReleaseOrders(std::uint64_t tick) { return relay_.ReleaseOrders(tick); }
+  // Round of tick `tick`: StartRound, then per live robot FillRound, its delivery, Asked;
+  // EndRound once every round is out.
+  void StartRound(std::uint64_t tick) { barrier_.StartTick(tick); }
+  void FillRound(Neighbors* round) { relay_.Fill(round); }
+  void Asked(std::uint16_t id) { barrier_.Ask(id); }
+  void EndRound() { relay_.Clear(); }
+  // Spins until every live robot answered tick `tick` or the timeout passed; robots that did
+  // not answer are out of the barrier until they answer again.
+  void WaitForAnswers(std::uint64_t tick);
+  // The command a live robot drives this tick (zero when it did not answer).
+  core::Velocity CommandOf(std::uint16_t id) const { return barrier_.CommandOf(id); }
+  // After the last tick: nobody is asked anything, late answers are ignored.
+  void Finish();
+  // Robot `id`'s answer (a topic's or a direct link's), during tick `tick`.
+  void OnAnswer(std::uint16_t id, const Tick_Answer& answer, std::uint64_t tick);
+
+ private:
+  template <typename M>
+  void Relay(const ros::MessageEvent<const M>& event);
+  void NoteStatus(const Mission_Status& status);
+  void OnSchedule(const Mission_Schedule::ConstPtr& msg);
+  bool RelaysConnected(const ros::Publisher& robot_list) const;
+  void UpdateLiveness(std::uint64_t tick);
+  void WaitForDispatcher(std::uint64_t tick);
+  // Once a tick's answers are in: their mission messages, by robot id, into the next relay,
+  // the simulator's books and the observers' topics.
+  void TakeAnswers();
+
+  ros::NodeHandle nh_;
+  const SimulatorParams& params_;
+  RobotLinks* links_;
+  ros::CallbackQueue* command_queue_;
+  LockstepHooks hooks_;
+  sim::LockstepBarrier barrier_;
+  MissionRelay relay_;
+  std::vector<std::pair<std::uint16_t, Tick_Answer>> answers_;  // not taken yet
+  bool finished_ = false;
+  std::vector<ros::Subscriber> relay_subs_;
+  ros::Subscriber schedule_sub_;
+  // The answers' mission messages for observers (robots in lock-step publish no mission topic).
+  ros::Publisher status_pub_;
+  ros::Publisher progress_pub_;
+  ros::Publisher update_pub_;
+  ros::Publisher delete_pub_;
+  ros::Publisher freeze_pub_;
+  ros::Publisher continue_pub_;
+  ros::WallTime last_late_warning_wall_;  // wall-clock throttles of repeated warnings
+  ros::WallTime last_bad_answer_warning_wall_;
+  ros::WallTime last_unsolicited_warning_wall_;
+};
+
+// True (and `last` updated) when `period_s` of wall time passed since the last true. (ROS's
+// *_THROTTLE macros use ros::Time, which stands still at 0 under use_sim_time before /clock.)
+bool WallThrottle(ros::WallTime* last, double period_s);
+
+}  // namespace swarm_transport
+
+#endif  // SWARM_TRANSPORT_ROS_LOCKSTEP_SESSION_H_

@@ -1,0 +1,167 @@
+// The lock-step relay of mission messages and the relayed positions (ros/mission_relay.h):
+// every robot's round carries the same messages, ordered by sender, whatever order they
+// arrived in; orders wait for their start tick.
+#include "swarm_transport/ros/mission_relay.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace swarm_transport {
+namespace {
+
+Mission_Status Status(std::uint16_t mission, std::uint8_t state) {
+  Mission_Status s;
+  s.mission_id = mission;
+  s.state = state;
+  return s;
+}
+
+New_Mission Order(std::uint16_t id, std::uint64_t start_tick) {
+  New_Mission m;
+  m.mission_id = id;
+  m.start_tick = start_tick;
+  return m;
+}
+
+TEST(MissionRelayTest, AnswerSendersSortAfterNodesByRobotId) {
+  EXPECT_EQ(AnswerSender(7), "robot_00007");
+  EXPECT_LT(std::string("/mission_dispatcher"), AnswerSender(0));
+  EXPECT_LT(AnswerSender(9), AnswerSender(10));
+  EXPECT_LT(AnswerSender(65534), AnswerSender(65535));
+}
+
+// The order a round lists messages in does not depend on which process's message arrived
+// first: by sender, and per sender in arrival order.
+TEST(MissionRelayTest, RoundListsEachKindBySenderThenArrival) {
+  MissionRelay relay;
+  Tick_Answer robot12;
+  robot12.statuses = {Status(1, Mission_Status::LOADING)};
+  Tick_Answer robot3;
+  robot3.statuses = {Status(2, Mission_Status::GATHERING), Status(2, Mission_Status::LOADING)};
+  relay.AddAnswer(12, robot12);
+  relay.Add("/test", Status(3, Mission_Status::QUEUED));
+  relay.AddAnswer(3, robot3);
+  Neighbors round;
+  relay.Fill(&round);
+  ASSERT_EQ(round.statuses.size(), 4u);
+  EXPECT_EQ(round.statuses[0].mission_id, 3);  // "/test"
+  EXPECT_EQ(round.statuses[1].mission_id, 2);  // robot 3, in its order
+  EXPECT_EQ(round.statuses[1].state, Mission_Status::GATHERING);
+  EXPECT_EQ(round.statuses[2].state, Mission_Status::LOADING);
+  EXPECT_EQ(round.statuses[3].mission_id, 1);  // robot 12
+  // A second robot's round of the same tick gets the same lists.
+  Neighbors other;
+  relay.Fill(&other);
+  EXPECT_EQ(other.statuses, round.statuses);
+  // A message added after a Fill is in the next Fill (the sorted copy is not stale).
+  relay.Add("/a", Status(9, Mission_Status::DONE));
+  relay.Fill(&other);
+  ASSERT_EQ(other.statuses.size(), 5u);
+  EXPECT_EQ(other.statuses[0].mission_id, 9);
+  // The next tick starts empty.
+  relay.Clear();
+  Neighbors next;
+  relay.Fill(&next);
+  EXPECT_TRUE(next.statuses.empty());
+}
+
+TEST(MissionRelayTest, AnswerCarriesEveryKindButProgress) {
+  MissionRelay relay;
+  Tick_Answer a;
+  a.object_updates.resize(1);
+  a.freezes.resize(2);
+  a.continues.resize(1);
+  a.object_deletes.resize(1);
+  a.statuses.resize(1);
+  a.progress.resize(3);
+  relay.AddAnswer(5, a);
+  Neighbors round;
+  relay.Fill(&round);
+  EXPECT_EQ(round.object_updates.size(), 1u);
+  EXPECT_EQ(round.freezes.size(), 2u);
+  EXPECT_EQ(round.continues.size(), 1u);
+  EXPECT_EQ(round.object_deletes.size(), 1u);
+  EXPECT_EQ(round.statuses.size(), 1u);
+  EXPECT_TRUE(round.missions.empty());
+}
+
+TEST(MissionRelayTest, OrdersWaitForTheirStartTick) {
+  MissionRelay relay;
+  relay.AddOrder("/mission_dispatcher", Order(1, 5));
+  relay.AddOrder("/mission_dispatcher", Order(2, 0));
+  relay.AddOrder("/mission_dispatcher", Order(3, 3));
+  std::vector<New_Mission> due = relay.ReleaseOrders(0);
+  ASSERT_EQ(due.size(), 1u);
+  EXPECT_EQ(due[0].mission_id, 2);
+  Neighbors round;
+  relay.Fill(&round);
+  ASSERT_EQ(round.missions.size(), 1u);
+  relay.Clear();
+  EXPECT_EQ(relay.held_orders(), 2u);
+  EXPECT_TRUE(relay.ReleaseOrders(2).empty());
+  due = relay.ReleaseOrders(5);  // both due: arrival order
+  ASSERT_EQ(due.size(), 2u);
+  EXPECT_EQ(due[0].mission_id, 1);
+  EXPECT_EQ(due[1].mission_id, 3);
+  EXPECT_EQ(relay.held_orders(), 0u);
+  relay.Fill(&round);
+  EXPECT_EQ(round.missions.size(), 2u);
+}
+
+Robot_Position Position(std::uint16_t robot, std::uint8_t sub, std::uint8_t type, double x) {
+  Robot_Position p;
+  p.robot_id = robot;
+  p.sub_id = sub;
+  p.type = type;
+  p.pos_x = x;
+  p.pos_y = 1.0;
+  p.angle = 0.0f;
+  return p;
+}
+
+TEST(RelayedPositionsTest, KeepsCopiesAndStatistsAndRejectsBadOnes) {
+  RelayedPositions relayed;
+  EXPECT_EQ(relayed.Take(Position(1, 0, Robot_Position::TYPE_PHYSICAL, 2.0)), "");
+  EXPECT_EQ(relayed.size(), 0u);  // the world's truth is relayed, not announcements
+  EXPECT_NE(relayed.Take(Position(1, 1, Robot_Position::TYPE_VIRTUAL,
+                                  std::numeric_limits<double>::quiet_NaN())),
+            "");
+  EXPECT_NE(relayed.Take(Position(1, 1, 9, 2.0)).find("unknown type 9"), std::string::npos);
+  EXPECT_EQ(relayed.size(), 0u);
+  Robot_Position turned = Position(1, 1, Robot_Position::TYPE_VIRTUAL, 2.0);
+  turned.angle = -90.0f;
+  EXPECT_EQ(relayed.Take(turned), "");
+  EXPECT_EQ(relayed.Take(Position(4, 1, Robot_Position::TYPE_STATIST, 3.0)), "");
+  EXPECT_EQ(relayed.Take(Position(1, 2, Robot_Position::TYPE_STATIST, 5.0)), "");
+  ASSERT_EQ(relayed.size(), 3u);
+  const std::vector<sim::RadioExtra> extras = relayed.Extras();
+  ASSERT_EQ(extras.size(), 3u);
+  EXPECT_TRUE(extras[0].virtual_copy);  // (1, 1)
+  EXPECT_EQ(extras[0].owner, 1);
+  EXPECT_FALSE(extras[1].virtual_copy);  // (1, 2)
+  EXPECT_DOUBLE_EQ(extras[2].position.x, 3.0);  // (4, 1)
+
+  // A virtual copy is relayed at its owner's true pose, the others where announced.
+  std::vector<Robot_Position> truth = {Position(1, 0, Robot_Position::TYPE_PHYSICAL, 7.0)};
+  truth[0].angle = 45.0f;
+  const std::vector<Robot_Position> at = relayed.AtOwners({0, -1, -1}, truth);
+  ASSERT_EQ(at.size(), 3u);
+  EXPECT_DOUBLE_EQ(at[0].pos_x, 7.0);
+  EXPECT_FLOAT_EQ(at[0].angle, 45.0f);
+  EXPECT_DOUBLE_EQ(at[1].pos_x, 5.0);
+  // Without its owner the copy stands where announced, its angle kept in [0, 360).
+  const std::vector<Robot_Position> alone = relayed.AtOwners({-1, -1, -1}, truth);
+  EXPECT_DOUBLE_EQ(alone[0].pos_x, 2.0);
+  EXPECT_FLOAT_EQ(alone[0].angle, 270.0f);
+
+  // A killed robot's copies die with it; its statists and others stay.
+  relayed.EraseCopiesOf(1);
+  EXPECT_EQ(relayed.size(), 2u);
+  relayed.Erase(4, 1);
+  EXPECT_EQ(relayed.size(), 1u);
+}
+
+}  // namespace
+}  // namespace swarm_transport
