@@ -18,7 +18,6 @@ namespace swarm_transport {
 namespace {
 
 using core::MissionPhase;
-using XmlRpc::XmlRpcValue;
 
 constexpr char kNode[] = "mission_dispatcher";
 constexpr std::size_t kPhaseCount = 8;
@@ -27,227 +26,20 @@ constexpr std::size_t kPhaseCount = 8;
 constexpr double kListenerWaitS = 1.0;
 constexpr double kListenerPollS = 0.005;
 
-// XmlRpc gives ints and doubles as different types; `x: 7` in a YAML file means 7.0.
-bool AsDouble(XmlRpcValue& v, double* out) {
-  if (v.getType() == XmlRpcValue::TypeDouble) {
-    *out = static_cast<double>(v);
-  } else if (v.getType() == XmlRpcValue::TypeInt) {
-    *out = static_cast<int>(v);
-  } else {
-    return false;
-  }
-  return std::isfinite(*out);
-}
-
-// An integer in [lo, hi] or false.
-bool AsInt(XmlRpcValue& v, int lo, int hi, int* out) {
-  if (v.getType() != XmlRpcValue::TypeInt) return false;
-  *out = static_cast<int>(v);
-  return lo <= *out && *out <= hi;
-}
-
-// A list of exactly `n` finite numbers.
-bool AsNumbers(XmlRpcValue& v, int n, std::vector<double>* out) {
-  if (v.getType() != XmlRpcValue::TypeArray || v.size() != n) return false;
-  out->assign(static_cast<std::size_t>(n), 0.0);
-  for (int i = 0; i < n; ++i) {
-    if (!AsDouble(v[i], &(*out)[static_cast<std::size_t>(i)])) return false;
-  }
-  return true;
-}
-
-// Reads one missions-file entry; `error` says which key is wrong.
-bool MissionFromXmlRpc(XmlRpcValue& e, core::MissionSpec* spec, std::string* error) {
-  static const std::set<std::string> kKeys = {"id",      "robots_from", "robots_to", "robot_ids",
-                                              "leaders", "object",      "target",    "mode"};
-  if (e.getType() != XmlRpcValue::TypeStruct) {
-    *error = "must be a dictionary";
-    return false;
-  }
-  for (auto& kv : e) {
-    if (kKeys.count(kv.first) == 0) {
-      *error = "unknown key '" + kv.first +
-               "' (known: id, robots_from, robots_to, robot_ids, leaders, object, target, mode)";
-      return false;
-    }
-  }
-  core::MissionSpec m;
-  int value = 0;
-  if (e.hasMember("id")) {
-    if (!AsInt(e["id"], 0, 65535, &value)) {
-      *error = "'id' must be an integer in [0, 65535] (0 = next free id)";
-      return false;
-    }
-    m.id = static_cast<std::uint16_t>(value);
-  }
-  const bool has_range = e.hasMember("robots_from") || e.hasMember("robots_to");
-  if (has_range == e.hasMember("robot_ids")) {
-    *error = "give either robots_from and robots_to (half-open range) or robot_ids (a list)";
-    return false;
-  }
-  if (has_range) {
-    int from = 0, to = 0;
-    if (!e.hasMember("robots_from") || !e.hasMember("robots_to") ||
-        !AsInt(e["robots_from"], 0, 65535, &from) || !AsInt(e["robots_to"], 0, 65535, &to)) {
-      *error = "'robots_from' and 'robots_to' must both be integers in [0, 65535]";
-      return false;
-    }
-    m.range_from = static_cast<std::uint16_t>(from);
-    m.range_to = static_cast<std::uint16_t>(to);
-  } else {
-    XmlRpcValue& ids = e["robot_ids"];
-    if (ids.getType() != XmlRpcValue::TypeArray || ids.size() == 0) {
-      *error = "'robot_ids' must be a non-empty list of robot ids";
-      return false;
-    }
-    for (int i = 0; i < ids.size(); ++i) {
-      if (!AsInt(ids[i], 0, 65535, &value)) {
-        *error = "'robot_ids' must hold integers in [0, 65535]";
-        return false;
-      }
-      m.robot_ids.push_back(static_cast<std::uint16_t>(value));
-    }
-  }
-  if (!e.hasMember("leaders") || !AsInt(e["leaders"], 1, 255, &m.leader_number)) {
-    *error = "'leaders' must be an integer in [1, 255]";
-    return false;
-  }
-  std::vector<double> v;
-  if (!e.hasMember("target") || !AsNumbers(e["target"], 2, &v)) {
-    *error = "'target' must be [x, y], finite numbers (m)";
-    return false;
-  }
-  m.target = {v[0], v[1]};
-  if (e.hasMember("object")) {
-    if (!AsNumbers(e["object"], 4, &v)) {
-      *error =
-          "'object' must be [x, y, size_x, size_y], finite numbers (m), or left out for a "
-          "leader-only mission";
-      return false;
-    }
-    m.object_centre = {v[0], v[1]};
-    m.object_size = {v[2], v[3]};
-  } else {
-    m.object_centre = m.target;  // leader-only: the position is ignored, keep it meaningful
-  }
-  if (e.hasMember("mode")) {
-    XmlRpcValue& mode = e["mode"];
-    if (mode.getType() == XmlRpcValue::TypeString) {
-      const std::string name = static_cast<std::string>(mode);
-      value = name == "swarm" ? 0 : name == "formation" ? 1 : -1;
-    } else if (!AsInt(mode, 0, 1, &value)) {
-      value = -1;
-    }
-    if (value < 0) {
-      *error = "'mode' must be 0 (swarm) or 1 (formation)";
-      return false;
-    }
-    m.transport_mode = static_cast<std::uint8_t>(value);
-  }
-  *spec = m;
-  return true;
-}
-
 const char* EventName(core::MissionEventKind kind) {
   return kind == core::MissionEventKind::kLoaded ? "LOADED" : "UNLOADED";
 }
 
 }  // namespace
 
-std::string DispatcherOptions::Validate() const {
-  std::ostringstream os;
-  if (!std::isfinite(loaded_delay_s) || !std::isfinite(unloaded_delay_s)) {
-    os << "loaded_delay_s and unloaded_delay_s must be finite (s; negative = never send)";
-  } else if (!(start_delay_s >= 0.0) || !std::isfinite(start_delay_s)) {
-    os << "~start_delay_s must be a finite number >= 0 (s) but is " << start_delay_s;
-  } else if (max_live_missions < 1 || max_live_missions > 65535) {
-    os << "~max_live_missions must be in [1, 65535] but is " << max_live_missions;
-  } else if (silent_abort_ticks < 0) {
-    os << "~silent_abort_ticks must be >= 0 (ticks; 0: never) but is " << silent_abort_ticks;
-  }
-  return os.str();
-}
-
-bool MissionsFromXmlRpc(XmlRpcValue& file, std::vector<core::MissionSpec>* missions,
-                        std::string* error) {
-  if (file.getType() != XmlRpcValue::TypeStruct || !file.hasMember("missions") ||
-      file["missions"].getType() != XmlRpcValue::TypeArray) {
-    *error = "the file must hold a list under the key 'missions'";
-    return false;
-  }
-  XmlRpcValue& list = file["missions"];
-  std::vector<core::MissionSpec> out;
-  for (int i = 0; i < list.size(); ++i) {
-    core::MissionSpec spec;
-    std::string why;
-    if (!MissionFromXmlRpc(list[i], &spec, &why)) {
-      *error = "missions[" + std::to_string(i) + "]: " + why;
-      return false;
-    }
-    out.push_back(spec);
-  }
-  *missions = out;
-  return true;
-}
-
 MissionDispatcher::MissionDispatcher(ros::NodeHandle nh, ros::NodeHandle private_nh)
     : nh_(nh), private_nh_(private_nh) {}
 
 bool MissionDispatcher::LoadOptions(std::string* error) {
-  XmlRpcValue swarm;
-  if (nh_.getParam("/swarm", swarm) && !ConfigFromXmlRpc(swarm, &config_, error)) {
-    *error = "/swarm: " + *error;
+  if (!ReadDispatcherOptions(nh_, private_nh_, &config_, &options_, &file_missions_, error)) {
     return false;
   }
-  options_.loaded_delay_s = config_.loaded_delay_s;
-  options_.unloaded_delay_s = config_.unloaded_delay_s;
-  if (!ReadPrivate(private_nh_, "loaded_delay_s", &options_.loaded_delay_s, error) ||
-      !ReadPrivate(private_nh_, "unloaded_delay_s", &options_.unloaded_delay_s, error) ||
-      !ReadPrivate(private_nh_, "missions_file", &options_.missions_file, error) ||
-      !ReadPrivate(private_nh_, "start_delay_s", &options_.start_delay_s, error) ||
-      !ReadPrivate(private_nh_, "max_live_missions", &options_.max_live_missions, error) ||
-      !ReadPrivate(private_nh_, "silent_abort_ticks", &options_.silent_abort_ticks, error)) {
-    return false;
-  }
-  *error = options_.Validate();
-  if (!error->empty()) return false;
-  core::MissionBookParams book;
-  book.world_size_m = config_.flocking.world_size_m;
-  book.tick_period_s = config_.tick_period_s;
-  book.loaded_delay_s = options_.loaded_delay_s;
-  book.unloaded_delay_s = options_.unloaded_delay_s;
-  book.max_live_missions = options_.max_live_missions;
-  book.silent_after_s = options_.silent_abort_ticks > 0
-                            ? options_.silent_abort_ticks * config_.tick_period_s
-                            : -1.0;
-  book_ = std::make_unique<core::MissionBook>(book);
-  if (options_.missions_file.empty()) return true;
-
-  const std::string& path = options_.missions_file;
-  XmlRpcValue file;
-  if (!XmlRpcFromYamlFile(path, &file, error)) {
-    *error = "~missions_file: " + *error;  // the reader names the path
-    return false;
-  }
-  if (!MissionsFromXmlRpc(file, &file_missions_, error)) {
-    *error = "~missions_file " + path + ": " + *error;
-    return false;
-  }
-  // Check what can be checked before any robot is known; ids of the file must not clash.
-  core::MissionContext context;
-  context.world_size_m = config_.flocking.world_size_m;
-  for (std::size_t i = 0; i < file_missions_.size(); ++i) {
-    const core::MissionSpec& m = file_missions_[i];
-    std::string reason = core::ValidateMission(m, context);
-    if (context.live_missions.count(m.id) > 0) {
-      reason = "id " + std::to_string(m.id) + " appears twice in the file";
-    }
-    if (!reason.empty()) {
-      *error = "~missions_file " + path + ": missions[" + std::to_string(i) + "]: " + reason;
-      return false;
-    }
-    if (m.id != 0) context.live_missions.insert(m.id);
-  }
+  book_ = std::make_unique<core::MissionBook>(MissionBookParamsOf(config_, options_));
   return true;
 }
 

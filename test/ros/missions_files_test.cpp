@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "swarm_transport/core/mission.h"
-#include "swarm_transport/ros/mission_dispatcher.h"
+#include "swarm_transport/ros/dispatcher_options.h"
 #include "swarm_transport/ros/params.h"
 
 namespace swarm_transport {

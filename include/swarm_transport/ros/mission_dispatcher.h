@@ -21,30 +21,10 @@
 #include "swarm_transport/Submit_Mission.h"
 #include "swarm_transport/core/mission.h"
 #include "swarm_transport/core/mission_book.h"
+#include "swarm_transport/ros/dispatcher_options.h"
 #include "swarm_transport/ros/params.h"
 
 namespace swarm_transport {
-
-// Private parameters of the dispatcher (the arena and the default delays come from /swarm).
-struct DispatcherOptions {
-  double loaded_delay_s = 2.0;    // ~loaded_delay_s (else /swarm): LOADED after LOADING; < 0: never
-  double unloaded_delay_s = 2.0;  // ~unloaded_delay_s (else /swarm): UNLOADED after UNLOADING
-  std::string missions_file;      // ~missions_file: YAML with `missions:`; "" = none
-  double start_delay_s = 1.0;     // ~start_delay_s: after the first /flock/positions, >= 0
-  int max_live_missions = 64;     // ~max_live_missions: more are rejected, [1, 65535]
-  // ~silent_abort_ticks: a running mission whose first leader said nothing (phase or progress
-  // report, one every 50 ticks) for this many ticks is ABORTED - its first leader is lost
-  // (issue 11); 0: never.
-  int silent_abort_ticks = 300;
-  std::string Validate() const;
-};
-
-// Reads the `missions:` list of a missions file (already turned into XmlRpc) into specs. Each
-// entry: id (0 or missing = next free), robots_from + robots_to | robot_ids, leaders, object
-// [x, y, size_x, size_y] (missing = leader-only), target [x, y], mode (0 | 1 | swarm |
-// formation, default 0). False with `error` naming the entry and key on a malformed file.
-bool MissionsFromXmlRpc(XmlRpc::XmlRpcValue& file, std::vector<core::MissionSpec>* missions,
-                        std::string* error);
 
 // Accepts missions from ~missions_file, the ~submit service and raw /flock/mission/new
 // messages, validates each (ValidateMission: arena, known robots, live ids), publishes the
