@@ -10,7 +10,6 @@ import unittest
 import rospy
 import rostest
 from rosgraph_msgs.msg import Log
-from std_srvs.srv import Trigger
 from swarm_transport.msg import Robot_Continue, Robot_Freeze, Robot_Position
 
 import swarm_testing as st
@@ -40,14 +39,8 @@ class FreezeContinue(unittest.TestCase):
         cls.log.close()
 
     def frozen(self):
-        """Which robots say they are frozen (their ~describe service)."""
-        out = set()
-        for rid in range(self.robots):
-            srv = rospy.ServiceProxy('/robot_%d/robot/describe' % rid, Trigger)
-            srv.wait_for_service(self.timeout)
-            if 'frozen=1' in srv().message:
-                out.add(rid)
-        return out
+        """Which robots say they are frozen (their ~state service)."""
+        return {rid for rid in range(self.robots) if st.robot_state(rid, self.timeout).frozen}
 
     def window(self, ticks):
         """Positions at the start and the end of the next `ticks` ticks."""

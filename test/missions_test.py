@@ -9,7 +9,6 @@ import unittest
 
 import rospy
 import rostest
-from std_srvs.srv import Trigger
 from swarm_transport.msg import New_Mission
 from swarm_transport.srv import Submit_Mission
 
@@ -43,13 +42,8 @@ class Missions(unittest.TestCase):
         self.swarm.shutdown()
         self.log.close()
 
-    def describe(self, robots):
-        out = {}
-        for rid in range(robots):
-            srv = rospy.ServiceProxy('/robot_%d/robot/describe' % rid, Trigger)
-            srv.wait_for_service(self.timeout)
-            out[rid] = srv().message
-        return out
+    def states(self, robots):
+        return {rid: st.robot_state(rid, self.timeout) for rid in range(robots)}
 
     def test_leader_only_mission_brings_its_swarm(self):
         g = lambda k: rospy.get_param('~leader/' + k)  # noqa: E731
@@ -133,14 +127,14 @@ class Missions(unittest.TestCase):
         self.assertNotEqual(self.submit(dup).code, 0, 'duplicate live mission id accepted')
         t = self.log.latest_tick()
         self.assertTrue(self.log.wait_tick(t + 20, self.timeout), 'the swarm stopped ticking')
-        for rid, text in self.describe(robots).items():
-            held = {int(item.split(':')[0])
-                    for item in text.split('missions=[')[1].split(']')[0].split()}
+        for rid, state in self.states(robots).items():
+            held = set(state.mission_ids)
             # None of the bad orders reached any robot. (The accepted 48 may already be done:
             # lock-step runs hundreds of ticks while the robots are asked one by one.)
-            self.assertTrue(held <= {48}, 'robot %d holds missions %s: %s' % (rid, held, text))
+            self.assertTrue(held <= {48}, 'robot %d holds missions %s: %s' % (rid, held, state))
             if rid >= 5:
-                self.assertIn('active=none', text, 'robot %d works on a mission: %s' % (rid, text))
+                self.assertFalse(state.has_active,
+                                 'robot %d works on mission %d' % (rid, state.active_mission))
 
 
 if __name__ == '__main__':

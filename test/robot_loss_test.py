@@ -14,7 +14,6 @@ import unittest
 
 import rospy
 import rostest
-from std_srvs.srv import Trigger
 from swarm_transport.msg import New_Mission
 
 import swarm_testing as st
@@ -67,10 +66,9 @@ class RobotLoss(unittest.TestCase):
                              'killed at tick %d, ABORTED at tick %d' % (killed_at, end.tick))
         # The other robots of the mission dropped it and go on ticking.
         self.assertTrue(log.wait_tick(end.tick + 20, g('timeout_s')))
-        srv = rospy.ServiceProxy('/robot_1/robot/describe', Trigger)
-        srv.wait_for_service(g('timeout_s'))
-        self.assertTrue(st.wait_for(lambda: 'missions=[]' in srv().message, g('timeout_s')),
-                        srv().message)
+        self.assertTrue(
+            st.wait_for(lambda: not st.robot_state(1, g('timeout_s')).mission_ids, g('timeout_s')),
+            st.robot_state(1, g('timeout_s')))
 
 
 if __name__ == '__main__':

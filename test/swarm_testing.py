@@ -118,6 +118,14 @@ def submit_before_first_tick(pub, msg, timeout):
     return ''
 
 
+def robot_state(rid, timeout):
+    """Robot `rid`'s typed state (its ~state service, swarm_transport/Robot_State)."""
+    from swarm_transport.srv import Robot_State
+    srv = rospy.ServiceProxy('/robot_%d/robot/state' % rid, Robot_State)
+    srv.wait_for_service(timeout)
+    return srv()
+
+
 def node_pid(name):
     """The process id of node `name`, from its own XML-RPC API (to stop or kill it by pid)."""
     import xmlrpc.client

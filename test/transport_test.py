@@ -7,7 +7,6 @@ import unittest
 
 import rospy
 import rostest
-from std_srvs.srv import Trigger
 from swarm_transport.msg import New_Mission
 
 import swarm_testing as st
@@ -37,11 +36,7 @@ class Transport(unittest.TestCase):
                             'mission 7 did not finish; states so far %s' % status.states(7))
             done_tick = log.latest_tick()
             self.assertTrue(log.wait_tick(done_tick + 5, timeout))
-            describe = {}
-            for rid in range(robots):
-                srv = rospy.ServiceProxy('/robot_%d/robot/describe' % rid, Trigger)
-                srv.wait_for_service(timeout)
-                describe[rid] = srv().message
+            states = {rid: st.robot_state(rid, timeout) for rid in range(robots)}
         finally:
             swarm.shutdown()
             if log:
@@ -85,10 +80,11 @@ class Transport(unittest.TestCase):
                              'object ended at %s' % (final,))
         self.assertLessEqual(unloading.distance_to_target, g('goal_tolerance_m') + 1e-6)
         # After Delete_Object no robot keeps the zone or the mission.
-        for rid, text in describe.items():
-            self.assertIn('missions=[]', text, 'robot %d still holds a mission: %s' % (rid, text))
-            self.assertIn('zones=[]', text, 'robot %d still keeps a zone: %s' % (rid, text))
-            self.assertIn('frozen=0', text, 'robot %d is still frozen: %s' % (rid, text))
+        for rid, state in states.items():
+            self.assertEqual(list(state.mission_ids), [],
+                             'robot %d still holds a mission: %s' % (rid, state))
+            self.assertEqual(list(state.zone_ids), [], 'robot %d still keeps a zone: %s' % (rid, state))
+            self.assertFalse(state.frozen, 'robot %d is still frozen' % rid)
         rospy.loginfo('transport: gathering %d, loading %d, transport %d, unloading %d, done %d',
                       gathering, loading.tick, transport.tick, unloading.tick, done.tick)
 

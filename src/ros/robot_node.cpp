@@ -102,6 +102,7 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
     stats_pub_ = nh_.advertise<std_msgs::String>(kStatsTopic, kStatsQueue);
   }
   describe_srv_ = private_nh_.advertiseService("describe", &RobotNode::OnDescribe, this);
+  state_srv_ = private_nh_.advertiseService("state", &RobotNode::OnState, this);
   if (options_.clock == core::Clock::kRealtime && !options_.external_timer) {
     timer_ = nh_.createWallTimer(ros::WallDuration(config_.tick_period_s), &RobotNode::OnTimer,
                                  this);
@@ -237,28 +238,61 @@ void RobotNode::OnContinue(const Robot_Continue::ConstPtr& msg) {
   if (!why.empty()) Rejected("Robot_Continue", why);
 }
 
-bool RobotNode::OnDescribe(std_srvs::Trigger::Request& /*req*/,
-                           std_srvs::Trigger::Response& res) {
-  std::ostringstream os;
+Robot_State::Response RobotNode::State() const {
   const core::RobotBrain& brain = *brain_;
   const core::MissionPlan& plan = brain.last_plan();
   const core::MoveDecision& move = brain.last_move();
-  os << "id=" << id_ << " ticks=" << ticks_ << " frozen=" << (brain.frozen() ? 1 : 0)
-     << " role=" << (plan.lead ? "leader" : "passive") << " active=";
-  if (plan.active) {
-    os << *plan.active;
+  Robot_State::Response state;
+  state.robot_id = id_;
+  state.ticks = ticks_;
+  state.frozen = brain.frozen();
+  state.leader = plan.lead;
+  state.has_active = plan.active.has_value();
+  state.active_mission = plan.active.value_or(0);
+  for (std::uint16_t m : brain.missions().LiveIds()) {
+    state.mission_ids.push_back(m);
+    state.mission_phases.push_back(static_cast<std::uint8_t>(brain.missions().PhaseOf(m)));
+  }
+  for (const core::Zone& z : plan.zones) {
+    state.zone_ids.push_back(z.id);
+    state.zone_safety.push_back(z.inverted);
+  }
+  state.heard = static_cast<std::uint32_t>(brain.last_heard());
+  state.desired_heading_deg = move.desired_heading.degrees();
+  state.heading_deg = move.heading.degrees();
+  state.distance_m = move.distance_m;
+  state.fleeing = move.fleeing;
+  return state;
+}
+
+bool RobotNode::OnState(Robot_State::Request& /*req*/, Robot_State::Response& res) {
+  res = State();
+  return true;
+}
+
+bool RobotNode::OnDescribe(std_srvs::Trigger::Request& /*req*/,
+                           std_srvs::Trigger::Response& res) {
+  const Robot_State::Response s = State();
+  std::ostringstream os;
+  os << "id=" << s.robot_id << " ticks=" << s.ticks << " frozen=" << (s.frozen ? 1 : 0)
+     << " role=" << (s.leader ? "leader" : "passive") << " active=";
+  if (s.has_active) {
+    os << s.active_mission;
   } else {
     os << "none";
   }
   os << " missions=[";
-  for (std::uint16_t m : brain.missions().LiveIds()) {
-    os << m << ":" << core::PhaseName(brain.missions().PhaseOf(m)) << " ";
+  for (std::size_t i = 0; i < s.mission_ids.size(); ++i) {
+    os << s.mission_ids[i] << ":"
+       << core::PhaseName(static_cast<core::MissionPhase>(s.mission_phases[i])) << " ";
   }
   os << "] zones=[";
-  for (const core::Zone& z : plan.zones) os << z.id << (z.inverted ? ":safety " : ":danger ");
-  os << "] heard=" << brain.last_heard() << " desired=" << move.desired_heading.degrees()
-     << " heading=" << move.heading.degrees() << " distance=" << move.distance_m
-     << " fleeing=" << (move.fleeing ? 1 : 0);
+  for (std::size_t i = 0; i < s.zone_ids.size(); ++i) {
+    os << s.zone_ids[i] << (s.zone_safety[i] ? ":safety " : ":danger ");
+  }
+  os << "] heard=" << s.heard << " desired=" << s.desired_heading_deg
+     << " heading=" << s.heading_deg << " distance=" << s.distance_m
+     << " fleeing=" << (s.fleeing ? 1 : 0);
   res.success = true;
   res.message = os.str();
   return true;

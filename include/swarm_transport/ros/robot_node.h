@@ -14,6 +14,7 @@
 #include <map>
 #include <set>
 
+#include "swarm_transport/Robot_State.h"
 #include "swarm_transport/Delete_Object.h"
 #include "swarm_transport/Mission_Event.h"
 #include "swarm_transport/Mission_Status.h"
@@ -98,7 +99,9 @@ class RobotNode {
   // Diagnostics: this tick's timing (and, broadcast comm, the updates' delivery); publishes
   // the figures once per wall second.
   void RecordTick();
-  // ~describe: one line of state (role, frozen, missions, zones) for users and tests.
+  // ~state: its state, typed (for tools and tests); ~describe: the same in one line for people.
+  Robot_State::Response State() const;
+  bool OnState(Robot_State::Request& req, Robot_State::Response& res);
   bool OnDescribe(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
   // Its velocity command, over the direct link or the cmd_vel topic.
   void SendCommand(const geometry_msgs::Twist& command);
@@ -161,6 +164,7 @@ class RobotNode {
   ros::WallTime outlets_since_;
   bool outlets_ready_ = false;
   ros::ServiceServer describe_srv_;
+  ros::ServiceServer state_srv_;
   ros::Publisher answer_pub_;  // lock-step, without a direct link
   ros::WallTimer timer_;
   std::set<std::uint16_t> known_robots_;
