@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
-"""Robots lost during a mission (issue 11), their processes killed (SIGKILL) in lock-step:
-- a passive robot in GATHERING: its radio falls silent, the first leader drops it after
-  lost_after_ticks and the rest gathers, loads and carries without it (LOADING names it);
-- the first leader in TRANSPORT: the mission does not hang - the dispatcher hears nothing from
-  the first leader (no phase, no progress report) for its silence limit, ends the mission
-  ABORTED with a reason naming the robot, and sends Delete_Object, so the other robots of the
-  mission drop it and flock on."""
+"""Robots lost during a mission (issue 11, SPEC 9.7), their processes killed (SIGKILL):
+- a passive robot in GATHERING: its radio falls silent, the group loses it after lost_after_s
+  and gathers, loads and carries without it (LOADING names it);
+- the first leader in TRANSPORT (lock-step and real time): the next assigned robot is promoted,
+  says so in a TRANSPORT status naming the lost robot, and the mission ends DONE;
+- both leaders in TRANSPORT: the next two assigned robots are promoted, the mission ends DONE;
+- a leader of a two-robot mission with two leaders: fewer robots than leaders are left, the
+  mission ends ABORTED with the reason, and the other robot drops it."""
 
 import os
 import signal
@@ -25,50 +26,83 @@ def g(key):
 
 class RobotLoss(unittest.TestCase):
 
-    def kill_in_phase(self, mission_id, phase, robot):
-        """Launches the swarm, submits a transport mission of robots [0, group) led by robot 0
-        before tick 0, and kills `robot`'s process once the mission reported `phase`. Returns
-        (status log, position log, the tick of the kill); the swarm is shut down at cleanup."""
+    def kill_in_phase(self, mission_id, phase, robots, group=None, leaders=1, lockstep=True):
+        """Launches the swarm, submits a transport mission of robots [0, group) led by its first
+        `leaders` before tick 0, and kills the processes of `robots` once the mission reported
+        `phase`. Returns (status log, position log, the tick of the kill); the swarm is shut down
+        at cleanup."""
         timeout = g('timeout_s')
         status = st.StatusLog()
         pub = rospy.Publisher('/flock/mission/new', New_Mission, queue_size=10)
-        swarm = st.launch_swarm(robots=g('robots'), seed=g('seed'), lockstep=True, max_ticks=0)
+        swarm = st.launch_swarm(robots=g('robots'), seed=g('seed'), lockstep=lockstep,
+                                max_ticks=0)
         self.addCleanup(swarm.shutdown)
-        why = st.submit_before_first_tick(
-            pub, st.mission(mission_id, 0, g('group'), 1, (7.0, 7.0, 2.0, 2.0), (3.0, 3.0)),
-            timeout)
-        self.assertEqual(why, '')
+        order = st.mission(mission_id, 0, group or g('group'), leaders, (7.0, 7.0, 2.0, 2.0),
+                           (3.0, 3.0))
+        if lockstep:
+            self.assertEqual(st.submit_before_first_tick(pub, order, timeout), '')
         log = st.PositionLog()
         self.addCleanup(log.close)
+        if not lockstep:
+            self.assertTrue(log.wait_tick(3, timeout), 'the swarm never ticked')
+            self.assertTrue(st.wait_connected(pub, timeout))
+            pub.publish(order)
         self.assertTrue(st.wait_for(lambda: status.first(mission_id, phase) is not None, timeout),
                         'no %s; states so far %s' % (st.NAMES[phase], status.states(mission_id)))
-        os.kill(st.node_pid('/robot_%d/robot' % robot), signal.SIGKILL)
+        for robot in robots:
+            os.kill(st.node_pid('/robot_%d/robot' % robot), signal.SIGKILL)
         killed_at = log.latest_tick()
         self.assertTrue(st.wait_for(lambda: status.final(mission_id), timeout),
-                        'mission %d never ended after robot %d died; states %s'
-                        % (mission_id, robot, status.states(mission_id)))
+                        'mission %d never ended after robot(s) %s died; states %s'
+                        % (mission_id, robots, status.states(mission_id)))
         return status, log, killed_at
+
+    def promoted(self, status, mission_id, killed_at, lost, leader, bound):
+        """The mission ends DONE; one TRANSPORT status after the first names the robot promoted
+        and the robots lost, within `bound` ticks of the kill."""
+        states = status.states(mission_id)
+        self.assertEqual(states[-2:], ['UNLOADING', 'DONE'], states)
+        takeovers = [m for m in status.of(mission_id) if m.state == 3 and m.reason]
+        self.assertEqual(len(takeovers), 1, [(m.tick, m.reason) for m in status.of(mission_id)])
+        want = 'robot %d leads: robot(s) %s lost' % (leader, ', '.join(str(r) for r in lost))
+        self.assertIn(want, takeovers[0].reason)
+        self.assertLessEqual(takeovers[0].tick - killed_at, bound,
+                             'killed at tick %d, taken over at tick %d'
+                             % (killed_at, takeovers[0].tick))
 
     def test_a_passive_robot_lost_in_gathering_is_dropped(self):
         lost = g('lost_robot')
-        status, _, _ = self.kill_in_phase(6, 1, lost)
+        status, _, _ = self.kill_in_phase(6, 1, [lost])
         self.assertEqual(status.states(6), ['QUEUED', 'GATHERING', 'LOADING', 'TRANSPORT',
                                             'UNLOADING', 'DONE'])
         self.assertIn('without robot(s) %d (lost' % lost, status.first(6, 2).reason)
 
-    def test_the_mission_of_a_lost_first_leader_ends_aborted(self):
-        status, log, killed_at = self.kill_in_phase(5, 3, 0)  # the first leader in TRANSPORT
-        end = [m for m in status.of(5) if m.state in (5, 6, 7)][0]
+    def test_a_lost_first_leader_is_replaced_lockstep(self):
+        status, _, killed_at = self.kill_in_phase(5, 3, [0])
+        self.promoted(status, 5, killed_at, [0], 1, g('max_ticks_to_promote'))
+
+    def test_a_lost_first_leader_is_replaced_realtime(self):
+        status, _, killed_at = self.kill_in_phase(4, 3, [0], lockstep=False)
+        self.promoted(status, 4, killed_at, [0], 1, g('max_ticks_to_promote_realtime'))
+
+    def test_all_lost_leaders_are_replaced(self):
+        status, _, killed_at = self.kill_in_phase(3, 3, [0, 1], leaders=2)
+        self.promoted(status, 3, killed_at, [0, 1], 2, g('max_ticks_to_promote'))
+
+    def test_too_few_robots_left_for_the_leaders_aborts(self):
+        status, log, killed_at = self.kill_in_phase(2, 3, [1], group=2, leaders=2)
+        end = [m for m in status.of(2) if m.state in (5, 6, 7)][0]
         self.assertEqual(st.NAMES[end.state], 'ABORTED', end.reason)
-        self.assertIn('robot 0', end.reason)
-        self.assertIn('silent', end.reason)
-        self.assertLessEqual(end.tick - killed_at, g('max_ticks_to_abort'),
+        self.assertIn('robot(s) 1 lost', end.reason)
+        self.assertIn('fewer robots than leaders', end.reason)
+        self.assertLessEqual(end.tick - killed_at, g('max_ticks_to_promote'),
                              'killed at tick %d, ABORTED at tick %d' % (killed_at, end.tick))
-        # The other robots of the mission dropped it and go on ticking.
+        # Its other robot dropped the mission (Delete_Object) and goes on ticking, unfrozen.
         self.assertTrue(log.wait_tick(end.tick + 20, g('timeout_s')))
         self.assertTrue(
-            st.wait_for(lambda: not st.robot_state(1, g('timeout_s')).mission_ids, g('timeout_s')),
-            st.robot_state(1, g('timeout_s')))
+            st.wait_for(lambda: not st.robot_state(0, g('timeout_s')).mission_ids, g('timeout_s')),
+            st.robot_state(0, g('timeout_s')))
+        self.assertFalse(st.robot_state(0, g('timeout_s')).frozen)
 
 
 if __name__ == '__main__':

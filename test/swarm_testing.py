@@ -132,7 +132,8 @@ def node_pid(name):
     import rosgraph
     import rosnode
     caller = rospy.get_name()
-    api = rosnode.get_api_uri(rosgraph.Master(caller), name)
+    # Not from rosnode's cache: a node of the same name in an earlier swarm had another API.
+    api = rosnode.get_api_uri(rosgraph.Master(caller), name, skip_cache=True)
     code, _, pid = xmlrpc.client.ServerProxy(api).getPid(caller)
     assert code == 1, 'no pid for %s' % name
     return pid

@@ -74,7 +74,13 @@ bool MissionAgent::OnEvent(std::uint16_t mission_id, MissionEventKind event,
     return false;
   }
   Live& live = it->second;
-  if (live.spec.FirstLeader() != self_id_) return true;  // only the first leader acts on it
+  if (!LeadsFirst(live)) {
+    // Only the first leader acts on it; the others keep it in case they are promoted (it may
+    // arrive before the status of the phase it belongs to).
+    (event == MissionEventKind::kLoaded ? live.loaded : live.unloaded) = true;
+    live.signal_tick = not_before_tick;
+    return true;
+  }
   const MissionPhase expected =
       event == MissionEventKind::kLoaded ? MissionPhase::kLoading : MissionPhase::kUnloading;
   if (live.phase != expected) {
@@ -95,12 +101,15 @@ bool MissionAgent::OnEvent(std::uint16_t mission_id, MissionEventKind event,
 
 void MissionAgent::OnStatus(std::uint16_t mission_id, MissionPhase phase) {
   auto it = live_.find(mission_id);
-  if (it == live_.end() || it->second.spec.FirstLeader() == self_id_) return;
+  if (it == live_.end() || LeadsFirst(it->second)) return;
   // QUEUED and REJECTED come from the dispatcher (a REJECTED may name a live mission's id when
   // a duplicate was refused): only the first leader's phases move a mission on.
   if (phase == MissionPhase::kQueued || phase == MissionPhase::kRejected) return;
   // Phases only move forward; a late or repeated report must not turn the clock back.
-  if (static_cast<int>(phase) > static_cast<int>(it->second.phase)) it->second.phase = phase;
+  if (static_cast<int>(phase) > static_cast<int>(it->second.phase)) {
+    it->second.phase = phase;
+    it->second.phase_tick = tick_ + 1;  // relayed: it began in the tick before this one's
+  }
 }
 
 const MissionSpec* MissionAgent::Find(std::uint16_t mission_id) const {
@@ -120,9 +129,64 @@ MissionPhase MissionAgent::PhaseOf(std::uint16_t mission_id) const {
 }
 
 bool MissionAgent::IsFirstLeaderOfAny() const {
-  return std::any_of(live_.begin(), live_.end(), [this](const auto& kv) {
-    return kv.second.spec.FirstLeader() == self_id_;
-  });
+  return std::any_of(live_.begin(), live_.end(),
+                     [this](const auto& kv) { return LeadsFirst(kv.second); });
+}
+
+std::set<std::uint16_t> MissionAgent::LostOf(std::uint16_t mission_id) const {
+  const auto it = live_.find(mission_id);
+  return it == live_.end() ? std::set<std::uint16_t>() : it->second.lost;
+}
+
+std::vector<std::uint16_t> MissionAgent::Left(const Live& live) const {
+  std::vector<std::uint16_t> left;
+  for (std::uint16_t id : live.spec.Assigned()) {
+    if (live.lost.count(id) == 0) left.push_back(id);
+  }
+  return left;
+}
+
+std::vector<std::uint16_t> MissionAgent::LeadersNow(const Live& live) const {
+  if (live.lost.empty()) return live.spec.Leaders();
+  std::vector<std::uint16_t> leaders = Left(live);
+  if (live.spec.leader_number >= 0 &&
+      static_cast<std::size_t>(live.spec.leader_number) < leaders.size()) {
+    leaders.resize(static_cast<std::size_t>(live.spec.leader_number));
+  }
+  return leaders;
+}
+
+bool MissionAgent::LeadsFirst(const Live& live) const {
+  if (live.lost.empty()) return live.spec.FirstLeader() == self_id_;
+  const std::vector<std::uint16_t> left = Left(live);
+  return !left.empty() && left.front() == self_id_;
+}
+
+bool MissionAgent::Heartbeats(Live* live, const std::vector<Neighbour>& heard,
+                              std::uint64_t tick) {
+  const MissionSpec& spec = live->spec;
+  const std::size_t lost_before = live->lost.size();
+  // A robot that missed ticks for as long (hung, then resumed) was lost for the others: it
+  // counts itself lost too, so that it does not lead beside the one promoted in its place.
+  const auto self = live->heard_tick.find(self_id_);
+  if (self != live->heard_tick.end() && tick - self->second > params_.lost_after_ticks) {
+    live->lost.insert(self_id_);
+  }
+  // A member never heard counts from the mission's first tick.
+  for (std::uint16_t member : spec.Assigned()) live->heard_tick.emplace(member, tick);
+  live->heard_tick[self_id_] = tick;
+  for (const Neighbour& n : heard) {
+    if (n.type != 0 || !spec.Assigns(n.id)) continue;
+    live->heard_tick[n.id] = tick;
+    live->last_seen[n.id] = n.position;
+  }
+  for (const auto& kv : live->heard_tick) {
+    if (kv.first != self_id_ && tick - kv.second > params_.lost_after_ticks) {
+      live->lost.insert(kv.first);
+    }
+  }
+  for (std::uint16_t id : live->lost) live->last_seen.erase(id);
+  return live->lost.size() != lost_before;
 }
 
 void MissionAgent::Drop(std::uint16_t mission_id) {
@@ -170,8 +234,12 @@ MissionAgent::Group MissionAgent::Locate(const Live& live, const Pose2& self,
   Group group;
   group.where[self_id_] = self.position;
   for (const Neighbour& n : heard) {
-    if (n.type == 0 && spec.Assigns(n.id)) group.where.emplace(n.id, n.position);
+    if (n.type == 0 && spec.Assigns(n.id) && live.lost.count(n.id) == 0) {
+      group.where.emplace(n.id, n.position);
+    }
   }
+  // A member not heard now but not lost yet stands where it was last heard.
+  for (const auto& kv : live.last_seen) group.where.emplace(kv.first, kv.second);
   Vec2 sum;
   for (const auto& kv : group.where) sum = sum + kv.second;
   group.centroid = sum * (1.0 / static_cast<double>(group.where.size()));
@@ -188,7 +256,11 @@ void MissionAgent::UpdateCentre(Live* live, const Pose2& self, Group* group) con
       live->offset = params_.transport.object_at_centroid ? Vec2{} : live->centre - group->centroid;
       live->centre = live->offset + group->centroid;
       live->place = self.position - live->centre;
+    } else if (live->reanchor) {
+      // A member was lost: the object stays where it is and moves with the robots left.
+      live->offset = live->centre - group->centroid;
     }
+    live->reanchor = false;
     live->centre = live->offset + group->centroid;
   }
   const Shape object = live->spec.ObjectAt(live->centre);
@@ -201,12 +273,26 @@ void MissionAgent::UpdateCentre(Live* live, const Pose2& self, Group* group) con
 void MissionAgent::RunFirstLeader(Live* live, const Pose2& self, const Group& group,
                                   std::uint64_t tick, MissionOutbox* outbox) {
   const MissionSpec& spec = live->spec;
+  const std::uint16_t inside = group.inside;
+  std::ostringstream lost;
+  for (std::uint16_t id : live->lost) lost << (lost.tellp() > 0 ? ", " : "") << id;
+  const std::string lost_for =
+      " lost (not heard for " + std::to_string(params_.lost_after_ticks) + " ticks)";
   if (!live->phase_started) {
     live->phase_started = true;
-    EnterPhase(live, spec.LeaderOnly() ? MissionPhase::kTransport : MissionPhase::kGathering,
-               tick, 0, outbox);
+    if (live->phase == MissionPhase::kQueued) {
+      EnterPhase(live, spec.LeaderOnly() ? MissionPhase::kTransport : MissionPhase::kGathering,
+                 tick, 0, outbox);
+    } else {
+      // Promoted into a running phase: it says so (the phase again, with the reason).
+      live->phase_tick = tick;
+      outbox->statuses.push_back(Report(*live, inside));
+    }
+    if (live->promoted) {
+      outbox->statuses.back().reason = "robot " + std::to_string(self_id_) +
+                                       " leads: robot(s) " + lost.str() + lost_for;
+    }
   }
-  const std::uint16_t inside = group.inside;
   // A report within the phase every progress_every_ticks, in every phase: also the first
   // leader's heartbeat (the dispatcher ends a mission whose first leader fell silent).
   const bool periodic = params_.progress_every_ticks > 0 &&
@@ -231,34 +317,29 @@ void MissionAgent::RunFirstLeader(Live* live, const Pose2& self, const Group& gr
     return;
   }
 
+  // Lost members are dropped: the rest goes on without them, unless too few are left to staff
+  // the leaders.
+  const std::size_t left = Left(*live).size();
+  if (!live->lost.empty() && left < static_cast<std::size_t>(spec.leader_number) &&
+      live->phase >= MissionPhase::kGathering && live->phase <= MissionPhase::kUnloading) {
+    outbox->resume = spec.AssignedRuns();
+    outbox->delete_object = spec.id;
+    EnterPhase(live, MissionPhase::kAborted, tick, inside, outbox);
+    outbox->statuses.back().reason =
+        "robot(s) " + lost.str() + lost_for + ": fewer robots than leaders left";
+    return;
+  }
+
   switch (live->phase) {
     case MissionPhase::kGathering: {
-      // Members silent for lost_after_ticks are dropped: the rest gathers without them.
-      for (std::uint16_t member : spec.Assigned()) {
-        const auto heard = live->heard_tick.find(member);
-        if (member == self_id_ || heard == live->heard_tick.end()) continue;
-        if (tick - heard->second > params_.lost_after_ticks) live->lost.insert(member);
-      }
-      const std::size_t left = spec.Assigned().size() - live->lost.size();
-      std::ostringstream lost;
-      for (std::uint16_t id : live->lost) lost << (lost.tellp() > 0 ? ", " : "") << id;
-      if (!live->lost.empty() && left < static_cast<std::size_t>(spec.leader_number)) {
-        outbox->resume = spec.AssignedRuns();
-        outbox->delete_object = spec.id;
-        EnterPhase(live, MissionPhase::kAborted, tick, inside, outbox);
-        outbox->statuses.back().reason = "robot(s) " + lost.str() + " lost (not heard for " +
-                                         std::to_string(params_.lost_after_ticks) +
-                                         " ticks): fewer robots than leaders left";
-        return;
-      }
       if (inside == left &&
           (!params_.transport.gather_one_chain || group.OneChain(params_.local_range_m))) {
         outbox->freeze = spec.AssignedRuns();
         EnterPhase(live, MissionPhase::kLoading, tick, inside, outbox);
         if (!live->lost.empty()) {
-          outbox->statuses.back().reason = "without robot(s) " + lost.str() +
-                                           " (lost: not heard for " +
-                                           std::to_string(params_.lost_after_ticks) + " ticks)";
+          outbox->statuses.back().reason =
+              "without robot(s) " + lost.str() + " (lost: not heard for " +
+              std::to_string(params_.lost_after_ticks) + " ticks)";
         }
       } else if (periodic) {
         outbox->statuses.push_back(Report(*live, inside));
@@ -313,13 +394,20 @@ MissionPlan MissionAgent::Tick(const Pose2& self, const std::vector<Neighbour>& 
     const MissionSpec& spec = live.spec;
     Group group;
     if (!spec.LeaderOnly()) {
+      const bool first_before = LeadsFirst(live);
+      if (Heartbeats(&live, heard, tick)) {
+        if (live.anchored) live.reanchor = true;
+        if (!first_before && LeadsFirst(live)) {
+          // Promoted: it takes over the phase machine from the next tick on (a robot node in
+          // real time connects its mission outlets first).
+          live.promoted = true;
+          live.first_since = tick;
+        }
+      }
       group = Locate(live, self, heard);
       UpdateCentre(&live, self, &group);
-      // Heartbeats: a member heard now; one never heard counts from the mission's first tick.
-      for (std::uint16_t member : spec.Assigned()) live.heard_tick.emplace(member, tick);
-      for (const auto& kv : group.where) live.heard_tick[kv.first] = tick;
     }
-    if (outbox != nullptr && spec.FirstLeader() == self_id_) {
+    if (outbox != nullptr && LeadsFirst(live) && (!live.promoted || tick > live.first_since)) {
       RunFirstLeader(&live, self, group, tick, outbox);
     }
     if (spec.LeaderOnly()) {
@@ -337,13 +425,14 @@ MissionPlan MissionAgent::Tick(const Pose2& self, const std::vector<Neighbour>& 
       carry.transport = live.phase >= MissionPhase::kTransport && live.anchored;
       carry.loading = live.phase == MissionPhase::kLoading;
       carry.mode = static_cast<TransportMode>(spec.transport_mode);
-      carry.leader = spec.IsLeader(self_id_);
+      const std::vector<std::uint16_t> leaders = LeadersNow(live);
+      carry.leader = std::find(leaders.begin(), leaders.end(), self_id_) != leaders.end();
       carry.centre = live.centre;
       carry.object = spec.ObjectAt(live.centre);
       carry.target = spec.target;
       carry.goal_tolerance_m = params_.goal_tolerance_m;
       carry.formation_offset = live.place;
-      carry.leaders = spec.Leaders();
+      carry.leaders = leaders;
       std::sort(carry.leaders.begin(), carry.leaders.end());
       for (std::uint16_t id : plan.group.ids) {
         if (id != self_id_) carry.peers.push_back(id);

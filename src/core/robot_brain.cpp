@@ -16,6 +16,8 @@ MissionAgentParams MissionParams(const SwarmConfig& p) {
   m.local_range_m = p.flocking.local_range_m;
   m.world_size_m = p.flocking.world_size_m;
   m.speed_m_per_tick = p.flocking.speed_m_per_tick;
+  m.lost_after_ticks = static_cast<std::uint64_t>(
+      std::max(1.0, std::ceil(p.lost_after_s / p.tick_period_s - 1e-9)));
   return m;
 }
 

@@ -22,6 +22,8 @@ std::string SwarmConfig::Validate() const {
     os << "object_update_ticks must be >= 1 but is " << object_update_ticks;
   } else if (chain_hops < 1) {
     os << "chain_hops must be >= 1 but is " << chain_hops;
+  } else if (!std::isfinite(lost_after_s) || !(lost_after_s > 0.0)) {
+    os << "lost_after_s must be > 0 (s) but is " << lost_after_s;
   }
   return os.str();
 }

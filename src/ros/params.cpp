@@ -168,6 +168,7 @@ bool ConfigFromXmlRpc(XmlRpc::XmlRpcValue& dict, SwarmConfig* config, std::strin
             ReadChoice(dict, "neighbourhood", "chain or disc", &f.neighbourhood, error,
                        core::ParseNeighbourhood) &&
             ReadInt(dict, "chain_hops", &c.chain_hops, error) &&
+            ReadDouble(dict, "lost_after_s", &c.lost_after_s, error) &&
             ReadChoice(dict, "gathering", "hold or fill", &c.transport.gathering, error,
                        core::ParseGatherMode) &&
             ReadBool(dict, "leaders_bound", &c.transport.leaders_bound, error) &&

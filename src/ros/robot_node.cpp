@@ -315,11 +315,7 @@ void RobotNode::OnNewMission(const New_Mission::ConstPtr& msg) {
       statuses_.Queue(taken.queued);  // its answers carry the statuses
       return;
     }
-    if (!status_pub_) AdvertiseMissionOutlets();
-    if (!progress_pub_) {
-      progress_pub_ = nh_.advertise<Mission_Status>(names::kMissionProgress, kProgressQueue);
-    }
-    if (expected_.subscribers.empty()) LearnExpectedSubscribers();
+    AdvertiseMissionOutlets();
     // Published with this tick's messages (before its GATHERING when it starts at once).
     statuses_.Queue(taken.queued);
     return;
@@ -376,11 +372,14 @@ void RobotNode::OnMissionStatus(const Mission_Status::ConstPtr& msg) {
 }
 
 void RobotNode::AdvertiseMissionOutlets() {
+  if (status_pub_) return;
   freeze_pub_ = nh_.advertise<Robot_Freeze>(names::kFreeze, 20);
   continue_pub_ = nh_.advertise<Robot_Continue>(names::kContinue, 20);
   update_pub_ = nh_.advertise<Update_Object>(names::kObjectUpdate, 20);
   delete_pub_ = nh_.advertise<Delete_Object>(names::kObjectDelete, 20);
   status_pub_ = nh_.advertise<Mission_Status>(names::kMissionStatus, 50);
+  progress_pub_ = nh_.advertise<Mission_Status>(names::kMissionProgress, kProgressQueue);
+  LearnExpectedSubscribers();
 }
 
 void RobotNode::LearnExpectedSubscribers() {
@@ -454,6 +453,11 @@ void RobotNode::Tick() {
 
   const core::Pose2 before = in.self;
   const bool lockstep = options_.clock == core::Clock::kLockstep;
+  // Real time: a robot promoted to first leader (its first leader was lost) connects its
+  // mission outlets before it speaks (it takes over the tick after its promotion).
+  if (!lockstep && !status_pub_ && brain_->missions().IsFirstLeaderOfAny()) {
+    AdvertiseMissionOutlets();
+  }
   core::BrainTick step =
       brain_->Tick(std::move(in), perception_->tick, lockstep || MissionOutletsReady());
   const core::Velocity command = step.command;

@@ -1,6 +1,7 @@
 // The robot side of missions: zones, roles, FIFO, and the first leader's phase machine.
 #include <gtest/gtest.h>
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -446,6 +447,147 @@ TEST(MissionAgentTest, AFirstLeaderDropsAMemberSilentInGatheringOrAbortsWithoutE
   ASSERT_EQ(phases, (std::vector<MissionPhase>{MissionPhase::kGathering,
                                                MissionPhase::kAborted}));
   EXPECT_NE(reason.find("robot(s) 1, 2 lost"), std::string::npos) << reason;
+}
+
+// Robot loss (issue 11, SPEC 9.7): a member that follows the thesis mission (robots [0, 3),
+// robot 0 its only leader) through GATHERING, LOADING and into TRANSPORT at tick 10, every robot
+// heard every tick, the group's centroid at the object's centre (7, 7).
+void MemberIntoTransport(MissionAgent* member, MissionSpec spec = Thesis()) {
+  std::string why;
+  ASSERT_TRUE(member->OnNewMission(spec, &why)) << why;
+  const Pose2 self = PoseAt(7.5, 7.5);
+  const std::vector<Neighbour> heard = {At(0, 7.0, 7.0), At(2, 6.5, 6.5), At(3, 7.0, 7.5)};
+  MissionOutbox out;
+  member->OnStatus(spec.id, MissionPhase::kGathering);
+  member->Tick(self, heard, 1, &out);
+  member->OnStatus(spec.id, MissionPhase::kLoading);
+  for (std::uint64_t t = 2; t <= 9; ++t) member->Tick(self, heard, t, &out);
+  member->OnStatus(spec.id, MissionPhase::kTransport);
+  member->Tick(self, heard, 10, &out);
+  ASSERT_TRUE(out.empty());  // a member says nothing
+}
+
+TEST(MissionAgentTest, ALostFirstLeaderIsReplacedByTheNextAssignedRobot) {
+  MissionAgentParams params;
+  params.lost_after_ticks = 5;
+  MissionAgent robot1(1, params);
+  MemberIntoTransport(&robot1);
+  EXPECT_FALSE(robot1.IsFirstLeaderOfAny());
+  // Robot 0 (the first leader) falls silent after tick 10; robot 2 is still heard.
+  MissionOutbox out;
+  MissionPlan plan;
+  std::uint64_t t = 11;
+  for (; t <= 15; ++t) {
+    plan = robot1.Tick(PoseAt(7.5, 7.5), {At(2, 6.5, 6.5)}, t, &out);
+    ASSERT_FALSE(robot1.IsFirstLeaderOfAny()) << "promoted at tick " << t;
+    ASSERT_TRUE(plan.carry.has_value());
+    EXPECT_FALSE(plan.carry->leader);
+    // Until it is lost, the silent robot counts where it was last heard: the object stays.
+    EXPECT_NEAR(plan.carry->centre.x, 7.0, 1e-12);
+  }
+  EXPECT_TRUE(out.empty());
+  // Tick 16: silent for more than 5 ticks, robot 0 is lost; robot 1 now leads (and carries
+  // as a leader) and the object does not jump although the centroid of the robots left moved.
+  plan = robot1.Tick(PoseAt(7.5, 7.5), {At(2, 6.5, 6.5)}, 16, &out);
+  EXPECT_EQ(robot1.LostOf(7), (std::set<std::uint16_t>{0}));
+  EXPECT_TRUE(robot1.IsFirstLeaderOfAny());
+  ASSERT_TRUE(plan.carry.has_value());
+  EXPECT_TRUE(plan.carry->leader);
+  EXPECT_EQ(plan.carry->leaders, (std::vector<std::uint16_t>{1}));
+  EXPECT_NEAR(plan.carry->centre.x, 7.0, 1e-12);
+  EXPECT_NEAR(plan.carry->centre.y, 7.0, 1e-12);
+  EXPECT_TRUE(out.empty());  // it takes over from the next tick on
+  // Tick 17: it announces itself in the phase it took over, then runs the phase machine: the
+  // object moves with the robots left from where it was.
+  out = MissionOutbox();
+  plan = robot1.Tick(PoseAt(7.4, 7.4), {At(2, 6.4, 6.4)}, 17, &out);
+  ASSERT_EQ(Phases(out), std::vector<std::string>{"TRANSPORT"});
+  EXPECT_NE(out.statuses[0].reason.find("robot 1 leads: robot(s) 0 lost"), std::string::npos)
+      << out.statuses[0].reason;
+  ASSERT_TRUE(out.update_object.has_value());
+  EXPECT_NEAR(out.update_object->second.x, 6.9, 1e-12);
+  EXPECT_NEAR(out.update_object->second.y, 6.9, 1e-12);
+  // The robot that came back counts too late: it stays lost for the mission.
+  out = MissionOutbox();
+  robot1.Tick(PoseAt(7.4, 7.4), {At(0, 7.0, 7.0), At(2, 6.4, 6.4)}, 18, &out);
+  EXPECT_TRUE(robot1.IsFirstLeaderOfAny());
+  EXPECT_EQ(robot1.LostOf(7), (std::set<std::uint16_t>{0}));
+}
+
+TEST(MissionAgentTest, LostLeadersAreReplacedInOrderAndAFirstLeaderToBeKeepsTheSignals) {
+  MissionAgentParams params;
+  params.lost_after_ticks = 5;
+  MissionSpec spec = Thesis();
+  spec.range_to = 4;
+  spec.leader_number = 2;  // leaders 0 and 1; robots 2 and 3 passive
+  MissionAgent robot2(2, params);
+  std::string why;
+  ASSERT_TRUE(robot2.OnNewMission(spec, &why)) << why;
+  const Pose2 self = PoseAt(6.5, 6.5);
+  MissionOutbox out;
+  robot2.OnStatus(7, MissionPhase::kGathering);
+  robot2.Tick(self, {At(0, 7.0, 7.0), At(1, 7.5, 7.5), At(3, 7.0, 7.5)}, 1, &out);
+  robot2.OnStatus(7, MissionPhase::kLoading);
+  // The dispatcher's LOADED (to take effect at tick 12) reaches every member.
+  ASSERT_TRUE(robot2.OnEvent(7, MissionEventKind::kLoaded, 12, &why)) << why;
+  // Both leaders fall silent in LOADING.
+  for (std::uint64_t t = 2; t <= 7; ++t) robot2.Tick(self, {At(3, 7.0, 7.5)}, t, &out);
+  EXPECT_TRUE(out.empty());
+  EXPECT_EQ(robot2.LostOf(7), (std::set<std::uint16_t>{0, 1}));
+  EXPECT_TRUE(robot2.IsFirstLeaderOfAny());  // the lowest robot left
+  out = MissionOutbox();
+  MissionPlan plan = robot2.Tick(self, {At(3, 7.0, 7.5)}, 8, &out);
+  ASSERT_EQ(Phases(out), std::vector<std::string>{"LOADING"});
+  EXPECT_NE(out.statuses[0].reason.find("robot(s) 0, 1 lost"), std::string::npos);
+  ASSERT_TRUE(plan.carry.has_value());
+  EXPECT_EQ(plan.carry->leaders, (std::vector<std::uint16_t>{2, 3}));  // both promoted
+  // The LOADED it kept as a member takes effect at its tick.
+  out = MissionOutbox();
+  robot2.Tick(self, {At(3, 7.0, 7.5)}, 11, &out);
+  EXPECT_TRUE(Phases(out).empty());
+  out = MissionOutbox();
+  robot2.Tick(self, {At(3, 7.0, 7.5)}, 12, &out);
+  EXPECT_EQ(Phases(out), std::vector<std::string>{"TRANSPORT"});
+  EXPECT_EQ(out.resume.size(), 1u);
+}
+
+TEST(MissionAgentTest, AMissionWithFewerRobotsLeftThanLeadersEndsAborted) {
+  MissionAgentParams params;
+  params.lost_after_ticks = 5;
+  MissionSpec spec = Thesis();
+  spec.leader_number = 2;  // robots [0, 3): leaders 0 and 1
+  MissionAgent robot1(1, params);
+  MemberIntoTransport(&robot1, spec);
+  // Robots 0 and 2 fall silent: one robot cannot staff two leaders.
+  MissionOutbox out;
+  for (std::uint64_t t = 11; t <= 16; ++t) robot1.Tick(PoseAt(7.5, 7.5), {}, t, &out);
+  EXPECT_TRUE(robot1.IsFirstLeaderOfAny());
+  out = MissionOutbox();
+  robot1.Tick(PoseAt(7.5, 7.5), {}, 17, &out);
+  ASSERT_EQ(Phases(out), (std::vector<std::string>{"TRANSPORT", "ABORTED"}));
+  EXPECT_NE(out.statuses[1].reason.find("robot(s) 0, 2 lost"), std::string::npos)
+      << out.statuses[1].reason;
+  EXPECT_NE(out.statuses[1].reason.find("fewer robots than leaders"), std::string::npos);
+  EXPECT_EQ(out.delete_object, std::optional<std::uint16_t>(7));
+  EXPECT_EQ(out.resume.size(), 1u);  // everyone it froze is released
+}
+
+TEST(MissionAgentTest, ARobotThatMissedItsTicksCountsItselfLostAndDoesNotLead) {
+  MissionAgentParams params;
+  params.lost_after_ticks = 5;
+  MissionAgent robot0(0, params);
+  std::string why;
+  ASSERT_TRUE(robot0.OnNewMission(Thesis(), &why)) << why;
+  MissionOutbox out;
+  const std::vector<Neighbour> heard = {At(1, 7.5, 7.5), At(2, 1.0, 1.0)};
+  robot0.Tick(PoseAt(7.0, 7.0), heard, 1, &out);
+  ASSERT_EQ(Phases(out), std::vector<std::string>{"GATHERING"});
+  // Hung from tick 2 to 9: the others lost it and robot 1 leads now.
+  out = MissionOutbox();
+  robot0.Tick(PoseAt(7.0, 7.0), heard, 10, &out);
+  EXPECT_TRUE(out.empty());
+  EXPECT_FALSE(robot0.IsFirstLeaderOfAny());
+  EXPECT_EQ(robot0.LostOf(7), (std::set<std::uint16_t>{0}));
 }
 
 }  // namespace

@@ -32,10 +32,15 @@ struct MissionAgentParams {
   // last known centre than the object's robots can carry it in the ticks since (issue 11).
   double world_size_m = 11.088889;
   double speed_m_per_tick = 0.1;    // the robots' top speed: the object moves no faster
-  // A member of a running mission not heard for this many ticks is lost for the mission (its
-  // radio is silent: a dead or hung robot). In GATHERING the first leader drops it: the group
-  // gathers without it, or the mission ends ABORTED when fewer robots than leaders are left.
-  // Every member is heard every tick over the mission channel while it answers its ticks.
+  // A member of a running transport mission not heard for this many ticks is lost for the
+  // mission (its radio is silent: a dead, hung or deleted robot) [SPEC 9.7]. Every member is
+  // heard every tick over the mission channel while it answers its ticks, so every member
+  // loses it at the same tick. The mission goes on without it: its leaders are the first
+  // leader_number assigned robots not lost (a lost leader is replaced by the next assigned
+  // robot, a lost first leader by the lowest of them, which announces itself with a status),
+  // and it ends ABORTED when fewer robots than leaders are left. Until it is lost a silent
+  // member counts where it was last heard; in transport the object is re-anchored when one is
+  // lost, so that it does not jump. Robots take it from /swarm/lost_after_s.
   std::uint64_t lost_after_ticks = 20;
 };
 
@@ -121,8 +126,11 @@ class MissionAgent {
   const MissionSpec* Find(std::uint16_t mission_id) const;
   // The phase this robot believes `mission_id` is in (kDone when unknown).
   MissionPhase PhaseOf(std::uint16_t mission_id) const;
-  // True when this robot is the first leader of a live mission (it must be able to publish).
+  // True when this robot is the first leader of a live mission (it must be able to publish),
+  // also when it was promoted because the first leader was lost.
   bool IsFirstLeaderOfAny() const;
+  // The robots of live mission `mission_id` this robot counts as lost (empty when unknown).
+  std::set<std::uint16_t> LostOf(std::uint16_t mission_id) const;
 
   // One tick: `self` is its pose, `heard` every robot it heard (in range, relayed and mission
   // peers). A transport mission's robots each compute its object's centre from the positions
@@ -153,8 +161,21 @@ class MissionAgent {
     std::uint64_t signal_tick = 0;  // ... and takes effect at this tick
     bool self_arrived = false; // this leader reached its leader-only goal
     std::map<std::uint16_t, std::uint64_t> heard_tick;  // each member's last tick heard
-    std::set<std::uint16_t> lost;  // first leader: members dropped as lost (GATHERING)
+    std::map<std::uint16_t, Vec2> last_seen;   // ... and where
+    std::set<std::uint16_t> lost;              // members lost for the mission (for good)
+    bool reanchor = false;     // a member was lost in transport: anchor the object anew
+    std::uint64_t first_since = 0;  // tick it became first leader by promotion (0: none)
+    bool promoted = false;     // it leads as first leader because the first leader was lost
+    bool announced = false;    // ... and said so
   };
+  // Of a live mission, with its lost robots: the robots left (ascending), its leaders now (the
+  // first leader_number of them) and its first leader now (the lowest; 0 when none is left).
+  std::vector<std::uint16_t> Left(const Live& live) const;
+  std::vector<std::uint16_t> LeadersNow(const Live& live) const;
+  bool LeadsFirst(const Live& live) const;
+  // Heartbeats of the active transport mission at `tick`: who was heard, who is lost now.
+  // True when a member was lost this tick.
+  bool Heartbeats(Live* live, const std::vector<Neighbour>& heard, std::uint64_t tick);
   // Where a transport mission's robots are, as this robot hears them.
   struct Group {
     std::map<std::uint16_t, Vec2> where;  // itself and every assigned robot heard

@@ -29,6 +29,9 @@ struct SwarmConfig {
   // The radio passes positions on hop by hop this many hops for a chain neighbourhood (1: only
   // robots in range are heard; mission peers are always heard over the mission channel).
   int chain_hops = 16;
+  // A mission robot not heard for this long (s) is lost for its mission (SPEC 9.7): dropped, a
+  // lost leader replaced by the next assigned robot. At least one tick.
+  double lost_after_s = 0.5;
 
   // Empty when valid, else one sentence naming the bad key.
   std::string Validate() const;
