@@ -23,6 +23,30 @@ def launch_swarm(**args):
     return parent
 
 
+def launch_file(name, **args):
+    """Starts launch/<name> of this package with the given args in the running master (e.g. one
+    more robot: launch_file('robot.launch', id=8, clock='lockstep')); returns the parent."""
+    path = rospkg.RosPack().get_path('swarm_transport') + '/launch/' + name
+    cli = ['%s:=%s' % (k, str(v).lower() if isinstance(v, bool) else v) for k, v in args.items()]
+    uuid = roslaunch.rlutil.get_or_generate_uuid(None, False)
+    parent = roslaunch.parent.ROSLaunchParent(uuid, [(path, cli)], is_core=False)
+    parent.start()
+    return parent
+
+
+def process_alive(pid):
+    """True while process `pid` runs (a zombie that exited but was not reaped yet counts as
+    gone)."""
+    try:
+        with open('/proc/%d/status' % pid) as f:
+            for line in f:
+                if line.startswith('State:'):
+                    return 'Z' not in line.split()[1]
+    except OSError:
+        return False
+    return True
+
+
 class PositionLog(object):
     """Every /flock/positions message by tick (the simulator's ground truth)."""
 

@@ -103,8 +103,8 @@ std::string RelayedPositions::Take(const Robot_Position& msg) {
   return "";
 }
 
-void RelayedPositions::Erase(std::uint16_t robot_id, std::uint8_t sub_id) {
-  positions_.erase({robot_id, sub_id});
+bool RelayedPositions::Erase(std::uint16_t robot_id, std::uint8_t sub_id) {
+  return positions_.erase({robot_id, sub_id}) > 0;
 }
 
 void RelayedPositions::EraseCopiesOf(std::uint16_t robot_id) {

@@ -52,6 +52,7 @@ bool RobotNode::Initialize() {
     ROS_FATAL("robot: invalid parameters: %s", error.c_str());
     return false;
   }
+  options.exit_when_removed = true;  // a process of its own
   return Initialize(options);
 }
 
@@ -245,6 +246,7 @@ Robot_State::Response RobotNode::State() const {
   Robot_State::Response state;
   state.robot_id = id_;
   state.ticks = ticks_;
+  state.listed = listed_;
   state.frozen = brain.frozen();
   state.leader = plan.lead;
   state.has_active = plan.active.has_value();
@@ -302,6 +304,21 @@ void RobotNode::OnRobots(const Robot_Positions::ConstPtr& msg) {
   known_robots_.clear();
   for (const Robot_Position& r : msg->robots) {
     if (r.type == Robot_Position::TYPE_PHYSICAL) known_robots_.insert(r.robot_id);
+  }
+  if (known_robots_.count(id_) > 0) {
+    listed_ = true;
+    return;
+  }
+  if (listed_) {
+    listed_ = false;
+    ROS_WARN("robot %u: removed from the swarm (%s lists it no more: killed or deleted)%s", id_,
+             names::kRobots, options_.exit_when_removed ? "; stopping" : "");
+    if (options_.exit_when_removed) ros::requestShutdown();
+  } else if (!said_unlisted_) {
+    said_unlisted_ = true;
+    ROS_WARN("robot %u: not in the swarm (%s has no robot %u): it idles until the simulator "
+             "spawns it (rosservice call /spawn, or a New_Robot on %s)",
+             id_, names::kRobots, id_, names::kRobotNew);
   }
 }
 

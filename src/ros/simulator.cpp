@@ -18,6 +18,8 @@ namespace swarm_transport {
 namespace {
 
 constexpr char kClockTopic[] = "/clock";
+// The stream of the seed's generator that draws the poses of robots joining by New_Robot.
+constexpr std::uint64_t kSpawnStream = 0x737061776eULL;  // "spawn"
 // Queue sizes. /flock/position: every robot publishes every tick and only virtual copies /
 // statists matter, so it must hold a whole swarm's tick. /flock/positions: the recorder must
 // see every lock-step tick.
@@ -71,6 +73,7 @@ bool Simulator::Initialize() {
   lockstep_ = params_.clock == core::Clock::kLockstep;
   radio_rng_ = std::make_unique<core::Rng>(params_.swarm.seed, sim::kRadioLossStream);
   radio_ = std::make_unique<sim::Radio>(RadioParamsOf(params_), radio_rng_.get());
+  spawn_rng_ = std::make_unique<core::Rng>(params_.swarm.seed, kSpawnStream);
   RobotLinkHandlers handlers;
   handlers.cmd_vel = [this](std::uint16_t id, const geometry_msgs::Twist& m) { OnCmdVel(id, m); };
   handlers.answer = [this](std::uint16_t id, const Tick_Answer& m) { OnAnswer(id, m); };
@@ -140,6 +143,7 @@ void Simulator::Connect() {
   // copies and statists, but the queue must hold a whole tick of the swarm.
   position_sub_ = nh_.subscribe(names::kPosition, kPositionQueue, &Simulator::OnPosition, this,
                                 ros::TransportHints().tcpNoDelay());
+  robot_new_sub_ = nh_.subscribe(names::kRobotNew, kMissionQueue, &Simulator::OnRobotNew, this);
   robot_delete_sub_ =
       nh_.subscribe(names::kRobotDelete, kMissionQueue, &Simulator::OnRobotDelete, this);
   if (!lockstep_) {
@@ -179,6 +183,7 @@ void Simulator::Run() {
 void Simulator::Shutdown() {
   if (links_) links_->Shutdown();
   position_sub_.shutdown();
+  robot_new_sub_.shutdown();
   robot_delete_sub_.shutdown();
   mission_new_sub_.shutdown();
   if (session_) session_->Shutdown();
@@ -402,19 +407,27 @@ void Simulator::OnCmdVel(std::uint16_t id, const geometry_msgs::Twist& msg) {
   if (finite) world_->SetCommand(id, ToVelocity(msg), nullptr);
 }
 
-bool Simulator::OnSpawn(Spawn::Request& req, Spawn::Response& res) {
+std::string Simulator::SpawnRobot(std::uint16_t id, const core::Pose2& pose) {
   std::string error;
+  if (!world_->Spawn(id, pose, &error)) {
+    ROS_WARN("simulator: spawn of robot %u rejected: %s", id, error.c_str());
+    return error;
+  }
+  AddRobot(id);
+  PublishRobotList();
+  ROS_INFO("simulator: spawned robot %u at (%.3f, %.3f, %.1f deg)", id, pose.position.x,
+           pose.position.y, pose.heading.degrees());
+  return "";
+}
+
+bool Simulator::OnSpawn(Spawn::Request& req, Spawn::Response& res) {
   const core::Pose2 pose{{req.x, req.y}, core::Angle::FromRadians(req.theta)};
-  if (!world_->Spawn(req.robot_id, pose, &error)) {
-    ROS_WARN("simulator: spawn of robot %u rejected: %s", req.robot_id, error.c_str());
+  const std::string error = SpawnRobot(req.robot_id, pose);
+  if (!error.empty()) {
     res.code = Spawn::Response::ERROR;
     res.message = error;
     return true;
   }
-  AddRobot(req.robot_id);
-  PublishRobotList();
-  ROS_INFO("simulator: spawned robot %u at (%.3f, %.3f, %.3f rad)", req.robot_id, req.x, req.y,
-           req.theta);
   res.code = Spawn::Response::OK;
   res.message = "spawned robot " + std::to_string(req.robot_id);
   return true;
@@ -463,8 +476,36 @@ void Simulator::OnPosition(const Robot_Position::ConstPtr& msg) {
   }
 }
 
+void Simulator::OnRobotNew(const New_Robot::ConstPtr& msg) {
+  if (msg->type != Robot_Position::TYPE_PHYSICAL) {
+    ROS_DEBUG("simulator: New_Robot %u/%u of type %u: it joins by announcing itself on %s",
+              msg->robot_id, msg->sub_id, msg->type, names::kPosition);
+    return;
+  }
+  if (world_->Find(msg->robot_id) != nullptr) {
+    ROS_INFO("simulator: New_Robot %u: it is in the swarm already", msg->robot_id);
+    return;
+  }
+  core::Pose2 pose;
+  if (!sim::FreePose(*world_, spawn_rng_.get(), &pose)) {
+    ROS_WARN("simulator: New_Robot %u rejected: no free place in the arena", msg->robot_id);
+    return;
+  }
+  SpawnRobot(msg->robot_id, pose);
+}
+
 void Simulator::OnRobotDelete(const Delete_Robot::ConstPtr& msg) {
-  relayed_.Erase(msg->robot_id, msg->sub_id);
+  if (relayed_.Erase(msg->robot_id, msg->sub_id)) return;
+  if (msg->sub_id == 0 && world_->Find(msg->robot_id) != nullptr) {
+    RemoveRobot(msg->robot_id);
+    PublishRobotList();
+    ROS_INFO("simulator: Delete_Robot %u: the robot left the swarm", msg->robot_id);
+    return;
+  }
+  if (WallThrottle(&last_bad_position_warning_wall_, kWarnPeriodS)) {
+    ROS_WARN("simulator: Delete_Robot %u/%u: no such robot, virtual copy or statist",
+             msg->robot_id, msg->sub_id);
+  }
 }
 
 void Simulator::OnMissionNew(const New_Mission::ConstPtr& msg) { RegisterMission(*msg); }

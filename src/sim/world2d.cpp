@@ -346,6 +346,29 @@ std::vector<std::vector<std::uint16_t>> World2D::NeighbourLists(double range_m) 
   return lists;
 }
 
+bool FreePose(const World2D& world, core::Rng* rng, core::Pose2* pose) {
+  const WorldParams& params = world.params();
+  const double r = params.robot_radius_m;
+  const double min_d2 = (2.0 * r * kPlacementMargin) * (2.0 * r * kPlacementMargin);
+  for (int attempt = 0; attempt < kPlacementAttempts; ++attempt) {
+    const core::Vec2 p{rng->Uniform(r, params.world_size_m - r),
+                       rng->Uniform(r, params.world_size_m - r)};
+    const double heading = rng->Uniform(0.0, 360.0);
+    bool free = true;
+    for (const auto& entry : world.robots()) {
+      if (SquaredDistance(p, entry.second.pose.position) < min_d2) {
+        free = false;
+        break;
+      }
+    }
+    if (free) {
+      *pose = core::Pose2{p, core::Angle(heading)};
+      return true;
+    }
+  }
+  return false;
+}
+
 std::vector<core::Pose2> PlaceRandom(int n, std::uint64_t seed, const WorldParams& params,
                                      std::string* error) {
   std::vector<core::Pose2> poses;

@@ -89,7 +89,8 @@ class RelayedPositions {
   bool Ignored(const Robot_Position& msg) const {
     return msg.type == Robot_Position::TYPE_PHYSICAL;
   }
-  void Erase(std::uint16_t robot_id, std::uint8_t sub_id);
+  // False when there was none.
+  bool Erase(std::uint16_t robot_id, std::uint8_t sub_id);
   // A killed robot's virtual copies die with it.
   void EraseCopiesOf(std::uint16_t robot_id);
   // For the radio: every relayed position, in key order.

@@ -55,6 +55,10 @@ struct RobotNodeOptions {
   // through OnNeighbors() and its commands and answers go to this outlet (which must outlive
   // the robot).
   RobotOutlet* direct = nullptr;
+  // Not a parameter: the robot process stops (ros::requestShutdown) when its id leaves the
+  // simulator's robot list (/kill, Delete_Robot), so that a killed robot does not act on and a
+  // re-spawned id gets a fresh process. A host of many robots removes them itself instead.
+  bool exit_when_removed = false;
   std::string Validate() const;
 };
 
@@ -168,6 +172,8 @@ class RobotNode {
   ros::Publisher answer_pub_;  // lock-step, without a direct link
   ros::WallTimer timer_;
   std::set<std::uint16_t> known_robots_;
+  bool listed_ = false;          // it has been in the robot list
+  bool said_unlisted_ = false;   // it said once that it is not
   Neighbors::ConstPtr perception_;
   std::uint64_t ticks_ = 0;
   // Broadcast comm: what each (robot_id, sub_id) last sent, and when (wall s, radio round).

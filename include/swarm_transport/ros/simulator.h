@@ -19,6 +19,7 @@
 #include "swarm_transport/Delete_Object.h"
 #include "swarm_transport/Delete_Robot.h"
 #include "swarm_transport/Kill.h"
+#include "swarm_transport/New_Robot.h"
 #include "swarm_transport/Mission_Status.h"
 #include "swarm_transport/Neighbors.h"
 #include "swarm_transport/New_Mission.h"
@@ -125,7 +126,14 @@ class Simulator : public RobotOutlet {
   bool OnTeleportRelative(std::uint16_t id, TeleportRelative::Request& req,
                           TeleportRelative::Response& res);
   void OnPosition(const Robot_Position::ConstPtr& msg);
+  // New_Robot of a physical robot: it joins at a free random pose (the /spawn service takes a
+  // pose). Virtual copies and statists join by announcing themselves on /flock/position.
+  void OnRobotNew(const New_Robot::ConstPtr& msg);
+  // Delete_Robot: a virtual copy or statist of that (id, sub_id) is no longer relayed; else a
+  // physical robot (sub_id 0) leaves the world, as by /kill.
   void OnRobotDelete(const Delete_Robot::ConstPtr& msg);
+  // Spawns robot `id` at `pose` with its links; empty when done, else why not.
+  std::string SpawnRobot(std::uint16_t id, const core::Pose2& pose);
   void OnMissionNew(const New_Mission::ConstPtr& msg);
   // Validated like the robots do: a valid order gets its mission channel and markers.
   void RegisterMission(const New_Mission& order);
@@ -140,6 +148,7 @@ class Simulator : public RobotOutlet {
   bool lockstep_ = false;
   std::unique_ptr<sim::World2D> world_;
   std::unique_ptr<core::Rng> radio_rng_;
+  std::unique_ptr<core::Rng> spawn_rng_;  // poses of robots that join by New_Robot
   std::unique_ptr<sim::Radio> radio_;
   DirectRobots* direct_ = nullptr;
   std::thread::id thread_;  // Initialize()'s and Run()'s
@@ -160,6 +169,7 @@ class Simulator : public RobotOutlet {
   ros::ServiceServer kill_srv_;
   ros::ServiceServer reset_srv_;
   ros::Subscriber position_sub_;
+  ros::Subscriber robot_new_sub_;
   ros::Subscriber robot_delete_sub_;
   ros::Subscriber mission_new_sub_;
   ros::Subscriber object_update_sub_;

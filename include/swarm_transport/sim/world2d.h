@@ -9,6 +9,7 @@
 
 #include "swarm_transport/core/kinematics.h"
 #include "swarm_transport/core/modes.h"
+#include "swarm_transport/core/random.h"
 
 namespace swarm_transport {
 namespace sim {
@@ -94,6 +95,11 @@ class World2D {
 // `error` set when they do not fit.
 std::vector<core::Pose2> PlaceRandom(int n, std::uint64_t seed, const WorldParams& params,
                                      std::string* error = nullptr);
+
+// A pose for one more robot: a random point of the arena (drawn from `rng`) where it overlaps
+// no robot of `world`, facing a random heading. False when none was found in a bounded number
+// of attempts (a full arena).
+bool FreePose(const World2D& world, core::Rng* rng, core::Pose2* pose);
 
 // Poses of `n` robots clustered on a square grid of spacing 3 r in the bottom-left corner,
 // heading 45 degrees. Empty with `error` set when they do not fit.

@@ -1,0 +1,137 @@
+#!/usr/bin/env python3
+"""A swarm that changes size while it runs (issue 11, SPEC 9.1), one process per robot, in
+lock-step:
+- /spawn and then `roslaunch swarm_transport robot.launch id:=N` add a robot: it is listed on
+  /flock/robots, moves with the swarm, and the next mission can name it (a leader-only mission
+  of that robot ends DONE);
+- /kill removes it: it leaves the list and its process stops (a re-spawned id gets a fresh one);
+- New_Robot (type 0) adds a robot at a free place, Delete_Robot (sub_id 0) removes one; a
+  Delete_Robot naming no robot changes nothing, and the good one after it takes effect;
+- a robot process whose id the simulator does not have idles (and says so once) until the id
+  is spawned; then it joins."""
+
+import sys
+import unittest
+
+import rospy
+import rostest
+from swarm_transport.msg import Delete_Robot, New_Mission, New_Robot, Robot_Positions
+from swarm_transport.srv import Kill, Spawn
+
+import swarm_testing as st
+
+
+def g(key):
+    return rospy.get_param('~' + key)
+
+
+class RobotList(object):
+    """The latest latched /flock/robots (the simulator's list of robots)."""
+
+    def __init__(self):
+        self.ids = None
+        self.sub = rospy.Subscriber('/flock/robots', Robot_Positions, self._cb, queue_size=10)
+
+    def _cb(self, msg):
+        self.ids = sorted(r.robot_id for r in msg.robots if r.type == 0)
+
+
+class DynamicSwarm(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        cls.timeout = g('timeout_s')
+        cls.log = st.PositionLog()
+        cls.swarm = st.launch_swarm(robots=g('robots'), seed=g('seed'), lockstep=True,
+                                    max_ticks=0)
+        assert cls.log.wait_tick(3, cls.timeout), 'the swarm never ticked'
+        cls.list = RobotList()
+        cls.extra = []
+
+    @classmethod
+    def tearDownClass(cls):
+        for parent in cls.extra:
+            parent.shutdown()
+        cls.swarm.shutdown()
+        cls.log.close()
+
+    def listed(self, ids):
+        return st.wait_for(lambda: self.list.ids == sorted(ids), self.timeout)
+
+    def test_robots_join_and_leave_while_the_swarm_runs(self):
+        n = g('robots')
+        base = list(range(n))
+        self.assertTrue(self.listed(base), self.list.ids)
+        rospy.wait_for_service('/spawn', self.timeout)
+        spawn = rospy.ServiceProxy('/spawn', Spawn)
+        kill = rospy.ServiceProxy('/kill', Kill)
+
+        # /spawn + its own process: listed, moving, and named by the next mission.
+        new = n
+        self.assertEqual(spawn(robot_id=new, x=2.0, y=9.0, theta=0.0).code, 0)
+        self.assertTrue(self.listed(base + [new]), self.list.ids)
+        self.extra.append(st.launch_file('robot.launch', id=new, clock='lockstep'))
+        start = self.log.latest_tick()
+        self.assertTrue(st.wait_for(
+            lambda: st.moved(self.log.at(self.log.latest_tick()).get(new, (2.0, 9.0)),
+                             (2.0, 9.0)) >= g('moves_m'), self.timeout),
+            'robot %d never moved after joining (tick %d)' % (new, start))
+        status = st.StatusLog()
+        pub = rospy.Publisher('/flock/mission/new', New_Mission, queue_size=10, latch=True)
+        self.assertTrue(st.wait_connected(pub, self.timeout))
+        order = st.mission(31, new, new + 1, 1, (0.0, 0.0, 0.0, 0.0), (2.5, 8.0))
+        pub.publish(order)
+        self.assertTrue(st.wait_for(lambda: status.final(31), self.timeout),
+                        'the mission of robot %d did not end: %s' % (new, status.states(31)))
+        self.assertEqual(status.states(31)[-1], 'DONE', status.states(31))
+
+        # /kill: it leaves the list and its process stops.
+        pid = st.node_pid('/robot_%d/robot' % new)
+        self.assertEqual(kill(robot_id=new).code, 0)
+        self.assertTrue(self.listed(base), self.list.ids)
+        self.assertTrue(st.wait_for(lambda: not st.process_alive(pid), self.timeout),
+                        'the process of the killed robot %d still runs' % new)
+
+        # New_Robot / Delete_Robot on their topics.
+        joins = rospy.Publisher('/flock/robot/new', New_Robot, queue_size=10)
+        leaves = rospy.Publisher('/flock/robot/delete', Delete_Robot, queue_size=10)
+        self.assertTrue(st.wait_connected(joins, self.timeout))
+        self.assertTrue(st.wait_connected(leaves, self.timeout))
+        other = n + 1
+        joins.publish(New_Robot(robot_id=other, sub_id=0, type=0))
+        self.assertTrue(self.listed(base + [other]), self.list.ids)
+        # It stands in the world (at a free place drawn from the seed).
+        self.assertTrue(st.wait_for(lambda: other in self.log.at(self.log.latest_tick()),
+                                    self.timeout))
+        leaves.publish(Delete_Robot(robot_id=n + 40, sub_id=0))  # no such robot: nothing
+        leaves.publish(Delete_Robot(robot_id=other, sub_id=0))
+        self.assertTrue(self.listed(base), self.list.ids)
+
+    def test_a_robot_process_without_a_robot_idles_until_spawned(self):
+        ghost = g('robots') + 20
+        self.extra.append(st.launch_file('robot.launch', id=ghost, clock='lockstep'))
+        state = st.robot_state(ghost, self.timeout)
+        self.assertFalse(state.listed)
+        t = self.log.latest_tick()
+        self.assertTrue(self.log.wait_tick(t + 20, self.timeout))
+        state = st.robot_state(ghost, self.timeout)
+        self.assertFalse(state.listed)
+        self.assertEqual(state.ticks, 0, 'robot %d ticked without a robot in the world' % ghost)
+        # Spawned, the waiting process joins: listed, ticking, moving.
+        spawn = rospy.ServiceProxy('/spawn', Spawn)
+        spawn.wait_for_service(self.timeout)
+        self.assertEqual(spawn(robot_id=ghost, x=9.0, y=2.0, theta=0.0).code, 0)
+        self.assertTrue(st.wait_for(lambda: st.robot_state(ghost, self.timeout).listed,
+                                    self.timeout))
+        self.assertTrue(st.wait_for(
+            lambda: st.moved(self.log.at(self.log.latest_tick()).get(ghost, (9.0, 2.0)),
+                             (9.0, 2.0)) >= g('moves_m'), self.timeout),
+            'robot %d never moved after it was spawned' % ghost)
+        self.assertGreater(st.robot_state(ghost, self.timeout).ticks, 0)
+        kill = rospy.ServiceProxy('/kill', Kill)
+        self.assertEqual(kill(robot_id=ghost).code, 0)
+
+
+if __name__ == '__main__':
+    rospy.init_node('dynamic_swarm_test')
+    rostest.rosrun('swarm_transport', 'dynamic_swarm', DynamicSwarm, sys.argv)
