@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""A swarm that changes size while it runs (issue 11, SPEC 9.1), one process per robot, in
-lock-step:
+"""A swarm that changes size while it runs (issue 11, SPEC 9.1). With one process per robot
+(~deploy process, lock-step):
 - /spawn and then `roslaunch swarm_transport robot.launch id:=N` add a robot: it is listed on
   /flock/robots, moves with the swarm, and the next mission can name it (a leader-only mission
   of that robot ends DONE);
@@ -8,7 +8,10 @@ lock-step:
 - New_Robot (type 0) adds a robot at a free place, Delete_Robot (sub_id 0) removes one; a
   Delete_Robot naming no robot changes nothing, and the good one after it takes effect;
 - a robot process whose id the simulator does not have idles (and says so once) until the id
-  is spawned; then it joins."""
+  is spawned; then it joins.
+With all robots in one robot_host (~deploy host_sim or host, either clock): the host starts a
+robot for every robot spawned (/spawn, New_Robot) and removes it when it leaves (/kill,
+Delete_Robot); it moves with the swarm and can be named by the next mission."""
 
 import sys
 import unittest
@@ -42,8 +45,10 @@ class DynamicSwarm(unittest.TestCase):
     def setUpClass(cls):
         cls.timeout = g('timeout_s')
         cls.log = st.PositionLog()
-        cls.swarm = st.launch_swarm(robots=g('robots'), seed=g('seed'), lockstep=True,
-                                    max_ticks=0)
+        cls.deploy = g('deploy')
+        cls.lockstep = g('lockstep')
+        cls.swarm = st.launch_swarm(robots=g('robots'), seed=g('seed'), lockstep=cls.lockstep,
+                                    max_ticks=0, deploy=cls.deploy)
         assert cls.log.wait_tick(3, cls.timeout), 'the swarm never ticked'
         cls.list = RobotList()
         cls.extra = []
@@ -58,7 +63,62 @@ class DynamicSwarm(unittest.TestCase):
     def listed(self, ids):
         return st.wait_for(lambda: self.list.ids == sorted(ids), self.timeout)
 
+    def moves(self, robot, start):
+        return st.wait_for(
+            lambda: st.moved(self.log.at(self.log.latest_tick()).get(robot, start), start)
+            >= g('moves_m'), self.timeout)
+
+    def lead(self, mission_id, robot):
+        """A leader-only mission of `robot` ends DONE (the next mission can name it)."""
+        status = st.StatusLog()
+        pub = rospy.Publisher('/flock/mission/new', New_Mission, queue_size=10, latch=True)
+        self.assertTrue(st.wait_connected(pub, self.timeout))
+        pub.publish(st.mission(mission_id, robot, robot + 1, 1, (0.0, 0.0, 0.0, 0.0),
+                               g('lead_target')))
+        self.assertTrue(st.wait_for(lambda: status.final(mission_id), self.timeout),
+                        'the mission of robot %d did not end: %s'
+                        % (robot, status.states(mission_id)))
+        self.assertEqual(status.states(mission_id)[-1], 'DONE', status.states(mission_id))
+
+    def test_a_host_starts_and_removes_robots(self):
+        if self.deploy == 'process':
+            self.skipTest('one process per robot: see the other tests')
+        n = g('robots')
+        base = list(range(n))
+        self.assertTrue(self.listed(base), self.list.ids)
+        rospy.wait_for_service('/spawn', self.timeout)
+        spawn = rospy.ServiceProxy('/spawn', Spawn)
+        kill = rospy.ServiceProxy('/kill', Kill)
+        new = n
+        self.assertEqual(spawn(robot_id=new, x=2.0, y=9.0, theta=0.0).code, 0)
+        self.assertTrue(self.listed(base + [new]), self.list.ids)
+        self.assertTrue(self.moves(new, (2.0, 9.0)), 'robot %d never moved' % new)
+        self.assertTrue(st.wait_for(lambda: st.robot_state(new, self.timeout).ticks > 0,
+                                    self.timeout))
+        self.lead(32, new)
+        # Killed, it leaves the list and the host: its services go with it.
+        self.assertEqual(kill(robot_id=new).code, 0)
+        self.assertTrue(self.listed(base), self.list.ids)
+        self.assertTrue(st.wait_for(
+            lambda: '/robot_%d/robot/state' % new not in st.service_names(), self.timeout),
+            'the host still runs robot %d' % new)
+        # A New_Robot joins the same way, a Delete_Robot removes it.
+        joins = rospy.Publisher('/flock/robot/new', New_Robot, queue_size=10)
+        leaves = rospy.Publisher('/flock/robot/delete', Delete_Robot, queue_size=10)
+        self.assertTrue(st.wait_connected(joins, self.timeout))
+        self.assertTrue(st.wait_connected(leaves, self.timeout))
+        joins.publish(New_Robot(robot_id=new + 1, sub_id=0, type=0))
+        self.assertTrue(self.listed(base + [new + 1]), self.list.ids)
+        self.assertTrue(st.wait_for(lambda: st.robot_state(new + 1, self.timeout).ticks > 0,
+                                    self.timeout))
+        leaves.publish(Delete_Robot(robot_id=new + 1, sub_id=0))
+        self.assertTrue(self.listed(base), self.list.ids)
+        self.assertTrue(st.wait_for(
+            lambda: '/robot_%d/robot/state' % (new + 1) not in st.service_names(), self.timeout))
+
     def test_robots_join_and_leave_while_the_swarm_runs(self):
+        if self.deploy != 'process':
+            self.skipTest('a process per robot only')
         n = g('robots')
         base = list(range(n))
         self.assertTrue(self.listed(base), self.list.ids)
@@ -71,19 +131,8 @@ class DynamicSwarm(unittest.TestCase):
         self.assertEqual(spawn(robot_id=new, x=2.0, y=9.0, theta=0.0).code, 0)
         self.assertTrue(self.listed(base + [new]), self.list.ids)
         self.extra.append(st.launch_file('robot.launch', id=new, clock='lockstep'))
-        start = self.log.latest_tick()
-        self.assertTrue(st.wait_for(
-            lambda: st.moved(self.log.at(self.log.latest_tick()).get(new, (2.0, 9.0)),
-                             (2.0, 9.0)) >= g('moves_m'), self.timeout),
-            'robot %d never moved after joining (tick %d)' % (new, start))
-        status = st.StatusLog()
-        pub = rospy.Publisher('/flock/mission/new', New_Mission, queue_size=10, latch=True)
-        self.assertTrue(st.wait_connected(pub, self.timeout))
-        order = st.mission(31, new, new + 1, 1, (0.0, 0.0, 0.0, 0.0), (2.5, 8.0))
-        pub.publish(order)
-        self.assertTrue(st.wait_for(lambda: status.final(31), self.timeout),
-                        'the mission of robot %d did not end: %s' % (new, status.states(31)))
-        self.assertEqual(status.states(31)[-1], 'DONE', status.states(31))
+        self.assertTrue(self.moves(new, (2.0, 9.0)), 'robot %d never moved after joining' % new)
+        self.lead(31, new)
 
         # /kill: it leaves the list and its process stops.
         pid = st.node_pid('/robot_%d/robot' % new)
@@ -108,6 +157,8 @@ class DynamicSwarm(unittest.TestCase):
         self.assertTrue(self.listed(base), self.list.ids)
 
     def test_a_robot_process_without_a_robot_idles_until_spawned(self):
+        if self.deploy != 'process':
+            self.skipTest('a process per robot only')
         ghost = g('robots') + 20
         self.extra.append(st.launch_file('robot.launch', id=ghost, clock='lockstep'))
         state = st.robot_state(ghost, self.timeout)
@@ -123,10 +174,8 @@ class DynamicSwarm(unittest.TestCase):
         self.assertEqual(spawn(robot_id=ghost, x=9.0, y=2.0, theta=0.0).code, 0)
         self.assertTrue(st.wait_for(lambda: st.robot_state(ghost, self.timeout).listed,
                                     self.timeout))
-        self.assertTrue(st.wait_for(
-            lambda: st.moved(self.log.at(self.log.latest_tick()).get(ghost, (9.0, 2.0)),
-                             (9.0, 2.0)) >= g('moves_m'), self.timeout),
-            'robot %d never moved after it was spawned' % ghost)
+        self.assertTrue(self.moves(ghost, (9.0, 2.0)),
+                        'robot %d never moved after it was spawned' % ghost)
         self.assertGreater(st.robot_state(ghost, self.timeout).ticks, 0)
         kill = rospy.ServiceProxy('/kill', Kill)
         self.assertEqual(kill(robot_id=ghost).code, 0)

@@ -34,6 +34,13 @@ def launch_file(name, **args):
     return parent
 
 
+def service_names():
+    """Every service the master knows now."""
+    import rosgraph
+    _, _, services = rosgraph.Master(rospy.get_name()).getSystemState()
+    return {name for name, _ in services}
+
+
 def process_alive(pid):
     """True while process `pid` runs (a zombie that exited but was not reaped yet counts as
     gone)."""

@@ -49,10 +49,27 @@ class TickScheduler {
             std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(period_s))) {}
   ~TickScheduler() { Stop(); }
 
-  // Before Start(): robot `robot`, served by `queue`, first ticks at `first_due`.
+  // Robot `robot`, served by `queue`, first ticks at `first_due` (also while running: a robot
+  // that joins).
   void Add(RobotNode* robot, ros::CallbackQueue* queue, Clock::time_point first_due) {
-    robots_.emplace_back(robot, queue);
-    heap_.push(Entry{first_due, robots_.size() - 1});
+    bool earliest = false;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      robots_.emplace_back(robot, queue);
+      earliest = heap_.empty() || first_due < heap_.top().due;
+      heap_.push(Entry{first_due, robots_.size() - 1});
+    }
+    if (earliest) wake_.notify_one();
+  }
+
+  // Robot `robot` ticks no more. A tick already queued still runs unless the caller removes
+  // it from the robot's queue (removeByID with the robot's address, which also waits for one
+  // in progress).
+  void Remove(RobotNode* robot) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (auto& entry : robots_) {
+      if (entry.first == robot) entry.first = nullptr;
+    }
   }
 
   void Start() { thread_ = std::thread(&TickScheduler::Run, this); }
@@ -76,16 +93,18 @@ class TickScheduler {
   // Runs one robot's tick on its queue's thread, then schedules the next.
   class TickCallback : public ros::CallbackInterface {
    public:
-    TickCallback(TickScheduler* scheduler, std::size_t index, Clock::time_point due)
-        : scheduler_(scheduler), index_(index), due_(due) {}
+    TickCallback(TickScheduler* scheduler, RobotNode* robot, std::size_t index,
+                 Clock::time_point due)
+        : scheduler_(scheduler), robot_(robot), index_(index), due_(due) {}
     CallResult call() override {
-      scheduler_->robots_[index_].first->TimerTick();
+      robot_->TimerTick();
       scheduler_->Reschedule(index_, due_);
       return Success;
     }
 
    private:
     TickScheduler* scheduler_;
+    RobotNode* robot_;
     std::size_t index_;
     Clock::time_point due_;
   };
@@ -97,6 +116,7 @@ class TickScheduler {
     bool earliest = false;
     {
       std::lock_guard<std::mutex> lock(mutex_);
+      if (robots_[index].first == nullptr) return;  // removed
       earliest = heap_.empty() || next < heap_.top().due;
       heap_.push(Entry{next, index});
     }
@@ -116,10 +136,12 @@ class TickScheduler {
         continue;
       }
       heap_.pop();
+      const std::pair<RobotNode*, ros::CallbackQueue*> robot = robots_[top.index];
+      if (robot.first == nullptr) continue;  // removed
       lock.unlock();
-      robots_[top.index].second->addCallback(
-          boost::make_shared<TickCallback>(this, top.index, top.due),
-          reinterpret_cast<std::uint64_t>(robots_[top.index].first));
+      robot.second->addCallback(
+          boost::make_shared<TickCallback>(this, robot.first, top.index, top.due),
+          reinterpret_cast<std::uint64_t>(robot.first));
       lock.lock();
     }
   }
@@ -150,13 +172,16 @@ bool RobotHost::Initialize() {
       ReadPrivate(private_nh_, "comm", &options_.comm, &error) &&
       ReadPrivate(private_nh_, "diagnostics", &options_.diagnostics, &error) &&
       ReadPrivate(private_nh_, "threads", &options_.threads, &error) &&
-      ReadPrivate(private_nh_, "run_simulator", &options_.run_simulator, &error)) {
+      ReadPrivate(private_nh_, "run_simulator", &options_.run_simulator, &error) &&
+      ReadPrivate(private_nh_, "adopt", &options_.adopt, &error)) {
     error = options_.Validate();
   }
   if (!error.empty()) {
     ROS_FATAL("robot_host: invalid parameters: %s", error.c_str());
     return false;
   }
+  // Its robots, before the simulator (linking them directly) asks.
+  for (int id = options_.from; id < options_.to; ++id) ids_.insert(static_cast<std::uint16_t>(id));
   if (options_.run_simulator) {
     simulator_ = std::make_unique<Simulator>(nh_, ros::NodeHandle(private_nh_, "simulator"));
     simulator_->AttachDirect(this);
@@ -179,22 +204,8 @@ bool RobotHost::Initialize() {
   const bool realtime = options_.clock == core::Clock::kRealtime;
   const ros::WallTime started = ros::WallTime::now();
   for (int id = options_.from; id < options_.to; ++id) {
-    ros::CallbackQueue* queue = queues_[robots_.size() % queues_.size()].get();
-    ros::NodeHandle nh(nh_, names::RobotNamespace(static_cast<std::uint16_t>(id)));
-    nh.setCallbackQueue(queue);
-    ros::NodeHandle private_nh(nh, kRobotNodeName);
-    private_nh.setCallbackQueue(queue);
-    RobotNodeOptions robot;
-    robot.id = id;
-    robot.clock = options_.clock;
-    robot.comm = options_.comm;
-    robot.diagnostics = options_.diagnostics;
-    robot.external_timer = realtime;
-    if (simulator_) robot.direct = simulator_.get();
-    robots_.push_back(std::make_unique<RobotNode>(nh, private_nh));
-    if (!robots_.back()->Initialize(robot)) return false;
+    if (!StartRobot(static_cast<std::uint16_t>(id))) return false;
   }
-  if (simulator_) inboxes_ = std::make_unique<Inbox[]>(robots_.size());
   ROS_INFO("robot_host: robots [%d, %d) up in %.1f s (%s clock, %s comm, %d threads)",
            options_.from, options_.to, (ros::WallTime::now() - started).toSec(),
            core::ClockName(options_.clock), core::CommName(options_.comm), options_.threads);
@@ -207,32 +218,109 @@ bool RobotHost::Initialize() {
       spinners_.back()->start();
     }
   }
-  if (realtime) {
-    // Each robot on its own timeline, as separate processes would be; the phases are spread
-    // over one period so that the ticks do not all fall due at once.
-    const double period_s = robots_.front()->tick_period_s();
-    scheduler_ = std::make_unique<TickScheduler>(period_s);
-    const TickScheduler::Clock::time_point start = TickScheduler::Clock::now();
-    for (std::size_t i = 0; i < robots_.size(); ++i) {
-      const std::chrono::duration<double> phase(period_s * static_cast<double>(i) /
-                                                static_cast<double>(robots_.size()));
-      scheduler_->Add(robots_[i].get(), queues_[i % queues_.size()].get(),
-                      start + std::chrono::duration_cast<TickScheduler::Clock::duration>(phase));
-    }
-    scheduler_->Start();
+  if (scheduler_) scheduler_->Start();
+  if (options_.adopt && !simulator_) {
+    ros::NodeHandle control(nh_);
+    control.setCallbackQueue(&control_queue_);
+    robots_sub_ = control.subscribe(names::kRobots, 2, &RobotHost::OnRobots, this);
+    control_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &control_queue_);
+    control_spinner_->start();
   }
   return true;
 }
 
+bool RobotHost::StartRobot(std::uint16_t id) {
+  const std::size_t k = started_++;
+  ros::CallbackQueue* queue = queues_[k % queues_.size()].get();
+  ros::NodeHandle nh(nh_, names::RobotNamespace(id));
+  nh.setCallbackQueue(queue);
+  ros::NodeHandle private_nh(nh, kRobotNodeName);
+  private_nh.setCallbackQueue(queue);
+  RobotNodeOptions robot;
+  robot.id = id;
+  robot.clock = options_.clock;
+  robot.comm = options_.comm;
+  robot.diagnostics = options_.diagnostics;
+  robot.external_timer = options_.clock == core::Clock::kRealtime;
+  if (simulator_) robot.direct = simulator_.get();
+  Hosted hosted;
+  hosted.node = std::make_unique<RobotNode>(nh, private_nh);
+  hosted.queue = queue;
+  if (simulator_) hosted.inbox = std::make_unique<Inbox>();
+  if (!hosted.node->Initialize(robot)) return false;
+  RobotNode* node = hosted.node.get();
+  ids_.insert(id);
+  hosted_.emplace(id, std::move(hosted));
+  if (options_.clock == core::Clock::kRealtime) {
+    if (!scheduler_) scheduler_ = std::make_unique<TickScheduler>(node->tick_period_s());
+    // Each robot on its own timeline, as separate processes would be: the initial robots'
+    // phases are spread over one period so that their ticks do not all fall due at once; a
+    // robot that joins later ticks from now.
+    const double period_s = node->tick_period_s();
+    const std::size_t initial = static_cast<std::size_t>(options_.to - options_.from);
+    const double phase_s =
+        k < initial ? period_s * static_cast<double>(k) / static_cast<double>(initial) : 0.0;
+    scheduler_->Add(node, queue,
+                    TickScheduler::Clock::now() +
+                        std::chrono::duration_cast<TickScheduler::Clock::duration>(
+                            std::chrono::duration<double>(phase_s)));
+  }
+  return true;
+}
+
+bool RobotHost::Adopt(std::uint16_t id) {
+  if (!options_.adopt || hosted_.count(id) > 0) return hosted_.count(id) > 0;
+  ids_.insert(id);  // Hosts(id) from now on: the simulator links it directly
+  if (!StartRobot(id)) {
+    ids_.erase(id);
+    ROS_ERROR("robot_host: robot %u could not be started", id);
+    return false;
+  }
+  ROS_INFO("robot_host: robot %u joined", id);
+  return true;
+}
+
+void RobotHost::Release(std::uint16_t id) {
+  auto it = hosted_.find(id);
+  if (it == hosted_.end()) return;
+  RobotNode* robot = it->second.node.get();
+  if (scheduler_) scheduler_->Remove(robot);
+  // Its queued ticks and rounds go, and one in progress ends first.
+  it->second.queue->removeByID(reinterpret_cast<std::uint64_t>(robot));
+  // Its callbacks end before it goes (the queue thread runs the other robots meanwhile).
+  robot->Disconnect();
+  robot->Shutdown();
+  hosted_.erase(it);  // unsubscribes (waiting for a callback in progress)
+  ids_.erase(id);
+  ROS_INFO("robot_host: robot %u left", id);
+}
+
+void RobotHost::OnRobots(const Robot_Positions::ConstPtr& msg) {
+  std::set<std::uint16_t> listed;
+  for (const Robot_Position& r : msg->robots) {
+    if (r.type == Robot_Position::TYPE_PHYSICAL) listed.insert(r.robot_id);
+  }
+  std::vector<std::uint16_t> gone;
+  for (const auto& entry : hosted_) {
+    if (listed.count(entry.first) == 0) gone.push_back(entry.first);
+  }
+  for (std::uint16_t id : gone) Release(id);
+  // Every robot of the world is this host's (swarm.launch deploy:=host); ~adopt false leaves
+  // the robots it did not start with to processes of their own.
+  for (std::uint16_t id : listed) {
+    if (hosted_.count(id) == 0) Adopt(id);
+  }
+}
+
 bool RobotHost::Hosts(std::uint16_t id) const {
-  return options_.run_simulator && options_.from <= id && id < options_.to;
+  return options_.run_simulator && ids_.count(id) > 0;
 }
 
 void RobotHost::Deliver(std::uint16_t id, const Neighbors::ConstPtr& round) {
-  const std::size_t index = static_cast<std::size_t>(id - options_.from);
-  if (index >= robots_.size()) return;  // not set up (yet)
-  RobotNode* robot = robots_[index].get();
-  ros::CallbackQueue* queue = queues_[index % queues_.size()].get();
+  auto it = hosted_.find(id);
+  if (it == hosted_.end()) return;  // not set up (yet)
+  RobotNode* robot = it->second.node.get();
+  ros::CallbackQueue* queue = it->second.queue;
   // On the robot's queue, like a neighbors message: never concurrently with its other
   // callbacks, and in real time on its own thread, not the simulator's.
   if (options_.clock == core::Clock::kLockstep) {
@@ -245,7 +333,7 @@ void RobotHost::Deliver(std::uint16_t id, const Neighbors::ConstPtr& round) {
   // Real time: a robot that fell behind gets the latest round only, as a neighbors
   // subscription with a short queue drops old rounds (its diagnostics count them as missed);
   // an unbounded queue would grow while the robot can not keep up.
-  Inbox& inbox = inboxes_[index];
+  Inbox& inbox = *it->second.inbox;
   bool pending = false;
   {
     std::lock_guard<std::mutex> lock(inbox.mutex);
@@ -282,11 +370,12 @@ void RobotHost::Spin() {
 
 void RobotHost::Shutdown() {
   StopCallbacks();
-  for (auto& robot : robots_) robot->Shutdown();
+  for (auto& entry : hosted_) entry.second.node->Shutdown();
   if (simulator_) simulator_->Shutdown();
 }
 
 void RobotHost::StopCallbacks() {
+  if (control_spinner_) control_spinner_->stop();
   if (scheduler_) scheduler_->Stop();
   for (auto& spinner : spinners_) spinner->stop();
 }

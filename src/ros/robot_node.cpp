@@ -118,6 +118,19 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
   return true;
 }
 
+RobotNode::~RobotNode() { Disconnect(); }
+
+void RobotNode::Disconnect() {
+  timer_.stop();
+  for (ros::Subscriber* sub :
+       {&neighbors_sub_, &freeze_sub_, &continue_sub_, &mission_sub_, &update_sub_, &delete_sub_,
+        &event_sub_, &status_sub_, &robots_sub_, &position_sub_}) {
+    sub->shutdown();
+  }
+  describe_srv_.shutdown();
+  state_srv_.shutdown();
+}
+
 void RobotNode::Shutdown() {
   timer_.stop();
   SendCommand(geometry_msgs::Twist());

@@ -167,6 +167,7 @@ void Simulator::RemoveRobot(std::uint16_t id) {
   world_->Kill(id, nullptr);
   links_->Remove(id);
   if (session_) session_->RemoveRobot(id);
+  if (direct_ != nullptr && direct_->Hosts(id)) direct_->Release(id);
   relayed_.EraseCopiesOf(id);  // its virtual copies die with it
 }
 
@@ -413,8 +414,10 @@ std::string Simulator::SpawnRobot(std::uint16_t id, const core::Pose2& pose) {
     ROS_WARN("simulator: spawn of robot %u rejected: %s", id, error.c_str());
     return error;
   }
+  PublishRobotList();  // first: a robot started now finds itself listed
+  // A host of many robots that runs this simulator starts the robot itself.
+  if (direct_ != nullptr && !direct_->Hosts(id)) direct_->Adopt(id);
   AddRobot(id);
-  PublishRobotList();
   ROS_INFO("simulator: spawned robot %u at (%.3f, %.3f, %.1f deg)", id, pose.position.x,
            pose.position.y, pose.heading.degrees());
   return "";

@@ -46,6 +46,12 @@ class DirectRobots {
   // Lock-step: runs the callbacks the hosted robots have pending, in the calling (the
   // simulator's) thread. Real time: robots run on their own threads and this does nothing.
   virtual void SpinRobots() = 0;
+  // A robot spawned while the swarm runs: the process starts a robot for it and links it
+  // directly (true), or leaves it to a process of its own (false). Before the simulator
+  // connects the robot's links.
+  virtual bool Adopt(std::uint16_t /*id*/) { return false; }
+  // Robot `id` left the world (killed or deleted): the process stops and removes its robot.
+  virtual void Release(std::uint16_t /*id*/) {}
 };
 
 // A callback queue entry that runs a function: how a round reaches a robot's queue, or a

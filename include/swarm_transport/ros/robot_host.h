@@ -6,11 +6,14 @@
 #include <ros/ros.h>
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <string>
 #include <vector>
 
+#include "swarm_transport/Robot_Positions.h"
 #include "swarm_transport/ros/direct_link.h"
 #include "swarm_transport/ros/robot_node.h"
 
@@ -33,6 +36,12 @@ struct RobotHostOptions {
   // robot_<id>/neighbors, cmd_vel or answer topics, and by default no robot_<id>/pose
   // (~simulator/pose_topics). Lock-step runs the robots in the simulator's thread.
   bool run_simulator = false;
+  // ~adopt: the swarm changes size while it runs (issue 11): a robot spawned later (/spawn,
+  // New_Robot) gets a robot of this host, and a robot of this host that leaves the world
+  // (/kill, Delete_Robot) is removed. With ~run_simulator the simulator tells the host;
+  // without, the host runs every robot /flock/robots lists. false: robots beyond [from, to)
+  // need processes of their own (a host beside robot processes).
+  bool adopt = true;
   std::string Validate() const;
 };
 
@@ -65,8 +74,24 @@ class RobotHost : public DirectRobots {
   bool Hosts(std::uint16_t id) const override;
   void Deliver(std::uint16_t id, const Neighbors::ConstPtr& round) override;
   void SpinRobots() override;
+  bool Adopt(std::uint16_t id) override;
+  void Release(std::uint16_t id) override;
 
  private:
+  // Real time with the simulator here: a robot's latest round not yet taken (Deliver).
+  struct Inbox {
+    std::mutex mutex;
+    Neighbors::ConstPtr round;
+  };
+  struct Hosted {
+    std::unique_ptr<RobotNode> node;
+    ros::CallbackQueue* queue = nullptr;
+    std::unique_ptr<Inbox> inbox;
+  };
+  // Starts robot `id` on the next queue (real time: it ticks from now on).
+  bool StartRobot(std::uint16_t id);
+  // Without the simulator here: robots join and leave as /flock/robots says (~adopt).
+  void OnRobots(const Robot_Positions::ConstPtr& msg);
   // No tick or callback runs after this returns.
   void StopCallbacks();
 
@@ -76,15 +101,16 @@ class RobotHost : public DirectRobots {
   std::unique_ptr<Simulator> simulator_;
   // Declared before the robots: their subscriptions refer to these queues.
   std::vector<std::unique_ptr<ros::CallbackQueue>> queues_;
-  std::vector<std::unique_ptr<RobotNode>> robots_;
-  // Real time with the simulator here: each robot's latest round not yet taken (Deliver).
-  struct Inbox {
-    std::mutex mutex;
-    Neighbors::ConstPtr round;
-  };
-  std::unique_ptr<Inbox[]> inboxes_;
+  // The hosted robots by id. Changed only from one thread: the simulator's (~run_simulator,
+  // which also calls Deliver) or the control queue's (/flock/robots).
+  std::map<std::uint16_t, Hosted> hosted_;
+  std::set<std::uint16_t> ids_;  // hosted or about to be (Hosts() before the robots start)
+  std::size_t started_ = 0;      // robots started so far: robot k is served by queue k % n
   std::vector<std::unique_ptr<ros::AsyncSpinner>> spinners_;
   std::unique_ptr<TickScheduler> scheduler_;
+  ros::CallbackQueue control_queue_;  // the host's own subscription (/flock/robots)
+  std::unique_ptr<ros::AsyncSpinner> control_spinner_;
+  ros::Subscriber robots_sub_;
 };
 
 }  // namespace swarm_transport

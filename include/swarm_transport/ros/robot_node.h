@@ -77,6 +77,11 @@ class RobotNode {
   void TimerTick();
   // Sends a last zero velocity (a stopping robot always stands still).
   void Shutdown();
+  // Stops every subscription, service and timer (each waits for its callback in progress),
+  // so that nothing of this robot runs any more. Also done by the destructor first: a host
+  // removes a robot while its other robots' callbacks run.
+  void Disconnect();
+  ~RobotNode();
   // One radio round (the neighbors subscription's callback; a host with direct links calls it
   // on the robot's callback queue). Lock-step: one tick.
   void OnNeighbors(const Neighbors::ConstPtr& msg);
