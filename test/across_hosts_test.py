@@ -8,6 +8,7 @@ node must be registered under the address of its own namespace.
 Needs root (CAP_NET_ADMIN) for `ip netns`; without it the test is skipped and says why."""
 
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -37,6 +38,7 @@ class AcrossHosts(unittest.TestCase):
         self.addr = {'core': '10.77.0.1', 'a': '10.77.0.2', 'b': '10.77.0.3'}
         self.procs = []
         self.tmp = tempfile.mkdtemp(prefix='across_hosts_')
+        self.addCleanup(shutil.rmtree, self.tmp, True)
         try:
             ip('netns', 'add', self.ns['core'])
         except (OSError, subprocess.CalledProcessError) as e:
