@@ -211,6 +211,16 @@ bool ConfigFromXmlRpc(XmlRpc::XmlRpcValue& dict, SwarmConfig* config, std::strin
   return true;
 }
 
+bool XmlRpcFromYamlText(const std::string& text, XmlRpc::XmlRpcValue* out, std::string* error) {
+  try {
+    *out = FromYaml(YAML::Load(text));
+  } catch (const YAML::Exception& e) {
+    *error = e.what();
+    return false;
+  }
+  return true;
+}
+
 bool XmlRpcFromYamlFile(const std::string& path, XmlRpc::XmlRpcValue* out, std::string* error) {
   try {
     *out = FromYaml(YAML::LoadFile(path));

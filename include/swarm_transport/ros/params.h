@@ -24,6 +24,8 @@ bool ConfigFromXmlRpc(XmlRpc::XmlRpcValue& dict, SwarmConfig* config, std::strin
 
 // Reads a whole YAML file into the XmlRpc dictionary ROS would make of it with rosparam load.
 bool XmlRpcFromYamlFile(const std::string& path, XmlRpc::XmlRpcValue* out, std::string* error);
+// The same from YAML text (tests, fuzzing).
+bool XmlRpcFromYamlText(const std::string& text, XmlRpc::XmlRpcValue* out, std::string* error);
 
 // Optional private parameters of a node: a missing key keeps `value`; a value of the wrong
 // type (or a non-finite number) is an error naming the key, e.g. "~sample_period_s must be a

@@ -1,0 +1,76 @@
+// New_Mission as any publisher may send it, through both admission paths: the robot's (message
+// -> core, ValidateMission, the mission agent, ticks) and the dispatcher's (MissionBook Submit,
+// then statuses of it). No crash, no sanitizer report; an accepted order is valid, and a
+// robot's command stays finite on finite positions.
+#include <cmath>
+
+#include "fuzz_common.h"
+#include "swarm_transport/Mission_Status.h"
+#include "swarm_transport/core/mission_book.h"
+#include "swarm_transport/core/robot_brain.h"
+#include "swarm_transport/ros/conversions.h"
+
+using namespace swarm_transport;  // NOLINT
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  FuzzedDataProvider in(data, size);
+  const core::SwarmConfig config;
+  const std::set<std::uint16_t> known = fuzz::KnownRobots(25);
+
+  core::MissionBookParams book_params;
+  book_params.world_size_m = config.flocking.world_size_m;
+  book_params.tick_period_s = config.tick_period_s;
+  core::MissionBook book(book_params);
+  core::RobotBrain first(0, config);
+  core::RobotBrain member(1, config);
+
+  const int orders = in.ConsumeIntegralInRange<int>(1, 4);
+  for (int k = 0; k < orders && in.remaining_bytes() > 0; ++k) {
+    const New_Mission msg = fuzz::AnyOrder(&in);
+    const core::MissionSpec spec = ToMissionSpec(msg);
+    // The dispatcher.
+    const core::MissionBook::Verdict verdict =
+        book.Submit(spec, "fuzz", in.ConsumeBool(), in.ConsumeBool(), known, 1.0 * k);
+    if (verdict.accepted) {
+      core::MissionContext context;
+      context.world_size_m = config.flocking.world_size_m;
+      context.known_robots = known;
+      fuzz::Require(core::ValidateMission(verdict.spec, context).empty());
+    }
+    // The robots.
+    core::MissionTaken taken;
+    first.OnNewMission(spec, known, &taken);
+    member.OnNewMission(spec, known, &taken);
+    // A status of it from anyone.
+    Mission_Status status;
+    status.mission_id = msg.mission_id;
+    status.state = in.ConsumeIntegralInRange<std::uint8_t>(0, 9);
+    status.tick = in.ConsumeIntegral<std::uint64_t>();
+    status.robots_assigned = in.ConsumeIntegral<std::uint16_t>();
+    status.robots_inside = in.ConsumeIntegral<std::uint16_t>();
+    status.object_position_x = fuzz::AnyFloat(&in);
+    status.object_position_y = fuzz::AnyFloat(&in);
+    status.distance_to_target = fuzz::AnyFloat(&in);
+    if (status.state < 8 && std::isfinite(status.distance_to_target)) {
+      book.OnStatus(ToMissionReport(status), 1.0 * k);
+    }
+    member.OnStatus(status.mission_id, static_cast<core::MissionPhase>(status.state));
+  }
+  // A few ticks of both robots on finite positions.
+  for (std::uint64_t tick = 0; tick < 3; ++tick) {
+    for (core::RobotBrain* brain : {&first, &member}) {
+      core::Perception p;
+      p.self.position = {in.ConsumeFloatingPointInRange<double>(0.1, 11.0),
+                         in.ConsumeFloatingPointInRange<double>(0.1, 11.0)};
+      core::Neighbour other;
+      other.id = brain == &first ? 1 : 0;
+      other.position = {in.ConsumeFloatingPointInRange<double>(0.1, 11.0),
+                        in.ConsumeFloatingPointInRange<double>(0.1, 11.0)};
+      p.others.push_back(other);
+      const core::BrainTick step = brain->Tick(p, tick, true);
+      fuzz::Require(std::isfinite(step.command.linear) && std::isfinite(step.command.angular));
+    }
+  }
+  book.Table(3.0);
+  return 0;
+}
