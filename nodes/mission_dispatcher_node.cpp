@@ -1,6 +1,7 @@
 // The mission dispatcher: accepts, validates, publishes and tracks missions; signals loading.
 #include <ros/ros.h>
 
+#include "swarm_transport/ros/master_watch.h"
 #include "swarm_transport/ros/mission_dispatcher.h"
 
 int main(int argc, char** argv) {
@@ -9,7 +10,8 @@ int main(int argc, char** argv) {
   ros::NodeHandle private_nh("~");
   swarm_transport::MissionDispatcher dispatcher(nh, private_nh);
   if (!dispatcher.Initialize()) return 1;
+  swarm_transport::MasterWatch watch;  // a master restart stops the node
   ros::spin();
   dispatcher.Shutdown();
-  return 0;
+  return watch.ExitCode(0);
 }

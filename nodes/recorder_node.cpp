@@ -3,6 +3,7 @@
 
 #include <csignal>
 
+#include "swarm_transport/ros/master_watch.h"
 #include "swarm_transport/ros/recorder.h"
 
 int main(int argc, char** argv) {
@@ -14,8 +15,9 @@ int main(int argc, char** argv) {
   ros::NodeHandle private_nh("~");
   swarm_transport::Recorder recorder(nh, private_nh);
   if (!recorder.Initialize()) return 1;
+  swarm_transport::MasterWatch watch;  // a master restart stops the node
   recorder.Run();
   recorder.Shutdown();
   ros::shutdown();
-  return 0;
+  return watch.ExitCode(0);
 }

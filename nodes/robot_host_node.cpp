@@ -1,6 +1,7 @@
 // Many robots in one process (ids [~from, ~to)), each as if it were its own robot node.
 #include <ros/ros.h>
 
+#include "swarm_transport/ros/master_watch.h"
 #include "swarm_transport/ros/robot_host.h"
 
 int main(int argc, char** argv) {
@@ -9,7 +10,8 @@ int main(int argc, char** argv) {
   ros::NodeHandle private_nh("~");
   swarm_transport::RobotHost host(nh, private_nh);
   if (!host.Initialize()) return 1;
+  swarm_transport::MasterWatch watch;  // a master restart stops the node
   host.Spin();
   host.Shutdown();
-  return 0;
+  return watch.ExitCode(0);
 }

@@ -1,6 +1,7 @@
 // One robot of the swarm: ~id, the shared /swarm configuration, a tick per perception.
 #include <ros/ros.h>
 
+#include "swarm_transport/ros/master_watch.h"
 #include "swarm_transport/ros/robot_node.h"
 
 int main(int argc, char** argv) {
@@ -9,7 +10,8 @@ int main(int argc, char** argv) {
   ros::NodeHandle private_nh("~");
   swarm_transport::RobotNode node(nh, private_nh);
   if (!node.Initialize()) return 1;
+  swarm_transport::MasterWatch watch;  // a master restart stops the node
   ros::spin();
   node.Shutdown();
-  return 0;
+  return watch.ExitCode(0);
 }

@@ -3,6 +3,7 @@
 
 #include <csignal>
 
+#include "swarm_transport/ros/master_watch.h"
 #include "swarm_transport/ros/simulator.h"
 
 int main(int argc, char** argv) {
@@ -14,8 +15,9 @@ int main(int argc, char** argv) {
   ros::NodeHandle private_nh("~");
   swarm_transport::Simulator simulator(nh, private_nh);
   if (!simulator.Initialize()) return 1;
+  swarm_transport::MasterWatch watch;  // a master restart stops the node
   simulator.Run();
   simulator.Shutdown();
   ros::shutdown();
-  return 0;
+  return watch.ExitCode(0);
 }

@@ -1,0 +1,43 @@
+// Watches the ROS master from a thread of its own (issue 11). ROS 1 nodes do not register
+// again after a master restart: the new master knows none of them, and their topics, services
+// and parameters are gone for anyone who asks it. A node with a MasterWatch notices within two
+// periods, says so in one line and stops (ros::requestShutdown), so that it does not run on
+// unreachable; restarted() tells its main to exit non-zero (roslaunch respawn="true" restarts a
+// node, but a swarm needs its /swarm parameters loaded again: relaunch it). A master that was
+// only unreachable for a while (it still knows this node) changes nothing.
+#ifndef SWARM_TRANSPORT_ROS_MASTER_WATCH_H_
+#define SWARM_TRANSPORT_ROS_MASTER_WATCH_H_
+
+#include <atomic>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+
+namespace swarm_transport {
+
+class MasterWatch {
+ public:
+  // After ros::init and the node's set-up; checks every `period_s` of wall time.
+  explicit MasterWatch(double period_s = 5.0);
+  ~MasterWatch();
+  MasterWatch(const MasterWatch&) = delete;
+  MasterWatch& operator=(const MasterWatch&) = delete;
+
+  // The master restarted and lost this node: it was asked to stop.
+  bool restarted() const { return restarted_; }
+  // The process exit code for main: 3 after a restart, else `otherwise`.
+  int ExitCode(int otherwise) const { return restarted_ ? 3 : otherwise; }
+
+ private:
+  void Run(double period_s);
+
+  std::atomic<bool> restarted_{false};
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_ = false;
+  std::thread thread_;
+};
+
+}  // namespace swarm_transport
+
+#endif  // SWARM_TRANSPORT_ROS_MASTER_WATCH_H_
