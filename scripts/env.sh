@@ -15,7 +15,7 @@ ST_APT_PACKAGES=(
   python3-roslaunch python3-rosnode python3-rostopic python3-rosservice python3-yaml
   rosbash libtf2-ros-dev libtf2-geometry-msgs-dev libstd-srvs-dev libvisualization-msgs-dev
   libgeometry-msgs-dev libros-rosgraph-msgs-dev python3-rosgraph-msgs libeigen3-dev googletest libgtest-dev
-  libyaml-cpp-dev python3-numpy python3-matplotlib
+  libyaml-cpp-dev python3-numpy python3-matplotlib libdiagnostic-msgs-dev python3-diagnostic-msgs
 )
 # Only for --rviz.
 ST_APT_VIEW_PACKAGES=(rviz xvfb x11-apps imagemagick)

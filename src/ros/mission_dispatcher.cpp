@@ -65,6 +65,16 @@ bool MissionDispatcher::Initialize() {
   submit_srv_ = private_nh_.advertiseService("submit", &MissionDispatcher::OnSubmit, this);
   signal_srv_ = private_nh_.advertiseService("signal", &MissionDispatcher::OnSignal, this);
   status_srv_ = private_nh_.advertiseService("status", &MissionDispatcher::OnStatusService, this);
+  diagnostics_ = std::make_unique<NodeDiagnostics>(nh_, "swarm_transport: mission_dispatcher");
+  status_timer_ = nh_.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) {
+    diagnostics_->PublishIfDue([this](NodeStatus* s) {
+      const int live = book_->LiveCount();
+      s->message = std::to_string(live) + " live mission(s)";
+      s->Add("live_missions", static_cast<std::uint64_t>(live));
+      s->Add("missions_known", static_cast<std::uint64_t>(book_->entries().size()));
+      s->Add("max_live_missions", static_cast<std::uint64_t>(options_.max_live_missions));
+    });
+  });
   if (options_.silent_abort_ticks > 0) {
     // On ros::Time (simulated in lock-step), ten times per silence limit.
     watchdog_timer_ = nh_.createTimer(
@@ -96,6 +106,7 @@ bool MissionDispatcher::Initialize() {
 void MissionDispatcher::Shutdown() {
   start_timer_.stop();
   watchdog_timer_.stop();
+  status_timer_.stop();
 }
 
 bool MissionDispatcher::FromSelf(const std::string& publisher) const {

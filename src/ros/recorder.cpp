@@ -16,6 +16,7 @@
 #include "swarm_transport/Swarm_Stats.h"
 #include "swarm_transport/ros/conversions.h"
 #include "swarm_transport/ros/names.h"
+#include "swarm_transport/ros/diagnostics.h"
 
 namespace swarm_transport {
 namespace {
@@ -172,7 +173,20 @@ bool Recorder::Initialize() {
 
 void Recorder::Run() {
   ros::CallbackQueue* queue = ros::getGlobalCallbackQueue();
-  while (ros::ok() && stop_requested_ == 0) queue->callAvailable(ros::WallDuration(kSpinS));
+  NodeDiagnostics diagnostics(nh_, "swarm_transport: recorder");
+  while (ros::ok() && stop_requested_ == 0) {
+    queue->callAvailable(ros::WallDuration(kSpinS));
+    diagnostics.PublishIfDue([this](NodeStatus* s) {
+      const std::uint64_t tick = metrics_ ? metrics_->newest_tick() : 0;
+      s->message = "recording, tick " + std::to_string(tick);
+      s->Add("newest_tick", tick);
+      s->Add("samples", static_cast<std::uint64_t>(metrics_ ? metrics_->samples() : 0));
+      s->Add("missions_done", static_cast<std::uint64_t>(metrics_ ? metrics_->missions_done() : 0));
+      s->Add("missions_aborted",
+             static_cast<std::uint64_t>(metrics_ ? metrics_->missions_aborted() : 0));
+      s->Add("output", run_dir_.empty() ? "none" : run_dir_);
+    });
+  }
 }
 
 void Recorder::Shutdown() {

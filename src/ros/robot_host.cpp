@@ -219,10 +219,27 @@ bool RobotHost::Initialize() {
     }
   }
   if (scheduler_) scheduler_->Start();
-  if (options_.adopt && !simulator_) {
+  if (!simulator_) {
+    // The host's own thread: robots joining and leaving, and its diagnostic status (with the
+    // simulator here, the simulator reports for the process).
     ros::NodeHandle control(nh_);
     control.setCallbackQueue(&control_queue_);
-    robots_sub_ = control.subscribe(names::kRobots, 2, &RobotHost::OnRobots, this);
+    if (options_.adopt) {
+      robots_sub_ = control.subscribe(names::kRobots, 2, &RobotHost::OnRobots, this);
+    }
+    diagnostics_ = std::make_unique<NodeDiagnostics>(
+        control, "swarm_transport: " + ros::this_node::getName().substr(1));
+    status_timer_ = control.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) {
+      diagnostics_->PublishIfDue([this](NodeStatus* s) {
+        std::uint64_t ticks = 0;
+        for (const auto& entry : hosted_) ticks += entry.second.node->ticks();
+        s->message = std::to_string(hosted_.size()) + " robots, " +
+                     core::ClockName(options_.clock) + " clock";
+        s->Add("robots", static_cast<std::uint64_t>(hosted_.size()));
+        s->Add("robot_ticks", ticks);
+        s->Add("threads", static_cast<std::uint64_t>(options_.threads));
+      });
+    });
     control_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &control_queue_);
     control_spinner_->start();
   }
@@ -375,6 +392,7 @@ void RobotHost::Shutdown() {
 }
 
 void RobotHost::StopCallbacks() {
+  status_timer_.stop();
   if (control_spinner_) control_spinner_->stop();
   if (scheduler_) scheduler_->Stop();
   for (auto& spinner : spinners_) spinner->stop();

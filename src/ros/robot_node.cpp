@@ -53,6 +53,7 @@ bool RobotNode::Initialize() {
     return false;
   }
   options.exit_when_removed = true;  // a process of its own
+  options.status = true;
   return Initialize(options);
 }
 
@@ -104,6 +105,10 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
   }
   describe_srv_ = private_nh_.advertiseService("describe", &RobotNode::OnDescribe, this);
   state_srv_ = private_nh_.advertiseService("state", &RobotNode::OnState, this);
+  if (options_.status) {
+    diagnostics_ = std::make_unique<NodeDiagnostics>(
+        nh_, "swarm_transport: robot " + std::to_string(id_));
+  }
   if (options_.clock == core::Clock::kRealtime && !options_.external_timer) {
     timer_ = nh_.createWallTimer(ros::WallDuration(config_.tick_period_s), &RobotNode::OnTimer,
                                  this);
@@ -252,6 +257,29 @@ void RobotNode::OnContinue(const Robot_Continue::ConstPtr& msg) {
   if (!why.empty()) Rejected("Robot_Continue", why);
 }
 
+void RobotNode::PublishStatusIfDue() {
+  if (!diagnostics_) return;
+  diagnostics_->PublishIfDue([this](NodeStatus* s) {
+    const Robot_State::Response st = State();
+    if (!st.listed) {
+      s->level = diagnostic_msgs::DiagnosticStatus::WARN;
+      s->message = "not in the swarm: idle until spawned";
+    } else {
+      s->message = "tick " + std::to_string(perception_ ? perception_->tick : 0);
+      if (st.frozen) s->message += ", frozen";
+      if (st.has_active) {
+        s->message += ", mission " + std::to_string(st.active_mission) +
+                      (st.leader ? " (leader)" : "");
+      }
+    }
+    s->Add("ticks", st.ticks);
+    s->Add("listed", st.listed ? "true" : "false");
+    s->Add("frozen", st.frozen ? "true" : "false");
+    s->Add("missions", static_cast<std::uint64_t>(st.mission_ids.size()));
+    s->Add("heard", static_cast<std::uint64_t>(st.heard));
+  });
+}
+
 Robot_State::Response RobotNode::State() const {
   const core::RobotBrain& brain = *brain_;
   const core::MissionPlan& plan = brain.last_plan();
@@ -318,6 +346,7 @@ void RobotNode::OnRobots(const Robot_Positions::ConstPtr& msg) {
   for (const Robot_Position& r : msg->robots) {
     if (r.type == Robot_Position::TYPE_PHYSICAL) known_robots_.insert(r.robot_id);
   }
+  PublishStatusIfDue();
   if (known_robots_.count(id_) > 0) {
     listed_ = true;
     return;
@@ -482,6 +511,7 @@ void RobotNode::Tick() {
   // whom the swarm runs over, and collisions count everyone.
 
   const core::Pose2 before = in.self;
+  PublishStatusIfDue();
   const bool lockstep = options_.clock == core::Clock::kLockstep;
   // Real time: a robot promoted to first leader (its first leader was lost) connects its
   // mission outlets before it speaks (it takes over the tick after its promotion).

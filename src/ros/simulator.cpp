@@ -136,6 +136,8 @@ void Simulator::Connect() {
   visuals.local_range_m = params_.swarm.flocking.local_range_m;
   visuals.danger_zones = params_.swarm.danger_zones;
   visuals_ = std::make_unique<sim::Visuals>(nh_, std::move(visuals));
+  diagnostics_ = std::make_unique<NodeDiagnostics>(
+      nh_, "swarm_transport: simulator" + std::string(direct_ ? " (in robot_host)" : ""));
   spawn_srv_ = nh_.advertiseService(names::kSpawn, &Simulator::OnSpawn, this);
   kill_srv_ = nh_.advertiseService(names::kKill, &Simulator::OnKill, this);
   reset_srv_ = nh_.advertiseService(names::kReset, &Simulator::OnReset, this);
@@ -367,6 +369,23 @@ void Simulator::PublishPoses() {
 
 void Simulator::PublishVisualsIfDue() {
   if (visuals_->Due()) visuals_->Publish(*world_, missions_, Stamp());
+  diagnostics_->PublishIfDue([this](NodeStatus* s) {
+    const std::size_t robots = world_->size();
+    const std::size_t live = session_ ? session_->LiveCount() : robots;
+    s->message = std::string(core::ClockName(params_.clock)) + ", tick " + std::to_string(tick_) +
+                 ", " + std::to_string(robots) + " robots";
+    if (lockstep_ && !finished_ && live < robots) {
+      // Robots that do not answer their ticks (not connected yet, hung, dead).
+      s->level = diagnostic_msgs::DiagnosticStatus::WARN;
+      s->message += ", " + std::to_string(robots - live) + " not answering";
+    }
+    if (finished_) s->message += " (last tick done)";
+    s->Add("tick", tick_);
+    s->Add("sim_time_s", SimTime());
+    s->Add("robots", static_cast<std::uint64_t>(robots));
+    s->Add("answering", static_cast<std::uint64_t>(live));
+    s->Add("missions", static_cast<std::uint64_t>(missions_.size()));
+  });
 }
 
 void Simulator::OnSimulatorThread(std::function<void()> call) {

@@ -58,6 +58,7 @@ class LockstepSession {
   void AddRobot(std::uint16_t id) { barrier_.Add(id); }
   void RemoveRobot(std::uint16_t id) { barrier_.Remove(id); }
   bool Live(std::uint16_t id) const { return barrier_.Live(id); }
+  std::size_t LiveCount() const { return barrier_.LiveCount(); }
 
   // Before tick 0: waits until every robot is connected, `positions` has its observers and
   // every relay and `robot_list` subscriber is connected (or the start timeout passed).

@@ -21,6 +21,7 @@
 #include "swarm_transport/Submit_Mission.h"
 #include "swarm_transport/core/mission.h"
 #include "swarm_transport/core/mission_book.h"
+#include "swarm_transport/ros/diagnostics.h"
 #include "swarm_transport/ros/dispatcher_options.h"
 #include "swarm_transport/ros/params.h"
 
@@ -99,6 +100,8 @@ class MissionDispatcher {
   ros::ServiceServer status_srv_;
   ros::Timer start_timer_;
   ros::Timer watchdog_timer_;
+  ros::WallTimer status_timer_;  // its diagnostic status, once a wall second
+  std::unique_ptr<NodeDiagnostics> diagnostics_;
   ros::Publisher delete_pub_;
 
   Robot_Positions::ConstPtr positions_;

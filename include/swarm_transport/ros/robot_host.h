@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "swarm_transport/Robot_Positions.h"
+#include "swarm_transport/ros/diagnostics.h"
 #include "swarm_transport/ros/direct_link.h"
 #include "swarm_transport/ros/robot_node.h"
 
@@ -111,6 +112,8 @@ class RobotHost : public DirectRobots {
   ros::CallbackQueue control_queue_;  // the host's own subscription (/flock/robots)
   std::unique_ptr<ros::AsyncSpinner> control_spinner_;
   ros::Subscriber robots_sub_;
+  std::unique_ptr<NodeDiagnostics> diagnostics_;
+  ros::WallTimer status_timer_;
 };
 
 }  // namespace swarm_transport

@@ -15,6 +15,7 @@
 #include <set>
 
 #include "swarm_transport/Robot_State.h"
+#include "swarm_transport/ros/diagnostics.h"
 #include "swarm_transport/Delete_Object.h"
 #include "swarm_transport/Mission_Event.h"
 #include "swarm_transport/Mission_Status.h"
@@ -59,6 +60,9 @@ struct RobotNodeOptions {
   // simulator's robot list (/kill, Delete_Robot), so that a killed robot does not act on and a
   // re-spawned id gets a fresh process. A host of many robots removes them itself instead.
   bool exit_when_removed = false;
+  // Not a parameter: publish its own diagnostic status on /diagnostics (a process of its own;
+  // a host of many robots reports once for all of them).
+  bool status = false;
   std::string Validate() const;
 };
 
@@ -174,6 +178,8 @@ class RobotNode {
   bool outlets_ready_ = false;
   ros::ServiceServer describe_srv_;
   ros::ServiceServer state_srv_;
+  std::unique_ptr<NodeDiagnostics> diagnostics_;  // with options_.status
+  void PublishStatusIfDue();
   ros::Publisher answer_pub_;  // lock-step, without a direct link
   ros::WallTimer timer_;
   std::set<std::uint16_t> known_robots_;

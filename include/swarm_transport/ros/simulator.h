@@ -31,6 +31,7 @@
 #include "swarm_transport/Update_Object.h"
 #include "swarm_transport/core/modes.h"
 #include "swarm_transport/core/random.h"
+#include "swarm_transport/ros/diagnostics.h"
 #include "swarm_transport/ros/direct_link.h"
 #include "swarm_transport/ros/lockstep_session.h"
 #include "swarm_transport/ros/mission_relay.h"
@@ -105,7 +106,7 @@ class Simulator : public RobotOutlet {
   void PublishRobotList();
   void PublishPoses();
   void PublishClock();
-  // Markers and tf when their wall-clock period has passed.
+  // Markers and tf when their wall-clock period has passed, and the node's diagnostic status.
   void PublishVisualsIfDue();
   // Spins the callback queues (and, lock-step, the directly linked robots) once, waiting up to
   // `wait_s` for the first command or answer when none is queued.
@@ -165,6 +166,7 @@ class Simulator : public RobotOutlet {
   std::unique_ptr<LockstepSession> session_;  // lock-step only
   ros::Publisher clock_pub_;
   std::unique_ptr<sim::Visuals> visuals_;
+  std::unique_ptr<NodeDiagnostics> diagnostics_;
   ros::ServiceServer spawn_srv_;
   ros::ServiceServer kill_srv_;
   ros::ServiceServer reset_srv_;
