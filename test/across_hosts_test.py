@@ -9,7 +9,6 @@ Needs root (CAP_NET_ADMIN) for `ip netns`; without it the test is skipped and sa
 
 import os
 import shutil
-import signal
 import subprocess
 import sys
 import tempfile
@@ -18,6 +17,8 @@ import unittest
 import rospkg
 import rospy
 import rostest
+
+import swarm_testing as st
 
 NAMES = ['QUEUED', 'GATHERING', 'LOADING', 'TRANSPORT', 'UNLOADING', 'DONE']
 
@@ -64,15 +65,7 @@ class AcrossHosts(unittest.TestCase):
             ip('-n', ns, 'link', 'set', inner, 'up')
 
     def teardown_net(self):
-        for proc, _ in reversed(self.procs):
-            if proc.poll() is None:
-                os.killpg(proc.pid, signal.SIGINT)
-        for proc, _ in reversed(self.procs):
-            try:
-                proc.wait(timeout=15)
-            except subprocess.TimeoutExpired:
-                os.killpg(proc.pid, signal.SIGKILL)
-                proc.wait()
+        st.stop_process_groups([proc for proc, _ in self.procs])
         for ns in self.ns.values():
             subprocess.run(['ip', 'netns', 'del', ns], capture_output=True)
 

@@ -80,16 +80,18 @@ class DynamicSwarm(unittest.TestCase):
                         % (robot, status.states(mission_id)))
         self.assertEqual(status.states(mission_id)[-1], 'DONE', status.states(mission_id))
 
+    def start(self):
+        """The initial robots listed; returns their ids and the /spawn and /kill services."""
+        base = list(range(g('robots')))
+        self.assertTrue(self.listed(base), self.list.ids)
+        rospy.wait_for_service('/spawn', self.timeout)
+        return base, rospy.ServiceProxy('/spawn', Spawn), rospy.ServiceProxy('/kill', Kill)
+
     def test_a_host_starts_and_removes_robots(self):
         if self.deploy == 'process':
             self.skipTest('one process per robot: see the other tests')
-        n = g('robots')
-        base = list(range(n))
-        self.assertTrue(self.listed(base), self.list.ids)
-        rospy.wait_for_service('/spawn', self.timeout)
-        spawn = rospy.ServiceProxy('/spawn', Spawn)
-        kill = rospy.ServiceProxy('/kill', Kill)
-        new = n
+        base, spawn, kill = self.start()
+        new = len(base)
         self.assertEqual(spawn(robot_id=new, x=2.0, y=9.0, theta=0.0).code, 0)
         self.assertTrue(self.listed(base + [new]), self.list.ids)
         self.assertTrue(self.moves(new, (2.0, 9.0)), 'robot %d never moved' % new)
@@ -119,12 +121,8 @@ class DynamicSwarm(unittest.TestCase):
     def test_robots_join_and_leave_while_the_swarm_runs(self):
         if self.deploy != 'process':
             self.skipTest('a process per robot only')
-        n = g('robots')
-        base = list(range(n))
-        self.assertTrue(self.listed(base), self.list.ids)
-        rospy.wait_for_service('/spawn', self.timeout)
-        spawn = rospy.ServiceProxy('/spawn', Spawn)
-        kill = rospy.ServiceProxy('/kill', Kill)
+        base, spawn, kill = self.start()
+        n = len(base)
 
         # /spawn + its own process: listed, moving, and named by the next mission.
         new = n

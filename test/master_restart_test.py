@@ -40,11 +40,9 @@ class MasterRestart(unittest.TestCase):
     @staticmethod
     def free_port():
         import socket
-        s = socket.socket()
-        s.bind(('127.0.0.1', 0))
-        port = s.getsockname()[1]
-        s.close()
-        return port
+        with socket.socket() as s:
+            s.bind(('127.0.0.1', 0))
+            return s.getsockname()[1]
 
     def start(self, *cmd):
         log = tempfile.NamedTemporaryFile('w+', prefix='master_restart_', suffix='.log',
@@ -55,15 +53,8 @@ class MasterRestart(unittest.TestCase):
         return proc, log
 
     def stop_all(self):
-        for proc, log in reversed(self.procs):
-            if proc.poll() is None:
-                os.killpg(proc.pid, signal.SIGINT)
-        for proc, log in reversed(self.procs):
-            try:
-                proc.wait(timeout=15)
-            except subprocess.TimeoutExpired:
-                os.killpg(proc.pid, signal.SIGKILL)
-                proc.wait()
+        st.stop_process_groups([proc for proc, _ in self.procs])
+        for _, log in self.procs:
             os.unlink(log.name)
         for pid in self.core_pids:
             if st.process_alive(pid):

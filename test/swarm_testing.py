@@ -41,6 +41,23 @@ def service_names():
     return {name for name, _ in services}
 
 
+def stop_process_groups(procs, timeout=15):
+    """Stops processes started with start_new_session=True (subprocess.Popen), last first, by
+    their process group: SIGINT, then SIGKILL after `timeout` s."""
+    import os
+    import signal
+    import subprocess
+    for proc in reversed(procs):
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGINT)
+    for proc in reversed(procs):
+        try:
+            proc.wait(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
+
+
 def process_alive(pid):
     """True while process `pid` runs (a zombie that exited but was not reaped yet counts as
     gone)."""
