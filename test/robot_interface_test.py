@@ -1,0 +1,114 @@
+#!/usr/bin/env python3
+"""The robot node's interface in lock-step (issue 10, item 6), the test playing the simulator:
+- one robot_<id>/answer per robot_<id>/neighbors round, naming the round's tick, with a
+  finite command; a round with a non-finite own pose is refused (no answer), and the good
+  round after it is answered (the refusal did not stop the robot);
+- an order relayed in a round makes the robot (its first leader) say QUEUED and GATHERING in
+  its answers, each once and in order;
+- a relayed Robot_Freeze for it: ~state says frozen and its command is zero; a relayed freeze
+  with an inverted range is refused (state unchanged), and the continue after it takes effect.
+Counts and typed fields only (no ~describe text)."""
+
+import math
+import sys
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+from swarm_transport.msg import (Neighbors, Robot_Continue, Robot_Freeze, Robot_Position,
+                                 Robot_Positions, Tick_Answer)
+
+import swarm_testing as st
+
+
+def g(key):
+    return rospy.get_param('~' + key)
+
+
+class RobotInterface(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        cls.id = g('robot_id')
+        cls.timeout = g('timeout_s')
+        cls.lock = threading.Lock()
+        cls.answers = []
+        cls.sub = rospy.Subscriber('/robot_%d/answer' % cls.id, Tick_Answer, cls.on_answer,
+                                   queue_size=100)
+        cls.rounds = rospy.Publisher('/robot_%d/neighbors' % cls.id, Neighbors, queue_size=10)
+        cls.robots = rospy.Publisher('/flock/robots', Robot_Positions, queue_size=1, latch=True)
+        listed = Robot_Positions()
+        listed.robots = [Robot_Position(robot_id=i, pos_x=1.0 + i, pos_y=1.0) for i in range(4)]
+        cls.robots.publish(listed)
+        assert st.wait_connected(cls.rounds, cls.timeout), 'the robot never subscribed'
+        assert st.wait_for(lambda: st.robot_state(cls.id, cls.timeout).listed, cls.timeout)
+        cls.tick = 0
+
+    @classmethod
+    def on_answer(cls, msg):
+        with cls.lock:
+            cls.answers.append(msg)
+
+    def round(self, x=2.0, y=2.0, **relayed):
+        """Sends the next tick's round; returns the tick."""
+        msg = Neighbors()
+        msg.tick = type(self).tick
+        msg.sim_time = 0.1 * msg.tick
+        msg.pose.x, msg.pose.y, msg.pose.theta = x, y, 0.0
+        msg.robots = [Robot_Position(robot_id=1, pos_x=x + 0.4, pos_y=y)]
+        for key, value in relayed.items():
+            setattr(msg, key, value)
+        self.rounds.publish(msg)
+        type(self).tick += 1
+        return msg.tick
+
+    def answers_to(self, tick):
+        with self.lock:
+            return [a for a in self.answers if a.tick == tick]
+
+    def answered(self, tick):
+        self.assertTrue(st.wait_for(lambda: self.answers_to(tick), self.timeout),
+                        'no answer to tick %d' % tick)
+        time.sleep(g("quiet_s"))  # a second answer would arrive meanwhile
+        got = self.answers_to(tick)
+        self.assertEqual(len(got), 1, 'tick %d answered %d times' % (tick, len(got)))
+        a = got[0]
+        self.assertTrue(math.isfinite(a.command.linear.x) and math.isfinite(a.command.angular.z))
+        return a
+
+    def test_1_one_answer_per_round_and_a_bad_round_is_refused(self):
+        for _ in range(3):
+            self.answered(self.round())
+        bad = self.round(x=float('nan'))
+        time.sleep(g("quiet_s"))
+        self.assertEqual(self.answers_to(bad), [], 'a round with a NaN pose was answered')
+        self.answered(self.round())
+
+    def test_2_a_relayed_order_is_queued_and_gathered_once(self):
+        order = st.mission(9, self.id, self.id + 2, 1, (6.0, 6.0, 1.0, 1.0), (3.0, 6.0))
+        states = []
+        for k in range(6):
+            a = self.answered(self.round(missions=[order] if k == 0 else []))
+            states += [s.state for s in a.statuses if s.mission_id == 9]
+        self.assertEqual(states[:2], [0, 1], states)  # QUEUED, GATHERING
+        self.assertEqual(len(states), len(set(states)), 'a phase said twice: %s' % states)
+
+    def test_3_freeze_continue_and_an_inverted_range(self):
+        self.answered(self.round(freezes=[Robot_Freeze(robot_index_from=self.id,
+                                                       robot_index_to=self.id + 1)]))
+        self.assertTrue(st.robot_state(self.id, self.timeout).frozen)
+        a = self.answered(self.round())
+        self.assertEqual((a.command.linear.x, a.command.angular.z), (0.0, 0.0))
+        self.answered(self.round(continues=[Robot_Continue(robot_index_from=self.id + 1,
+                                                           robot_index_to=self.id)]))
+        self.assertTrue(st.robot_state(self.id, self.timeout).frozen, 'an inverted range acted')
+        self.answered(self.round(continues=[Robot_Continue(robot_index_from=self.id,
+                                                           robot_index_to=self.id + 1)]))
+        self.assertFalse(st.robot_state(self.id, self.timeout).frozen)
+
+
+if __name__ == '__main__':
+    rospy.init_node('robot_interface_test')
+    rostest.rosrun('swarm_transport', 'robot_interface', RobotInterface, sys.argv)
