@@ -31,19 +31,19 @@ class RobotInterface(unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
-        cls.id = g('robot_id')
+        cls.rid = g('robot_id')
         cls.timeout = g('timeout_s')
         cls.lock = threading.Lock()
         cls.answers = []
-        cls.sub = rospy.Subscriber('/robot_%d/answer' % cls.id, Tick_Answer, cls.on_answer,
+        cls.sub = rospy.Subscriber('/robot_%d/answer' % cls.rid, Tick_Answer, cls.on_answer,
                                    queue_size=100)
-        cls.rounds = rospy.Publisher('/robot_%d/neighbors' % cls.id, Neighbors, queue_size=10)
+        cls.rounds = rospy.Publisher('/robot_%d/neighbors' % cls.rid, Neighbors, queue_size=10)
         cls.robots = rospy.Publisher('/flock/robots', Robot_Positions, queue_size=1, latch=True)
         listed = Robot_Positions()
         listed.robots = [Robot_Position(robot_id=i, pos_x=1.0 + i, pos_y=1.0) for i in range(4)]
         cls.robots.publish(listed)
         assert st.wait_connected(cls.rounds, cls.timeout), 'the robot never subscribed'
-        assert st.wait_for(lambda: st.robot_state(cls.id, cls.timeout).listed, cls.timeout)
+        assert st.wait_for(lambda: st.robot_state(cls.rid, cls.timeout).listed, cls.timeout)
         cls.tick = 0
 
     @classmethod
@@ -87,7 +87,7 @@ class RobotInterface(unittest.TestCase):
         self.answered(self.round())
 
     def test_2_a_relayed_order_is_queued_and_gathered_once(self):
-        order = st.mission(9, self.id, self.id + 2, 1, (6.0, 6.0, 1.0, 1.0), (3.0, 6.0))
+        order = st.mission(9, self.rid, self.rid + 2, 1, (6.0, 6.0, 1.0, 1.0), (3.0, 6.0))
         states = []
         for k in range(6):
             a = self.answered(self.round(missions=[order] if k == 0 else []))
@@ -96,17 +96,17 @@ class RobotInterface(unittest.TestCase):
         self.assertEqual(len(states), len(set(states)), 'a phase said twice: %s' % states)
 
     def test_3_freeze_continue_and_an_inverted_range(self):
-        self.answered(self.round(freezes=[Robot_Freeze(robot_index_from=self.id,
-                                                       robot_index_to=self.id + 1)]))
-        self.assertTrue(st.robot_state(self.id, self.timeout).frozen)
+        self.answered(self.round(freezes=[Robot_Freeze(robot_index_from=self.rid,
+                                                       robot_index_to=self.rid + 1)]))
+        self.assertTrue(st.robot_state(self.rid, self.timeout).frozen)
         a = self.answered(self.round())
         self.assertEqual((a.command.linear.x, a.command.angular.z), (0.0, 0.0))
-        self.answered(self.round(continues=[Robot_Continue(robot_index_from=self.id + 1,
-                                                           robot_index_to=self.id)]))
-        self.assertTrue(st.robot_state(self.id, self.timeout).frozen, 'an inverted range acted')
-        self.answered(self.round(continues=[Robot_Continue(robot_index_from=self.id,
-                                                           robot_index_to=self.id + 1)]))
-        self.assertFalse(st.robot_state(self.id, self.timeout).frozen)
+        self.answered(self.round(continues=[Robot_Continue(robot_index_from=self.rid + 1,
+                                                           robot_index_to=self.rid)]))
+        self.assertTrue(st.robot_state(self.rid, self.timeout).frozen, 'an inverted range acted')
+        self.answered(self.round(continues=[Robot_Continue(robot_index_from=self.rid,
+                                                           robot_index_to=self.rid + 1)]))
+        self.assertFalse(st.robot_state(self.rid, self.timeout).frozen)
 
 
 if __name__ == '__main__':
