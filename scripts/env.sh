@@ -16,7 +16,7 @@ ST_APT_PACKAGES=(
   rosbash libtf2-ros-dev libtf2-geometry-msgs-dev libstd-srvs-dev libvisualization-msgs-dev
   libgeometry-msgs-dev libros-rosgraph-msgs-dev python3-rosgraph-msgs libeigen3-dev googletest libgtest-dev
   libyaml-cpp-dev python3-numpy python3-matplotlib libdiagnostic-msgs-dev python3-diagnostic-msgs
-  iproute2
+  iproute2 python3-rosbag
 )
 # Only for --rviz.
 ST_APT_VIEW_PACKAGES=(rviz xvfb x11-apps imagemagick)
