@@ -18,6 +18,8 @@ ST_APT_PACKAGES=(
   libyaml-cpp-dev python3-numpy python3-matplotlib libdiagnostic-msgs-dev python3-diagnostic-msgs
   iproute2 python3-rosbag
 )
+# scripts/fuzz's compiler (scripts/test installs them before it leaves the network).
+ST_APT_FUZZ_PACKAGES=(clang-14 libclang-rt-14-dev)
 # Only for --rviz.
 ST_APT_VIEW_PACKAGES=(rviz xvfb x11-apps imagemagick)
 
@@ -49,4 +51,29 @@ st_source_ws() {
 # Prints a free TCP port on loopback.
 st_free_port() {
   /usr/bin/python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1",0)); print(s.getsockname()[1]); s.close()'
+}
+
+# Re-runs the calling script (its path and arguments given) inside a network namespace of its
+# own that has only loopback, so that nothing of the run can be reached from another host:
+# roscpp's XML-RPC and TCPROS servers listen on every interface whatever ROS_IP says (issue
+# 11). Call it after apt and the build, which need the network. Where a namespace cannot be
+# made (no root and no user namespaces, a restricted container) the run goes on in the
+# machine's network with one line saying so. ST_SHARED_NETWORK=1 skips it on purpose.
+st_private_network() {
+  [ "${ST_IN_PRIVATE_NETWORK:-}" = 1 ] && return 0
+  if [ "${ST_SHARED_NETWORK:-}" = 1 ]; then
+    echo "[swarm_transport] network: the machine's (ST_SHARED_NETWORK=1)" >&2
+    return 0
+  fi
+  local unshare_args=(--net)
+  [ "$(id -u)" -ne 0 ] && unshare_args=(--net --map-root-user)
+  if ! unshare "${unshare_args[@]}" -- ip link set lo up 2>/dev/null; then
+    echo "[swarm_transport] network: the machine's (a private network namespace is not" \
+      "permitted here; ROS stays on loopback addresses, but its servers listen on every" \
+      "interface)" >&2
+    return 0
+  fi
+  exec unshare "${unshare_args[@]}" -- env ST_IN_PRIVATE_NETWORK=1 /bin/bash -c \
+    'ip link set lo up && echo "[swarm_transport] network: a namespace of its own (loopback" \
+       "only: no other host can reach the run)" >&2 && exec "$@"' st_private_network "$@"
 }
