@@ -31,6 +31,9 @@ std::string LeaderParams::Validate() const {
   if (!(wait_fraction > 0.0 && wait_fraction <= 1.0)) {
     return Problem("wait_fraction", "in (0, 1]", wait_fraction);
   }
+  if (swerve_after_blocked_ticks < 0) {
+    return Problem("leader_swerve_after_blocked_ticks", ">= 0", swerve_after_blocked_ticks);
+  }
   return "";
 }
 
@@ -87,11 +90,20 @@ LeaderDecision LeaderStep(const Perception& in, const FlockingParams& p, const L
       decision.move.heading = steer;
       decision.move.distance_m = distance;
       decision.move.outcome = attempt == 0 ? MoveOutcome::kStraight : MoveOutcome::kSlowed;
+      memory->blocked_in_a_row = 0;
       return decision;
     }
     speed *= p.speed_reduction;
   }
   ++memory->blocked_waits;
+  ++memory->blocked_in_a_row;
+  if (lp.swerve_after_blocked_ticks > 0 &&
+      memory->blocked_in_a_row > static_cast<std::uint64_t>(lp.swerve_after_blocked_ticks)) {
+    // Blocked too long (another leader, a robot pinned against it): around it like any robot.
+    const int neighbours = decision.move.neighbours_in_range;
+    decision.move = AvoidCollisions(in, p, steer, duration_s);
+    decision.move.neighbours_in_range = neighbours;
+  }
   return decision;
 }
 

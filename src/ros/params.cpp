@@ -160,6 +160,8 @@ bool ConfigFromXmlRpc(XmlRpc::XmlRpcValue& dict, SwarmConfig* config, std::strin
             ReadDouble(dict, "leader_wait_fraction", &c.leader.wait_fraction, error) &&
             ReadBool(dict, "leader_keep_flock", &c.leader.keep_flock, error) &&
             ReadBool(dict, "leader_wait_behind", &c.leader.wait_behind, error) &&
+            ReadInt(dict, "leader_swerve_after_blocked_ticks",
+                    &c.leader.swerve_after_blocked_ticks, error) &&
             ReadDouble(dict, "tick_period_s", &c.tick_period_s, error) &&
             ReadInt(dict, "seed", &seed, error) &&
             ReadDouble(dict, "loaded_delay_s", &c.loaded_delay_s, error) &&

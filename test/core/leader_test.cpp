@@ -94,6 +94,44 @@ TEST(LeaderStepTest, NeverSwervesWhenBlocked) {
   EXPECT_EQ(memory.blocked_waits, 1u);
 }
 
+TEST(LeaderStepTest, TwoLeadersHeadOnStandForGoodUnlessTheySwerveAfterBlockedTicks) {
+  // Two leaders touching, each heading for the other's side (as the flood test found): every
+  // speed on either course comes closer to the other.
+  Perception a = At(5.0, 5.0, 0.0);
+  a.others = {Robot(2, 5.1, 5.0)};
+  Perception b = At(5.1, 5.0, 180.0);
+  b.self_id = 2;
+  b.others = {Robot(1, 5.0, 5.0)};
+  for (const int after : {0, 3}) {
+    LeaderParams lp = Alone();
+    lp.swerve_after_blocked_ticks = after;
+    Rng rng(1, 0);
+    LeaderMemory ma;
+    LeaderMemory mb;
+    for (int tick = 1; tick <= 10; ++tick) {
+      const LeaderDecision da = LeaderStep(a, Params(), lp, {8.0, 5.0}, Angle(0), rng, kTick, &ma);
+      const LeaderDecision db =
+          LeaderStep(b, Params(), lp, {2.0, 5.0}, Angle(180), rng, kTick, &mb);
+      const bool swerving = after > 0 && tick > after;
+      EXPECT_EQ(da.move.outcome == MoveOutcome::kStand, !swerving) << after << " " << tick;
+      EXPECT_EQ(db.move.outcome == MoveOutcome::kStand, !swerving) << after << " " << tick;
+      if (swerving) {
+        // Off its course, and not into the other.
+        EXPECT_GT(da.move.distance_m, 0.0);
+        EXPECT_GT(db.move.distance_m, 0.0);
+        EXPECT_NE(da.move.heading, Angle(0));
+        EXPECT_NE(db.move.heading, Angle(180));
+        EXPECT_TRUE(IsMoveValid(a, Params(), da.move.heading, da.move.distance_m, kTick));
+      }
+    }
+    EXPECT_EQ(ma.blocked_waits, 10u);
+    EXPECT_EQ(ma.blocked_in_a_row, 10u);
+  }
+  LeaderParams bad;
+  bad.swerve_after_blocked_ticks = -1;
+  EXPECT_NE(bad.Validate(), "");
+}
+
 TEST(LeaderStepTest, SlowsDownWhenOnlyFullSpeedIsBlocked) {
   Perception in = At(5.0, 5.0, 90.0);
   in.zones = {Zone{1, Shape::FromRect({5.0, 5.1}, {0.01, 0.04}), false}};

@@ -17,6 +17,10 @@ struct LeaderParams {
   bool keep_flock = true;          // wait for / give up on the swarm (leader-only missions)
   bool wait_behind = true;         // wait only while that centroid is behind (more than 90 deg off
                                    // the course), as the thesis's leader code did
+  // (ext) After this many blocked ticks in a row the leader swerves like any robot (SPEC 4
+  // step 5) until its course is free again; 0: never (the thesis: two leaders heading for each
+  // other's side then stand for good).
+  int swerve_after_blocked_ticks = 0;
   std::string Validate() const;
 };
 
@@ -24,6 +28,7 @@ struct LeaderParams {
 struct LeaderMemory {
   bool gave_up = false;          // the swarm left its range: it goes on alone
   std::uint64_t blocked_waits = 0;  // ticks it stood because every speed collided
+  std::uint64_t blocked_in_a_row = 0;  // blocked ticks since it last drove its course
   std::uint64_t swarm_waits = 0;    // ticks it stood waiting for its swarm
 };
 
