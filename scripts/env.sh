@@ -16,7 +16,7 @@ ST_APT_PACKAGES=(
   rosbash libtf2-ros-dev libtf2-geometry-msgs-dev libstd-srvs-dev libvisualization-msgs-dev
   libgeometry-msgs-dev libros-rosgraph-msgs-dev python3-rosgraph-msgs libeigen3-dev googletest libgtest-dev
   libyaml-cpp-dev python3-numpy python3-matplotlib libdiagnostic-msgs-dev python3-diagnostic-msgs
-  iproute2 python3-rosbag
+  iproute2 python3-rosbag python3-nose
 )
 # scripts/fuzz's compiler (scripts/test installs them before it leaves the network).
 ST_APT_FUZZ_PACKAGES=(clang-14 libclang-rt-14-dev)

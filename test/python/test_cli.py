@@ -1,0 +1,57 @@
+"""The experiment, benchmark and demo command lines without ROS (issue 10): they list what
+there is and refuse bad arguments with one clear message and a non-zero exit, before starting
+anything. The entry points are run directly (scripts/* would build first)."""
+import os
+import subprocess
+import sys
+import unittest
+
+# scripts/lib is not a package on the path: the tests put it there (as its scripts do).
+LIB = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__)))),
+                   'scripts', 'lib')
+sys.path.insert(0, LIB)
+
+PY = '/usr/bin/python3'
+
+
+def run(script, *args):
+    proc = subprocess.run([PY, os.path.join(LIB, script)] + list(args),
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=60,
+                          universal_newlines=True)
+    return proc.returncode, proc.stdout
+
+
+class CommandLines(unittest.TestCase):
+
+    def test_experiment_list_names_every_preset(self):
+        import experiment_presets as presets  # noqa: E402
+        code, out = run('experiment.py', 'list')
+        self.assertEqual(code, 0, out)
+        listed = [line.split()[0] for line in out.splitlines() if line.strip()]
+        self.assertEqual(sorted(listed), presets.preset_names())
+
+    def test_experiment_refuses_an_unknown_preset_and_bad_counts(self):
+        code, out = run('experiment.py', 'run', 'no_such_preset')
+        self.assertNotEqual(code, 0)
+        self.assertIn('no_such_preset', out)
+        self.assertIn('smoke', out)  # what there is
+        for bad in (['--runs', '0'], ['--jobs', '0']):
+            code, out = run('experiment.py', 'run', 'smoke', *bad)
+            self.assertNotEqual(code, 0, bad)
+            self.assertIn(bad[0], out)
+
+    def test_bench_refuses_bad_arguments(self):
+        for bad, words in ((['--robots', '0'], '--robots'), (['--robots', '5', '--clock', 'x'],
+                                                                '--clock')):
+            code, out = run('bench.py', *bad)
+            self.assertEqual(code, 2, out)
+            self.assertIn(words, out)
+
+    def test_demo_refuses_an_impossible_mission(self):
+        code, out = run('demo.py', '--robots', '5', '--group', '3', '--leaders', '4')
+        self.assertEqual(code, 2, out)
+        self.assertIn('--leaders', out)
+
+
+if __name__ == '__main__':
+    unittest.main()

@@ -1,0 +1,86 @@
+"""scripts/lib/experiment_presets.py without ROS: every shipped preset is valid, a bad preset is
+refused with the key named, and the swarm count's connected components (SPEC 8)."""
+import copy
+import os
+import sys
+import unittest
+
+# scripts/lib is not a package on the path: the tests put it there (as its scripts do).
+LIB = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__)))),
+                   'scripts', 'lib')
+sys.path.insert(0, LIB)
+
+import experiment_presets as presets  # noqa: E402
+
+GOOD = {'description': 'x', 'kind': 'flocking', 'runs': 2, 'base_config': 'thesis_flocking.yaml',
+        'max_ticks': 30, 'settings': [{'name': 's1'}]}
+
+
+class Presets(unittest.TestCase):
+
+    def test_every_shipped_preset_is_valid(self):
+        names = presets.preset_names()
+        self.assertIn('smoke', names)
+        for name in names:
+            p = presets.load_preset(name)
+            self.assertTrue(p['description'].strip(), name)
+            for view in presets.settings(p):
+                config = presets.swarm_config(p, view)
+                self.assertAlmostEqual(config['world_size_m'], 11.088889, msg=name)
+
+    def test_a_bad_preset_is_refused_naming_what_is_wrong(self):
+        self.assertEqual(presets.validate(copy.deepcopy(GOOD), 'good')['name'], 'good')
+        cases = [
+            ({'colour': 'red'}, 'unknown keys'),
+            ({'runs': 0}, 'runs must be an integer >= 1'),
+            ({'kind': 'dance'}, 'kind must be one of'),
+            ({'base_config': 'nosuch.yaml'}, 'does not exist'),
+            ({'max_ticks': 0}, 'needs max_ticks > 0'),
+            ({'settings': []}, 'settings must be a non-empty list'),
+            ({'settings': [{'name': 'a'}, {'name': 'a'}]}, 'must be unique'),
+            ({'settings': [{'name': 'a', 'speed': 3}]}, "unknown keys ['speed']"),
+        ]
+        for change, words in cases:
+            p = copy.deepcopy(GOOD)
+            p.update(change)
+            with self.assertRaises(presets.PresetError) as cm:
+                presets.validate(p, 'bad')
+            self.assertIn(words, str(cm.exception), change)
+            self.assertIn('preset bad', str(cm.exception))
+        p = copy.deepcopy(GOOD)
+        del p['runs']
+        with self.assertRaises(presets.PresetError):
+            presets.validate(p, 'bad')
+        with self.assertRaises(presets.PresetError) as cm:
+            presets.load_preset('no_such_preset')
+        self.assertIn('smoke', str(cm.exception))  # it lists what there is
+
+    def test_components_link_hop_by_hop_within_range(self):
+        # A chain 0.9 m apart is one swarm though its ends are 1.8 m apart; a robot 1.01 m
+        # from the nearest is a swarm of its own; exactly the range links.
+        count, labels = presets.components([(0, 0), (0.9, 0), (1.8, 0), (2.81, 0)], 1.0)
+        self.assertEqual(count, 2)
+        self.assertEqual(len({labels[0], labels[1], labels[2]}), 1)
+        self.assertNotEqual(labels[3], labels[0])
+        self.assertEqual(presets.components([(0, 0), (1.0, 0)], 1.0)[0], 1)
+        self.assertEqual(presets.components([], 1.0), (0, []))
+        self.assertEqual(presets.components([(5, 5)] * 3, 1.0)[0], 1)
+
+    def test_a_cluster_placement_is_connected_and_reproducible(self):
+        a = presets.cluster_placement(12, 3, 1.0, 0.05, 11.088889)
+        self.assertEqual(a, presets.cluster_placement(12, 3, 1.0, 0.05, 11.088889))
+        self.assertNotEqual(a, presets.cluster_placement(12, 4, 1.0, 0.05, 11.088889))
+        self.assertEqual(len(a), 12)
+        self.assertEqual(presets.components([(x, y) for x, y, _ in a], 1.0)[0], 1)
+        for x, y, theta in a:
+            self.assertTrue(0.05 <= x <= 11.088889 - 0.05 and 0.05 <= y <= 11.088889 - 0.05)
+            self.assertTrue(0.0 <= theta <= 360.0)
+
+    def test_the_leader_of_a_run_is_fixed_by_its_seed(self):
+        leaders = [presets.leader_of(seed, 25) for seed in range(1, 41)]
+        self.assertEqual(leaders, [presets.leader_of(seed, 25) for seed in range(1, 41)])
+        self.assertTrue(all(0 <= r < 25 for r in leaders))
+        self.assertGreater(len(set(leaders)), 5)  # random per run, not always the same robot
+
+if __name__ == '__main__':
+    unittest.main()

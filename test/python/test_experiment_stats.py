@@ -1,0 +1,89 @@
+"""scripts/lib/experiment_stats.py without ROS: the thesis's trimmed mean, and the aggregation
+of hand-made run files (flocking samples on the 10 s grid; an aborted transport)."""
+import json
+import os
+import shutil
+import sys
+import tempfile
+import unittest
+
+# scripts/lib is not a package on the path: the tests put it there (as its scripts do).
+LIB = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__)))),
+                   'scripts', 'lib')
+sys.path.insert(0, LIB)
+
+import experiment_presets as presets  # noqa: E402
+import experiment_stats as stats  # noqa: E402
+
+
+class Stats(unittest.TestCase):
+
+    def setUp(self):
+        self.tmp = tempfile.mkdtemp(prefix='st_stats_')
+        self.addCleanup(shutil.rmtree, self.tmp)
+
+    def test_trimmed_mean_drops_the_thesis_outliers(self):
+        self.assertEqual(presets.trim_each_end(10), 2)   # middle 6 of 10 (thesis 7.2)
+        self.assertEqual(presets.trim_each_end(15), 2)   # middle 11 of 15 (thesis 7.4)
+        self.assertEqual(presets.trim_each_end(4), 0)    # fewer than 5: plain mean
+        vals = [100.0, 1, 2, 3, 4, 5, 6, 7, 8, -100.0]
+        self.assertAlmostEqual(stats.trimmed_mean(vals), (2 + 3 + 4 + 5 + 6 + 7) / 6.0)
+        agg = stats.aggregate([1.0, None, 3.0, float('nan')])
+        self.assertEqual(agg['runs'], 2)
+        self.assertAlmostEqual(agg['median'], 2.0)
+
+    def test_aggregation_of_handmade_runs(self):
+        """Flocking samples on the 10 s grid; a transport that hit the tick limit counts as
+        aborted and adds no transport values."""
+        base = os.path.join(self.tmp, 'handmade')
+        flock = {'description': 'x', 'kind': 'flocking', 'runs': 2, 'base_config':
+                 'thesis_flocking.yaml', 'max_ticks': 30, 'settings': [{'name': 's1'}]}
+        p = presets.validate(flock, 'handmade_flocking')
+        for k, counts in enumerate(([5, 4, 3, 2], [7, 6, 5, 4])):
+            d = os.path.join(base, 'f', 'raw', 's1', 'run_%d' % k)
+            os.makedirs(d)
+            with open(os.path.join(d, 'result.json'), 'w') as f:
+                json.dump({'status': 'ok', 'seed': k + 1, 'end': 'max_ticks'}, f)
+            with open(os.path.join(d, 'swarm_count.csv'), 'w') as f:
+                f.write('tick,sim_time_s,robots,swarm_count,largest_swarm\n')
+                for i, c in enumerate(counts):
+                    tick = [0, 10, 19, 28][i]
+                    f.write('%d,%.1f,10,%d,3\n' % (tick, tick * 1.1, c))
+        summary = {(r['setting'], r['metric']): r for r in
+                   stats.summarize(p, stats.collect(p, os.path.join(base, 'f')))}
+        self.assertAlmostEqual(summary[('s1', 'final_swarm_count')]['mean'], 3.0)
+        self.assertAlmostEqual(summary[('s1', 'initial_swarm_count')]['mean'], 6.0)
+        self.assertAlmostEqual(summary[('s1', 'swarm_count_t20')]['mean'], 4.0)
+        self.assertAlmostEqual(summary[('s1', 'swarm_count_t30')]['mean'], 3.0)
+        self.assertLess(summary[('s1', 'swarm_count_slope_per_h')]['mean'], 0.0)
+
+        transport = {'description': 'x', 'kind': 'transport', 'runs': 2, 'base_config':
+                     'thesis_transport.yaml', 'max_ticks': 100, 'robots': 6,
+                     'mission': {'id': 7, 'object': [7, 7, 2, 2], 'target': [3, 3],
+                                 'leaders': 1}, 'settings': [{'name': 't1'}]}
+        p = presets.validate(transport, 'handmade_transport')
+        header = ('mission_id,kind,assigned,leaders,final_state,queued_tick,gathering_tick,'
+                  'loading_tick,transport_tick,unloading_tick,done_tick,transport_ticks,'
+                  'slip_per_robot_m,distance_per_robot_m,leader_waits,path_fraction_attached,'
+                  'leader_swarm_at_arrival,object_error_m,leader_contact\n')
+        for k, end in enumerate(('DONE', 'TICK_LIMIT')):
+            d = os.path.join(base, 't', 'raw', 't1', 'run_%d' % k)
+            os.makedirs(d)
+            with open(os.path.join(d, 'result.json'), 'w') as f:
+                json.dump({'status': 'ok', 'seed': k + 1, 'end': end, 'mission_id': 7}, f)
+            with open(os.path.join(d, 'missions.csv'), 'w') as f:
+                f.write(header)
+                if end == 'DONE':
+                    f.write('7,transport,6,1,DONE,0,0,40,42,110,112,68,2.5,6.1,0,,,0.04,0.25\n')
+        summary = {(r['setting'], r['metric']): r for r in
+                   stats.summarize(p, stats.collect(p, os.path.join(base, 't')))}
+        self.assertEqual(summary[('t1', 'aborted')]['runs'], 2)
+        self.assertAlmostEqual(summary[('t1', 'aborted')]['mean'], 0.5)
+        self.assertEqual(summary[('t1', 'transport_ticks')]['runs'], 1)
+        self.assertAlmostEqual(summary[('t1', 'transport_ticks')]['mean'], 68.0)
+        self.assertAlmostEqual(summary[('t1', 'gathering_ticks')]['mean'], 40.0)
+        self.assertAlmostEqual(summary[('t1', 'leader_contact')]['mean'], 0.25)
+
+
+if __name__ == '__main__':
+    unittest.main()
