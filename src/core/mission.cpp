@@ -124,5 +124,50 @@ std::uint64_t SignalTick(std::uint64_t phase_tick, double delay_s, double tick_p
   return phase_tick + static_cast<std::uint64_t>(std::ceil(delay_s / tick_period_s - 1e-9));
 }
 
+std::string AdmitMission(const MissionSpec& mission, const MissionContext& context) {
+  std::string reason = ValidateMission(mission, context);
+  if (!reason.empty()) return reason;
+  const std::size_t live = context.live_missions.size();
+  if (context.max_live_missions > 0 &&
+      live >= static_cast<std::size_t>(context.max_live_missions)) {
+    return "too many live missions (" + std::to_string(live) + ", max_live_missions " +
+           std::to_string(context.max_live_missions) + ")";
+  }
+  return "";
+}
+
+bool ParseAdmission(const std::string& name, Admission* out) {
+  if (name == "dispatcher") {
+    *out = Admission::kDispatcher;
+  } else if (name == "robots") {
+    *out = Admission::kRobots;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+const char* AdmissionName(Admission admission) {
+  return admission == Admission::kDispatcher ? "dispatcher" : "robots";
+}
+
+bool MayOrder(Admission admission, const Sender& sender) {
+  if (admission == Admission::kRobots) return true;
+  return sender.kind == SenderKind::kDispatcher || sender.kind == SenderKind::kRelay;
+}
+
+bool MayReport(const MissionSpec* mission, const Sender& sender) {
+  switch (sender.kind) {
+    case SenderKind::kDispatcher:
+    case SenderKind::kRelay:
+      return true;
+    case SenderKind::kRobot:
+      return mission == nullptr || mission->Assigns(sender.robot_id);
+    case SenderKind::kOther:
+      break;
+  }
+  return false;
+}
+
 }  // namespace core
 }  // namespace swarm_transport

@@ -92,13 +92,10 @@ MissionBook::Verdict MissionBook::Submit(MissionSpec spec, const std::string& so
   // A mission first seen through its leader's status (its order arrived late) gets the order
   // attached instead of a "duplicate id" rejection.
   attach = attach && it != entries_.end() && it->second.Live() && !it->second.has_spec;
-  std::string reason = ValidateMission(spec, Context(known_robots, attach ? spec.id : -1));
-  if (reason.empty() && !attach) {
-    const int live = LiveCount();
-    if (live >= params_.max_live_missions) {
-      reason = "too many live missions (" + std::to_string(live) + ", ~max_live_missions)";
-    }
-  }
+  // An attached order is live already: it is checked, not admitted again.
+  MissionContext context = Context(known_robots, attach ? spec.id : -1);
+  if (!attach) context.max_live_missions = params_.max_live_missions;
+  const std::string reason = AdmitMission(spec, context);
   verdict.spec = spec;
   if (!reason.empty()) {
     next_id_ = next_id;  // a rejected mission does not use up an automatic id

@@ -51,7 +51,9 @@ std::string RobotBrain::OnNewMission(const MissionSpec& mission,
   context.world_size_m = params_.flocking.world_size_m;
   context.known_robots = known_robots;
   context.live_missions = agent_.LiveIds();
-  std::string why = ValidateMission(mission, context);
+  // Admitted by the dispatcher already, or admitted here with the dispatcher's own decision.
+  if (params_.admission == Admission::kRobots) context.max_live_missions = params_.max_live_missions;
+  std::string why = AdmitMission(mission, context);
   if (!why.empty() || !agent_.OnNewMission(mission, &why)) return why;
   if (taken != nullptr) {
     *taken = MissionTaken();

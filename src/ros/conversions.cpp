@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "swarm_transport/ros/names.h"
 
 namespace swarm_transport {
 
@@ -191,6 +194,32 @@ core::Perception ToPerception(std::uint16_t id, const Neighbors& msg) {
     }
   }
   return in;
+}
+
+core::Sender SenderOf(const std::string& node_name) {
+  core::Sender sender;
+  if (node_name == names::kDispatcherNode) {
+    sender.kind = core::SenderKind::kDispatcher;
+  } else if (node_name == names::kSimulatorNode ||
+             node_name.rfind(names::kRobotHostNodePrefix, 0) == 0) {
+    sender.kind = core::SenderKind::kRelay;
+  } else {
+    // "/robot_<id>/robot" with <id> in [0, 65535].
+    const std::string prefix = "/robot_";  // names::RobotNamespace(id), at the root
+    const std::string suffix = std::string("/") + names::kRobotNodeName;
+    if (node_name.size() > prefix.size() + suffix.size() && node_name.rfind(prefix, 0) == 0 &&
+        node_name.compare(node_name.size() - suffix.size(), suffix.size(), suffix) == 0) {
+      const std::string digits =
+          node_name.substr(prefix.size(), node_name.size() - prefix.size() - suffix.size());
+      if (!digits.empty() && digits.size() <= 5 &&
+          digits.find_first_not_of("0123456789") == std::string::npos &&
+          std::stoul(digits) <= 65535) {
+        sender.kind = core::SenderKind::kRobot;
+        sender.robot_id = static_cast<std::uint16_t>(std::stoul(digits));
+      }
+    }
+  }
+  return sender;
 }
 
 }  // namespace swarm_transport

@@ -207,6 +207,7 @@ bool ReadDispatcherOptions(const ros::NodeHandle& nh, const ros::NodeHandle& p,
   }
   options->loaded_delay_s = config->loaded_delay_s;
   options->unloaded_delay_s = config->unloaded_delay_s;
+  options->max_live_missions = config->max_live_missions;
   if (!ReadPrivate(p, "loaded_delay_s", &options->loaded_delay_s, error) ||
       !ReadPrivate(p, "unloaded_delay_s", &options->unloaded_delay_s, error) ||
       !ReadPrivate(p, "missions_file", &options->missions_file, error) ||

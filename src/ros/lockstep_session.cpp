@@ -219,6 +219,25 @@ void LockstepSession::Relay(const ros::MessageEvent<const M>& event) {
   // What this node publishes are its robots' answers, relayed by TakeAnswers already.
   if (from == ros::this_node::getName()) return;
   const M& msg = *event.getConstMessage();
+  // Robots send their mission messages inside their answers; on the topics only the
+  // dispatcher's orders (with admission by the robots anyone's) and its statuses, object deletes
+  // and updates count (core::MayOrder, core::MayReport): a hand-made status or object message
+  // never reaches the robots.
+  const core::Sender sender = SenderOf(from);
+  if constexpr (std::is_same_v<M, New_Mission>) {
+    if (!core::MayOrder(params_.swarm.admission, sender)) return;
+  }
+  if constexpr (std::is_same_v<M, Mission_Status> || std::is_same_v<M, Update_Object> ||
+                std::is_same_v<M, Delete_Object>) {
+    if (sender.kind != core::SenderKind::kDispatcher) {
+      if (WallThrottle(&last_refused_warning_wall_, kWarnPeriodS)) {
+        ROS_WARN("lockstep: ignored a mission message of mission %u from %s: only the mission's "
+                 "robots and the dispatcher may send it",
+                 msg.mission_id, from.c_str());
+      }
+      return;
+    }
+  }
   if constexpr (std::is_same_v<M, New_Mission>) {
     relay_.AddOrder(from, msg);
     barrier_.OrderArrived(msg.mission_id);

@@ -24,6 +24,7 @@ constexpr std::size_t kPhaseCount = 8;
 // Before publishing a new order, wait at most this long (wall) for every node the master lists
 // as a subscriber of the order and status topics to be connected.
 constexpr double kListenerWaitS = 1.0;
+constexpr std::uint32_t kOrderQueue = 256;
 constexpr double kListenerPollS = 0.005;
 
 const char* EventName(core::MissionEventKind kind) {
@@ -50,7 +51,8 @@ bool MissionDispatcher::Initialize() {
     return false;
   }
   // Latched so that a robot (or `rostopic echo`) connecting later still gets the last order.
-  new_pub_ = nh_.advertise<New_Mission>(names::kMissionNew, 10, true);
+  // Its queue holds a whole table of live orders published at once (a flood's admitted ones).
+  new_pub_ = nh_.advertise<New_Mission>(names::kMissionNew, kOrderQueue, true);
   status_pub_ = nh_.advertise<Mission_Status>(names::kMissionStatus, 100);
   event_pub_ = nh_.advertise<Mission_Event>(names::kMissionEvent, 10);
   delete_pub_ = nh_.advertise<Delete_Object>(names::kObjectDelete, 10);
@@ -240,13 +242,29 @@ void MissionDispatcher::OnWatchdog(const ros::TimerEvent& /*event*/) {
 void MissionDispatcher::OnNewMission(const ros::MessageEvent<New_Mission const>& event) {
   // The dispatcher hears its own publications on this topic; those are tracked already.
   if (FromSelf(event.getPublisherName())) return;
+  // With admission by the dispatcher the robots take only what it publishes: an order it
+  // admits from the topic it publishes itself (one decision for dispatcher and robots).
+  const bool admit = config_.admission == core::Admission::kDispatcher;
   Submit(ToMissionSpec(*event.getMessage()), "topic (" + event.getPublisherName() + ")", false,
-         false);
+         admit, event.getMessage()->start_tick);
+}
+
+bool MissionDispatcher::MayReport(const char* kind, std::uint16_t mission_id,
+                                  const std::string& publisher) {
+  const core::MissionBook::Entry* entry = book_->Find(mission_id);
+  const core::Sender from = SenderOf(publisher);
+  if (core::MayReport(entry != nullptr && entry->has_spec ? &entry->spec : nullptr, from)) {
+    return true;
+  }
+  ROS_WARN_THROTTLE(5.0, "%s: ignored a %s of mission %u from %s: only the mission's robots may "
+                    "send it", kNode, kind, mission_id, publisher.c_str());
+  return false;
 }
 
 void MissionDispatcher::OnStatus(const ros::MessageEvent<Mission_Status const>& event) {
   if (FromSelf(event.getPublisherName())) return;
   const Mission_Status& msg = *event.getMessage();
+  if (!MayReport("Mission_Status", msg.mission_id, event.getPublisherName())) return;
   if (msg.state >= kPhaseCount) {
     ROS_WARN("%s: ignored a Mission_Status of mission %u from %s: unknown state %u", kNode,
              msg.mission_id, event.getPublisherName().c_str(), msg.state);
@@ -279,7 +297,9 @@ void MissionDispatcher::OnStatus(const ros::MessageEvent<Mission_Status const>& 
   }
 }
 
-void MissionDispatcher::OnProgress(const Mission_Status::ConstPtr& msg) {
+void MissionDispatcher::OnProgress(const ros::MessageEvent<Mission_Status const>& event) {
+  const Mission_Status::ConstPtr& msg = event.getMessage();
+  if (!MayReport("progress", msg->mission_id, event.getPublisherName())) return;
   if (!std::isfinite(msg->distance_to_target)) return;
   book_->OnProgress(ToMissionReport(*msg), ros::Time::now().toSec());
 }

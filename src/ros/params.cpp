@@ -171,6 +171,9 @@ bool ConfigFromXmlRpc(XmlRpc::XmlRpcValue& dict, SwarmConfig* config, std::strin
                        core::ParseNeighbourhood) &&
             ReadInt(dict, "chain_hops", &c.chain_hops, error) &&
             ReadDouble(dict, "lost_after_s", &c.lost_after_s, error) &&
+            ReadChoice(dict, "mission_admission", "dispatcher or robots", &c.admission, error,
+                       core::ParseAdmission) &&
+            ReadInt(dict, "max_live_missions", &c.max_live_missions, error) &&
             ReadChoice(dict, "gathering", "hold or fill", &c.transport.gathering, error,
                        core::ParseGatherMode) &&
             ReadBool(dict, "leaders_bound", &c.transport.leaders_bound, error) &&

@@ -21,6 +21,7 @@ constexpr char kStatsTopic[] = "/flock/robot_stats";
 constexpr double kStatsPeriodS = 1.0;
 constexpr std::uint32_t kStatsQueue = 10;
 constexpr std::uint32_t kProgressQueue = 10;
+constexpr std::uint32_t kMissionQueue = 256;
 // Broadcast comm: every robot publishes once per tick, so the queue must hold a whole swarm's
 // tick (as the simulator's); a robot not heard for this many radio rounds is forgotten.
 constexpr std::uint32_t kBroadcastQueue = 10000;
@@ -88,11 +89,21 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
   if (options_.clock != core::Clock::kLockstep) {
     freeze_sub_ = nh_.subscribe(names::kFreeze, 20, &RobotNode::OnFreeze, this);
     continue_sub_ = nh_.subscribe(names::kContinue, 20, &RobotNode::OnContinue, this);
-    mission_sub_ = nh_.subscribe(names::kMissionNew, 20, &RobotNode::OnNewMission, this);
-    update_sub_ = nh_.subscribe(names::kObjectUpdate, 20, &RobotNode::OnObjectUpdate, this);
-    delete_sub_ = nh_.subscribe(names::kObjectDelete, 20, &RobotNode::OnObjectDelete, this);
+    // Up to a dispatcher's whole table of live orders at once (a flood of hand-made ones is
+    // the dispatcher's to refuse: the robots take only the orders it admitted).
+    mission_sub_ = nh_.subscribe(names::kMissionNew, kMissionQueue,
+                                 &RobotNode::FromTopic<New_Mission, &RobotNode::OnNewMission>,
+                                 this);
+    update_sub_ = nh_.subscribe(names::kObjectUpdate, 20,
+                                &RobotNode::FromTopic<Update_Object, &RobotNode::OnObjectUpdate>,
+                                this);
+    delete_sub_ = nh_.subscribe(names::kObjectDelete, 20,
+                                &RobotNode::FromTopic<Delete_Object, &RobotNode::OnObjectDelete>,
+                                this);
     event_sub_ = nh_.subscribe(names::kMissionEvent, 20, &RobotNode::OnMissionEvent, this);
-    status_sub_ = nh_.subscribe(names::kMissionStatus, 50, &RobotNode::OnMissionStatus, this);
+    status_sub_ = nh_.subscribe(
+        names::kMissionStatus, 50,
+        &RobotNode::FromTopic<Mission_Status, &RobotNode::OnMissionStatus>, this);
   }
   robots_sub_ = nh_.subscribe(names::kRobots, 2, &RobotNode::OnRobots, this);
   if (options_.comm == core::Comm::kBroadcast) {
@@ -168,14 +179,15 @@ static void ApplyAll(const std::vector<Msg>& list, RobotNode* node, Handler hand
 
 void RobotNode::ApplyRelayed(const Neighbors& msg) {
   // The order documented in Neighbors.msg: a mission before its object's moves, those before
-  // freeze / continue, signals and phases last.
-  ApplyAll(msg.missions, this, &RobotNode::OnNewMission);
-  ApplyAll(msg.object_updates, this, &RobotNode::OnObjectUpdate);
-  ApplyAll(msg.object_deletes, this, &RobotNode::OnObjectDelete);
+  // freeze / continue, signals and phases last. The relay passed on only what counts.
+  const core::Sender relay{core::SenderKind::kRelay, 0};
+  for (const New_Mission& m : msg.missions) OnNewMission(m, relay);
+  for (const Update_Object& m : msg.object_updates) OnObjectUpdate(m, relay);
+  for (const Delete_Object& m : msg.object_deletes) OnObjectDelete(m, relay);
   ApplyAll(msg.freezes, this, &RobotNode::OnFreeze);
   ApplyAll(msg.continues, this, &RobotNode::OnContinue);
   ApplyAll(msg.mission_events, this, &RobotNode::OnMissionEvent);
-  ApplyAll(msg.statuses, this, &RobotNode::OnMissionStatus);
+  for (const Mission_Status& m : msg.statuses) OnMissionStatus(m, relay);
 }
 
 void RobotNode::OnTimer(const ros::WallTimerEvent& /*event*/) { TimerTick(); }
@@ -364,8 +376,14 @@ void RobotNode::OnRobots(const Robot_Positions::ConstPtr& msg) {
   }
 }
 
-void RobotNode::OnNewMission(const New_Mission::ConstPtr& msg) {
-  const core::MissionSpec spec = ToMissionSpec(*msg);
+void RobotNode::OnNewMission(const New_Mission& msg, const core::Sender& from) {
+  if (!core::MayOrder(config_.admission, from)) {
+    // Not admitted (yet): the dispatcher answers it, and publishes it when it admits it.
+    ROS_DEBUG("robot %u: New_Mission %u not from the dispatcher; waiting for its verdict", id_,
+              msg.mission_id);
+    return;
+  }
+  const core::MissionSpec spec = ToMissionSpec(msg);
   core::MissionTaken taken;
   const std::string why = brain_->OnNewMission(spec, known_robots_, &taken);
   if (why.empty()) {
@@ -381,25 +399,34 @@ void RobotNode::OnNewMission(const New_Mission::ConstPtr& msg) {
   }
   // Only the robots concerned say so, so that one bad message does not log N lines.
   if (spec.Assigns(id_) || id_ == 0) {
-    Rejected("New_Mission", "New_Mission " + std::to_string(msg->mission_id) + ": " + why);
+    Rejected("New_Mission", "New_Mission " + std::to_string(msg.mission_id) + ": " + why);
   }
 }
 
-void RobotNode::OnObjectUpdate(const Update_Object::ConstPtr& msg) {
+bool RobotNode::MayReport(const char* kind, std::uint16_t mission_id, const core::Sender& from) {
+  if (core::MayReport(brain_->missions().Find(mission_id), from)) return true;
+  Rejected(kind, std::string(kind) + " of mission " + std::to_string(mission_id) +
+                     ": not from one of its robots or the dispatcher");
+  return false;
+}
+
+void RobotNode::OnObjectUpdate(const Update_Object& msg, const core::Sender& from) {
+  if (!MayReport("Update_Object", msg.mission_id, from)) return;
   const std::string why =
-      brain_->OnObjectUpdate(msg->mission_id, {msg->object_position_x, msg->object_position_y});
+      brain_->OnObjectUpdate(msg.mission_id, {msg.object_position_x, msg.object_position_y});
   if (why.empty()) return;
   // An update for a mission it does not hold is routine; a non-finite, out-of-arena or
   // implausible one is bad input.
-  if (brain_->missions().Find(msg->mission_id) == nullptr) {
+  if (brain_->missions().Find(msg.mission_id) == nullptr) {
     ROS_DEBUG("robot %u: ignored: %s", id_, why.c_str());
   } else {
     Rejected("Update_Object", why);
   }
 }
 
-void RobotNode::OnObjectDelete(const Delete_Object::ConstPtr& msg) {
-  const std::string why = brain_->OnObjectDelete(msg->mission_id);
+void RobotNode::OnObjectDelete(const Delete_Object& msg, const core::Sender& from) {
+  if (!MayReport("Delete_Object", msg.mission_id, from)) return;
+  const std::string why = brain_->OnObjectDelete(msg.mission_id);
   if (!why.empty()) ROS_DEBUG("robot %u: %s", id_, why.c_str());
 }
 
@@ -426,8 +453,9 @@ void RobotNode::Rejected(const std::string& kind, const std::string& why) {
   log.suppressed = 0;
 }
 
-void RobotNode::OnMissionStatus(const Mission_Status::ConstPtr& msg) {
-  brain_->OnStatus(msg->mission_id, static_cast<core::MissionPhase>(msg->state));
+void RobotNode::OnMissionStatus(const Mission_Status& msg, const core::Sender& from) {
+  if (!MayReport("Mission_Status", msg.mission_id, from)) return;
+  brain_->OnStatus(msg.mission_id, static_cast<core::MissionPhase>(msg.state));
 }
 
 void RobotNode::AdvertiseMissionOutlets() {

@@ -530,7 +530,12 @@ void Simulator::OnRobotDelete(const Delete_Robot::ConstPtr& msg) {
   }
 }
 
-void Simulator::OnMissionNew(const New_Mission::ConstPtr& msg) { RegisterMission(*msg); }
+// Real time: the mission mirror (the radio's mission channel, markers) follows what the robots
+// act on, with the robots' rules (core::MayOrder, core::MayReport).
+void Simulator::OnMissionNew(const ros::MessageEvent<New_Mission const>& event) {
+  if (!core::MayOrder(params_.swarm.admission, SenderOf(event.getPublisherName()))) return;
+  RegisterMission(*event.getConstMessage());
+}
 
 void Simulator::RegisterMission(const New_Mission& order) {
   const std::string why = sim::RegisterMission(ToMissionSpec(order), *world_, &missions_);
@@ -539,13 +544,26 @@ void Simulator::RegisterMission(const New_Mission& order) {
   }
 }
 
-void Simulator::OnObjectUpdate(const Update_Object::ConstPtr& msg) {
-  sim::UpdateMissionObject(msg->mission_id, {msg->object_position_x, msg->object_position_y},
+void Simulator::OnObjectUpdate(const ros::MessageEvent<Update_Object const>& event) {
+  const Update_Object& msg = *event.getConstMessage();
+  if (!MayReport(msg.mission_id, event.getPublisherName())) return;
+  sim::UpdateMissionObject(msg.mission_id, {msg.object_position_x, msg.object_position_y},
                            *world_, &missions_);
 }
 
-void Simulator::OnObjectDelete(const Delete_Object::ConstPtr& msg) {
-  missions_.erase(msg->mission_id);
+void Simulator::OnObjectDelete(const ros::MessageEvent<Delete_Object const>& event) {
+  if (!MayReport(event.getConstMessage()->mission_id, event.getPublisherName())) return;
+  missions_.erase(event.getConstMessage()->mission_id);
+}
+
+bool Simulator::MayReport(std::uint16_t mission_id, const std::string& publisher) const {
+  const core::Sender from = SenderOf(publisher);
+  const auto it = missions_.find(mission_id);
+  if (from.kind != core::SenderKind::kRobot || it == missions_.end()) {
+    return core::MayReport(nullptr, from);
+  }
+  const std::vector<std::uint16_t>& members = it->second.members;
+  return std::binary_search(members.begin(), members.end(), from.robot_id);
 }
 
 }  // namespace swarm_transport

@@ -279,6 +279,59 @@ TEST(ValidateMissionTest, AnObjectLargerThanTheArenaIsRejected) {
   EXPECT_EQ(ValidateMission(m, Context()), "");
 }
 
+TEST(AdmitMissionTest, ValidatesThenHoldsTheLimitOfLiveMissions) {
+  MissionContext c = Context();
+  c.live_missions = {1, 2};
+  c.max_live_missions = 3;
+  EXPECT_EQ(AdmitMission(ThesisMission(), c), "");
+  c.live_missions.insert(3);
+  const std::string full = AdmitMission(ThesisMission(), c);
+  EXPECT_NE(full.find("too many live missions (3"), std::string::npos) << full;
+  // An invalid order is refused for what is wrong with it, full or not.
+  MissionSpec bad = ThesisMission();
+  bad.leader_number = 0;
+  EXPECT_EQ(AdmitMission(bad, c), ValidateMission(bad, c));
+  // 0: no limit (a robot under the dispatcher's admission).
+  c.max_live_missions = 0;
+  EXPECT_EQ(AdmitMission(ThesisMission(), c), "");
+}
+
+TEST(AdmissionTest, ParsesItsTwoNamesOnly) {
+  Admission a = Admission::kRobots;
+  EXPECT_TRUE(ParseAdmission("dispatcher", &a));
+  EXPECT_EQ(a, Admission::kDispatcher);
+  EXPECT_TRUE(ParseAdmission("robots", &a));
+  EXPECT_EQ(a, Admission::kRobots);
+  EXPECT_FALSE(ParseAdmission("Dispatcher", &a));
+  EXPECT_EQ(a, Admission::kRobots);
+  EXPECT_STREQ(AdmissionName(Admission::kDispatcher), "dispatcher");
+}
+
+TEST(AuthorityTest, OrdersCountFromTheDispatcherUnlessTheRobotsAdmit) {
+  const Sender dispatcher{SenderKind::kDispatcher, 0};
+  const Sender relay{SenderKind::kRelay, 0};
+  const Sender robot{SenderKind::kRobot, 3};
+  const Sender other{SenderKind::kOther, 0};
+  EXPECT_TRUE(MayOrder(Admission::kDispatcher, dispatcher));
+  EXPECT_TRUE(MayOrder(Admission::kDispatcher, relay));
+  EXPECT_FALSE(MayOrder(Admission::kDispatcher, robot));
+  EXPECT_FALSE(MayOrder(Admission::kDispatcher, other));
+  EXPECT_TRUE(MayOrder(Admission::kRobots, other));
+}
+
+TEST(AuthorityTest, ReportsCountFromTheMissionsRobotsAndTheDispatcherOnly) {
+  const MissionSpec m = ThesisMission();  // robots [0, 12)
+  EXPECT_TRUE(MayReport(&m, Sender{SenderKind::kRobot, 0}));
+  EXPECT_TRUE(MayReport(&m, Sender{SenderKind::kRobot, 11}));  // a promoted first leader
+  EXPECT_FALSE(MayReport(&m, Sender{SenderKind::kRobot, 12}));
+  EXPECT_TRUE(MayReport(&m, Sender{SenderKind::kDispatcher, 0}));
+  EXPECT_TRUE(MayReport(&m, Sender{SenderKind::kRelay, 0}));
+  EXPECT_FALSE(MayReport(&m, Sender{SenderKind::kOther, 0}));
+  // Not known to the receiver: any robot's node counts, nobody else.
+  EXPECT_TRUE(MayReport(nullptr, Sender{SenderKind::kRobot, 40}));
+  EXPECT_FALSE(MayReport(nullptr, Sender{SenderKind::kOther, 0}));
+}
+
 }  // namespace
 }  // namespace core
 }  // namespace swarm_transport

@@ -175,6 +175,29 @@ TEST(RobotBrainTest, DeletingAMissionsObjectReleasesItsFrozenRobotsOnly) {
   EXPECT_TRUE(member.frozen());
 }
 
+TEST(RobotBrainTest, AdmittingItselfARobotHoldsTheDispatchersLimit) {
+  SwarmConfig p = Params();
+  p.max_live_missions = 2;
+  MissionSpec m = Thesis();
+  // Under the dispatcher's admission the robot does not count: the dispatcher did.
+  RobotBrain admitted(4, p);
+  for (std::uint16_t id = 1; id <= 3; ++id) {
+    m.id = id;
+    EXPECT_EQ(admitted.OnNewMission(m, {}, nullptr), "") << id;
+  }
+  p.admission = Admission::kRobots;
+  RobotBrain self(4, p);
+  m.id = 1;
+  EXPECT_EQ(self.OnNewMission(m, {}, nullptr), "");
+  m.id = 2;
+  EXPECT_EQ(self.OnNewMission(m, {}, nullptr), "");
+  m.id = 3;
+  const std::string why = self.OnNewMission(m, {}, nullptr);
+  EXPECT_NE(why.find("too many live missions"), std::string::npos) << why;
+  EXPECT_EQ(self.missions().Find(3), nullptr);
+  EXPECT_NE(self.missions().Find(2), nullptr);
+}
+
 }  // namespace
 }  // namespace core
 }  // namespace swarm_transport

@@ -120,5 +120,21 @@ TEST(ConversionsTest, LeaderNumberIsClampedToTheWire) {
   EXPECT_EQ(ToNewMission(spec).leader_number, 0);
 }
 
+TEST(ConversionsTest, SenderOfTellsTheDispatcherRelaysRobotsAndOthers) {
+  EXPECT_EQ(SenderOf("/mission_dispatcher").kind, core::SenderKind::kDispatcher);
+  EXPECT_EQ(SenderOf("/simulator").kind, core::SenderKind::kRelay);
+  EXPECT_EQ(SenderOf("/robot_host").kind, core::SenderKind::kRelay);
+  EXPECT_EQ(SenderOf("/robot_host_b").kind, core::SenderKind::kRelay);
+  const core::Sender robot = SenderOf("/robot_17/robot");
+  EXPECT_EQ(robot.kind, core::SenderKind::kRobot);
+  EXPECT_EQ(robot.robot_id, 17);
+  EXPECT_EQ(SenderOf("/robot_65535/robot").robot_id, 65535);
+  for (const char* other : {"/robot_65536/robot", "/robot_/robot", "/robot_1x/robot",
+                            "/robot_3/robotx", "/robot_3", "/rostopic_123_456",
+                            "/mission_dispatcher_2", "", "/robot_-1/robot"}) {
+    EXPECT_EQ(SenderOf(other).kind, core::SenderKind::kOther) << other;
+  }
+}
+
 }  // namespace
 }  // namespace swarm_transport

@@ -65,6 +65,8 @@ struct MissionContext {
   std::set<std::uint16_t> known_robots;
   // Ids of live missions (neither DONE, ABORTED nor REJECTED).
   std::set<std::uint16_t> live_missions;
+  // AdmitMission: at most this many live missions (0: no limit).
+  int max_live_missions = 0;
 };
 
 // Empty when the mission is acceptable, else the reason (one sentence) [SPEC 10]: non-finite
@@ -73,6 +75,41 @@ struct MissionContext {
 // than leader_number robots; object centre or target outside the arena; duplicate live id;
 // unknown robot id; transport_mode not 0 or 1.
 std::string ValidateMission(const MissionSpec& mission, const MissionContext& context);
+
+// The one admission decision (issue 11): ValidateMission, then the limit of live missions. The
+// dispatcher decides with it; with no dispatcher (Admission::kRobots) every robot decides with
+// it on its own table, so that robots and dispatcher cannot disagree.
+std::string AdmitMission(const MissionSpec& mission, const MissionContext& context);
+
+// Who admits orders (/swarm/mission_admission): the dispatcher (robots act only on the orders it
+// publishes; a hand-made New_Mission reaches them after it admitted it), or, with no dispatcher
+// running, every robot itself with AdmitMission.
+enum class Admission : std::uint8_t { kDispatcher, kRobots };
+bool ParseAdmission(const std::string& name, Admission* out);
+const char* AdmissionName(Admission admission);
+
+// Who sent a mission message, as far as the transport tells. ROS 1 has no authentication: this
+// keeps stray and hand-made messages out of a mission, not an attacker.
+enum class SenderKind : std::uint8_t {
+  kDispatcher,  // the mission dispatcher
+  kRelay,       // the simulator's relay (lock-step) or a robot host: carries robots' messages
+  kRobot,       // a robot's own node: `robot_id`
+  kOther,       // anyone else (rostopic pub, a script, a recorder)
+};
+struct Sender {
+  SenderKind kind = SenderKind::kOther;
+  std::uint16_t robot_id = 0;
+};
+
+// Whether an order from `sender` counts: with admission by the dispatcher only the dispatcher's
+// (and the relay's, which passed only those on); with admission by the robots anyone's.
+bool MayOrder(Admission admission, const Sender& sender);
+// Whether a Mission_Status, Update_Object or Delete_Object from `sender` counts for a mission:
+// only its first leader sends them, besides the dispatcher (REJECTED, ABORTED and the object of
+// an aborted mission). A robot's node counts for a mission that assigns it (any of them: a
+// promoted first leader is one of them); `mission` null (not known to the receiver) lets any
+// robot's node count. The relay and robot hosts carry robots' messages and count; others not.
+bool MayReport(const MissionSpec* mission, const Sender& sender);
 
 // The tick a dispatcher's LOADED / UNLOADED takes effect: the tick the first leader reported
 // LOADING / UNLOADING plus `delay_s` rounded up to whole ticks (stamped, so that the delay lands

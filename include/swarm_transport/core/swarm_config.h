@@ -10,6 +10,7 @@
 #include "swarm_transport/core/flocking.h"
 #include "swarm_transport/core/geometry.h"
 #include "swarm_transport/core/leader.h"
+#include "swarm_transport/core/mission.h"
 #include "swarm_transport/core/transport.h"
 
 namespace swarm_transport {
@@ -32,6 +33,11 @@ struct SwarmConfig {
   // A mission robot not heard for this long (s) is lost for its mission (SPEC 9.7): dropped, a
   // lost leader replaced by the next assigned robot. At least one tick.
   double lost_after_s = 0.5;
+  // Who admits mission orders (SPEC 9.7, issue 11): the dispatcher, or every robot itself when
+  // no dispatcher runs (swarm.launch dispatcher:=false sets robots).
+  Admission admission = Admission::kDispatcher;
+  // At most this many live missions; more orders are REJECTED (dispatcher) or refused (robots).
+  int max_live_missions = 64;
 
   // Empty when valid, else one sentence naming the bad key.
   std::string Validate() const;

@@ -66,6 +66,10 @@ core::MissionReport ToMissionReport(const Mission_Status& msg);
 // New_Mission -> core mission; all_finite records whether every float of the message is finite
 // (ValidateMission rejects the mission otherwise).
 core::MissionSpec ToMissionSpec(const New_Mission& msg);
+// Who published a mission message, from its publisher's node name (MessageEvent): the
+// dispatcher (names::kDispatcherNode), the simulator or a robot host (relay: they carry robots'
+// messages), a robot's node (/robot_<id>/robot), else other.
+core::Sender SenderOf(const std::string& node_name);
 // Core mission -> New_Mission (robot_ids sent only when the spec has them).
 New_Mission ToNewMission(const core::MissionSpec& spec);
 

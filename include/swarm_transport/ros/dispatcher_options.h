@@ -21,7 +21,7 @@ struct DispatcherOptions {
   double unloaded_delay_s = 2.0;  // ~unloaded_delay_s (else /swarm): UNLOADED after UNLOADING
   std::string missions_file;      // ~missions_file: YAML with `missions:`; "" = none
   double start_delay_s = 1.0;     // ~start_delay_s: after the first /flock/positions, >= 0
-  int max_live_missions = 64;     // ~max_live_missions: more are rejected, [1, 65535]
+  int max_live_missions = 64;     // ~max_live_missions (else /swarm's): more are rejected
   // ~silent_abort_ticks: a running mission whose first leader said nothing (phase or progress
   // report, one every 50 ticks) for this many ticks is ABORTED - its first leader is lost
   // (issue 11); 0: never.

@@ -114,6 +114,7 @@ class LockstepSession {
   ros::Publisher freeze_pub_;
   ros::Publisher continue_pub_;
   ros::WallTime last_late_warning_wall_;  // wall-clock throttles of repeated warnings
+  ros::WallTime last_refused_warning_wall_;
   ros::WallTime last_bad_answer_warning_wall_;
   ros::WallTime last_unsolicited_warning_wall_;
 };

@@ -71,7 +71,9 @@ class MissionDispatcher {
   void OnNewMission(const ros::MessageEvent<New_Mission const>& event);
   void OnStatus(const ros::MessageEvent<Mission_Status const>& event);
   // A first leader's report within a phase: robots inside, object, distance to go.
-  void OnProgress(const Mission_Status::ConstPtr& msg);
+  void OnProgress(const ros::MessageEvent<Mission_Status const>& event);
+  // core::MayReport for a status or progress of `mission_id` (a throttled warning when not).
+  bool MayReport(const char* kind, std::uint16_t mission_id, const std::string& publisher);
   void OnStartTimer(const ros::TimerEvent& event);
   // Ends the missions whose first leader fell silent: ABORTED with the reason, Delete_Object.
   void OnWatchdog(const ros::TimerEvent& event);

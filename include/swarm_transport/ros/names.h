@@ -40,6 +40,12 @@ constexpr char kSpawn[] = "/spawn";
 constexpr char kKill[] = "/kill";
 constexpr char kReset[] = "/reset";
 
+// Node names the mission messages' senders are told by (core::Sender).
+constexpr char kDispatcherNode[] = "/mission_dispatcher";
+constexpr char kSimulatorNode[] = "/simulator";
+constexpr char kRobotHostNodePrefix[] = "/robot_host";  // "/robot_host", "/robot_host_<name>"
+constexpr char kRobotNodeName[] = "robot";              // a robot's node: /robot_<id>/robot
+
 // Dispatcher services.
 constexpr char kSubmitMission[] = "/mission_dispatcher/submit";
 constexpr char kSignalMission[] = "/mission_dispatcher/signal";

@@ -30,6 +30,7 @@
 #include "swarm_transport/core/modes.h"
 #include "swarm_transport/core/robot_brain.h"
 #include "swarm_transport/core/tick_stats.h"
+#include "swarm_transport/ros/conversions.h"
 #include "swarm_transport/ros/direct_link.h"
 #include "swarm_transport/ros/graph.h"
 #include "swarm_transport/ros/params.h"
@@ -97,11 +98,20 @@ class RobotNode {
   void OnTimer(const ros::WallTimerEvent& event);
   void OnFreeze(const Robot_Freeze::ConstPtr& msg);
   void OnContinue(const Robot_Continue::ConstPtr& msg);
-  void OnNewMission(const New_Mission::ConstPtr& msg);
-  void OnObjectUpdate(const Update_Object::ConstPtr& msg);
-  void OnObjectDelete(const Delete_Object::ConstPtr& msg);
+  // Mission messages with their sender: from a topic (real time) its publisher, relayed inside
+  // a lock-step round the relay (which let only what counts through).
+  void OnNewMission(const New_Mission& msg, const core::Sender& from);
+  void OnObjectUpdate(const Update_Object& msg, const core::Sender& from);
+  void OnObjectDelete(const Delete_Object& msg, const core::Sender& from);
+  void OnMissionStatus(const Mission_Status& msg, const core::Sender& from);
+  template <typename M, void (RobotNode::*Handle)(const M&, const core::Sender&)>
+  void FromTopic(const ros::MessageEvent<M const>& event) {
+    (this->*Handle)(*event.getConstMessage(), SenderOf(event.getPublisherName()));
+  }
+  // Whether a status, object update or delete of `mission_id` from `from` counts (logs once per
+  // interval when not).
+  bool MayReport(const char* kind, std::uint16_t mission_id, const core::Sender& from);
   void OnMissionEvent(const Mission_Event::ConstPtr& msg);
-  void OnMissionStatus(const Mission_Status::ConstPtr& msg);
   void OnRobots(const Robot_Positions::ConstPtr& msg);
   // Lock-step: applies the mission messages the simulator relayed with this perception.
   void ApplyRelayed(const Neighbors& msg);

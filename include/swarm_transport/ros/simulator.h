@@ -135,11 +135,13 @@ class Simulator : public RobotOutlet {
   void OnRobotDelete(const Delete_Robot::ConstPtr& msg);
   // Spawns robot `id` at `pose` with its links; empty when done, else why not.
   std::string SpawnRobot(std::uint16_t id, const core::Pose2& pose);
-  void OnMissionNew(const New_Mission::ConstPtr& msg);
+  void OnMissionNew(const ros::MessageEvent<New_Mission const>& event);
   // Validated like the robots do: a valid order gets its mission channel and markers.
   void RegisterMission(const New_Mission& order);
-  void OnObjectUpdate(const Update_Object::ConstPtr& msg);
-  void OnObjectDelete(const Delete_Object::ConstPtr& msg);
+  void OnObjectUpdate(const ros::MessageEvent<Update_Object const>& event);
+  void OnObjectDelete(const ros::MessageEvent<Delete_Object const>& event);
+  // core::MayReport against the mission mirror's members.
+  bool MayReport(std::uint16_t mission_id, const std::string& publisher) const;
 
   static volatile std::sig_atomic_t stop_requested_;
 
