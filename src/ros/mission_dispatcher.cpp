@@ -25,6 +25,7 @@ constexpr std::size_t kPhaseCount = 8;
 // as a subscriber of the order and status topics to be connected.
 constexpr double kListenerWaitS = 1.0;
 constexpr std::uint32_t kOrderQueue = 256;
+constexpr double kSilentWallGraceS = 1.0;
 constexpr double kListenerPollS = 0.005;
 
 const char* EventName(core::MissionEventKind kind) {
@@ -226,8 +227,17 @@ void MissionDispatcher::OnStartTimer(const ros::TimerEvent& /*event*/) { SubmitF
 
 void MissionDispatcher::OnWatchdog(const ros::TimerEvent& /*event*/) {
   const double now_s = ros::Time::now().toSec();
+  const ros::WallTime now_wall = ros::WallTime::now();
+  std::map<std::uint16_t, ros::WallTime> still_silent;
   for (const auto& silent : book_->Silent(now_s)) {
     const std::uint16_t id = silent.first;
+    // Silent in sim time may only mean that its status waits in this node's queue: a fast
+    // lock-step (10,000 ticks/s in one process) passes 300 ticks in 30 ms of wall time. A
+    // mission is ended only when it is still silent after kSilentWallGraceS of wall time.
+    const auto seen = silent_since_.find(id);
+    const ros::WallTime since = seen == silent_since_.end() ? now_wall : seen->second;
+    still_silent[id] = since;
+    if ((now_wall - since).toSec() < kSilentWallGraceS) continue;
     const core::MissionSpec spec = book_->Find(id)->spec;
     if (!book_->Abort(id, silent.second, now_s)) continue;
     ROS_WARN("%s: mission %u ABORTED: %s", kNode, id, silent.second.c_str());
@@ -236,7 +246,9 @@ void MissionDispatcher::OnWatchdog(const ros::TimerEvent& /*event*/) {
     Delete_Object msg;
     msg.mission_id = id;
     delete_pub_.publish(msg);
+    still_silent.erase(id);
   }
+  silent_since_ = std::move(still_silent);
 }
 
 void MissionDispatcher::OnNewMission(const ros::MessageEvent<New_Mission const>& event) {

@@ -8,6 +8,7 @@
 #include <xmlrpcpp/XmlRpcValue.h>
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <set>
 #include <string>
@@ -102,6 +103,8 @@ class MissionDispatcher {
   ros::ServiceServer status_srv_;
   ros::Timer start_timer_;
   ros::Timer watchdog_timer_;
+  // Missions the watchdog found silent, since when (wall time): ended after a grace period.
+  std::map<std::uint16_t, ros::WallTime> silent_since_;
   ros::WallTimer status_timer_;  // its diagnostic status, once a wall second
   std::unique_ptr<NodeDiagnostics> diagnostics_;
   ros::Publisher delete_pub_;
