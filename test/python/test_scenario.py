@@ -1,0 +1,161 @@
+"""The scenario format and its expectation checks without ROS (issue 14): the shipped example
+parses; a malformed scenario gets one error naming the line and the key; every expectation
+passes on a hand-made log that meets it and fails on one that does not."""
+import math
+import os
+import sys
+import unittest
+
+# scripts/lib is not a package on the path: the tests put it there (as its scripts do).
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
+sys.path.insert(0, os.path.join(ROOT, 'scripts', 'lib'))
+
+import scenario_checks as checks  # noqa: E402
+import scenario_format as fmt  # noqa: E402
+
+MINIMAL = '''world:
+  robots: 6
+max_ticks: 100
+missions:
+  - id: 7
+    robots_from: 0
+    robots_to: 4
+    leaders: 1
+    object: [5.0, 5.0, 1.0, 1.0]
+    target: [3.0, 3.0]
+expect:
+  - mission_state: {mission: 7, state: DONE, by_tick: 90}
+'''
+
+
+class Format(unittest.TestCase):
+
+    def test_the_shipped_scenarios_parse(self):
+        d = os.path.join(ROOT, 'test', 'scenarios')
+        files = sorted(f for f in os.listdir(d) if f.endswith('.yaml'))
+        self.assertIn('example.yaml', files)
+        for f in files:
+            s = fmt.load(os.path.join(d, f))
+            self.assertTrue(s['expect'], f)
+        s = fmt.load(os.path.join(d, 'example.yaml'))
+        self.assertEqual(s['world']['robots'], 25)
+        self.assertEqual(s['missions'][0]['robot_ids'], list(range(12)))
+        self.assertEqual([e['kind'] for e in s['events']], ['freeze', 'continue'])
+        self.assertEqual(s['events'][0]['range'], [20, 25])
+
+    def test_defaults(self):
+        s = fmt.parse(MINIMAL, 'm.yaml')
+        self.assertEqual((s['world']['deploy'], s['world']['clock'], s['world']['seed']),
+                         ('host_sim', 'lockstep', 1))
+        self.assertEqual(s['missions'][0]['at_tick'], 0)
+
+    def expect_error(self, text, line, words):
+        with self.assertRaises(fmt.ScenarioError) as cm:
+            fmt.parse(text, 'bad.yaml')
+        msg = str(cm.exception)
+        self.assertTrue(msg.startswith('bad.yaml:%d: ' % line), msg)
+        self.assertIn(words, msg)
+
+    def test_a_malformed_scenario_names_the_line_and_the_key(self):
+        self.expect_error(MINIMAL.replace('max_ticks: 100', 'max_tick: 100'), 3,
+                          'max_tick: unknown key')
+        self.expect_error(MINIMAL.replace('leaders: 1', 'leaders: 5'), 8,
+                          'missions[0].leaders: more leaders than robots')
+        self.expect_error(MINIMAL.replace('robots_to: 4', 'robots_to: 0'), 7,
+                          'missions[0].robots_to: must be > robots_from')
+        self.expect_error(MINIMAL.replace('[3.0, 3.0]', '[3.0, .nan]'), 10,
+                          'missions[0].target[1]: must be a finite number')
+        self.expect_error(MINIMAL + 'events:\n  - at_tick: 5\n    freeze: [4, 2]\n', 15,
+                          'events[0].freeze: must be [from, to)')
+        self.expect_error(MINIMAL + 'events:\n  - at_tick: 5\n    signal: {mission: 8, '
+                          'event: LOADED}\n', 15, 'events[0].signal.mission: no mission 8')
+        self.expect_error(MINIMAL.replace('state: DONE', 'state: FINISHED'), 12,
+                          'expect[0].mission_state.state: must be one of')
+        self.expect_error(MINIMAL.replace('  robots: 6', '  robots: 6\n  deploy: cloud'), 3,
+                          'world.deploy: must be one of process, host, host_sim')
+        self.expect_error(MINIMAL.replace('max_ticks: 100\n', ''), 1, "missing 'max_ticks'")
+        self.expect_error('world: [1\n', 2, 'not YAML')
+        self.expect_error(MINIMAL + '  - swarm_count: {at_tick: 50, min: 3, max: 2}\n', 13,
+                          'min 3 > max 2')
+
+
+def log_of(positions, statuses=(), moves=(), metrics=None):
+    return checks.RunLog(positions, statuses, moves, metrics)
+
+
+class Checks(unittest.TestCase):
+
+    def setUp(self):
+        self.s = fmt.parse(MINIMAL, 'm.yaml')
+
+    def run_check(self, text, log, second=None):
+        e = fmt.parse(MINIMAL + text, 'm.yaml')['expect'][-1]
+        return checks.check(e, log, self.s, second)
+
+    def test_a_mission_state_by_a_tick(self):
+        log = log_of({}, [(7, 'QUEUED', 0), (7, 'GATHERING', 1), (7, 'DONE', 80)])
+        self.assertTrue(checks.check(self.s['expect'][0], log, self.s)[0])
+        late = log_of({}, [(7, 'QUEUED', 0), (7, 'DONE', 95)])
+        ok, measured = checks.check(self.s['expect'][0], late, self.s)
+        self.assertFalse(ok)  # an impossible deadline fails
+        self.assertIn('DONE at tick 95', measured)
+        self.assertFalse(checks.check(self.s['expect'][0], log_of({}, []), self.s)[0])
+
+    def test_in_arena_and_overlap(self):
+        inside = log_of({0: {0: (1.0, 1.0, 0), 1: (1.2, 1.0, 0)}})
+        self.assertTrue(self.run_check('  - in_arena: {}\n', inside)[0])
+        self.assertTrue(self.run_check('  - no_overlap: {}\n', inside)[0])
+        out = log_of({0: {0: (-0.02, 1.0, 0)}, 1: {0: (11.2, 1.0, 0)}})
+        ok, measured = self.run_check('  - in_arena: {tolerance_m: 0.05}\n', out)
+        self.assertFalse(ok)
+        self.assertIn('robot 0, tick 1', measured)
+        touching = log_of({3: {0: (1.0, 1.0, 0), 1: (1.08, 1.0, 0)}})
+        ok, measured = self.run_check('  - no_overlap: {tolerance_m: 0.01}\n', touching)
+        self.assertFalse(ok)
+        self.assertIn('0.0200', measured)
+        self.assertTrue(self.run_check('  - no_overlap: {tolerance_m: 0.03}\n', touching)[0])
+
+    def test_no_intrusion_follows_the_object_until_the_mission_ends(self):
+        # Robot 5 is not assigned; the object moves from (5, 5) to (6, 5) at tick 10.
+        statuses = [(7, 'QUEUED', 0), (7, 'DONE', 30)]
+        moves = [(10, 7, 6.0, 5.0)]
+        clear = log_of({0: {5: (5.6, 5.0, 0)}, 20: {5: (5.0, 5.0, 0)},
+                        40: {5: (6.0, 5.0, 0)}}, statuses, moves)
+        self.assertTrue(self.run_check('  - no_intrusion: {}\n', clear)[0])
+        inside = log_of({20: {5: (6.1, 5.0, 0)}}, statuses, moves)
+        ok, measured = self.run_check('  - no_intrusion: {tolerance_m: 0.1}\n', inside)
+        self.assertFalse(ok)
+        self.assertIn('robot 5', measured)
+        self.assertTrue(self.run_check('  - no_intrusion: {}\n',
+                                       log_of({20: {1: (6.0, 5.0, 0)}}, statuses, moves))[0])
+
+    def test_swarm_count_and_metrics(self):
+        pts = {50: {0: (1.0, 1.0, 0), 1: (1.9, 1.0, 0), 2: (5.0, 5.0, 0)}}
+        self.assertTrue(self.run_check('  - swarm_count: {at_tick: 50, min: 2, max: 2}\n',
+                                       log_of(pts))[0])
+        ok, measured = self.run_check('  - swarm_count: {at_tick: 50, max: 1}\n', log_of(pts))
+        self.assertFalse(ok)
+        self.assertIn('2 swarm(s)', measured)
+        self.assertFalse(self.run_check('  - swarm_count: {at_tick: 40}\n', log_of(pts))[0])
+        metrics = {7: {'transport_ticks': '68', 'slip_per_robot_m': '2.5'}}
+        self.assertTrue(self.run_check('  - transport_ticks: {mission: 7, max: 70}\n',
+                                       log_of({}, metrics=metrics))[0])
+        self.assertFalse(self.run_check('  - slip_per_robot_m: {mission: 7, max: 2.0}\n',
+                                        log_of({}, metrics=metrics))[0])
+        self.assertFalse(self.run_check('  - transport_ticks: {mission: 7}\n',
+                                        log_of({}, metrics={7: {'transport_ticks': ''}}))[0])
+
+    def test_reproducible_compares_every_tick_and_status(self):
+        a = log_of({0: {0: (1.0, 1.0, 0)}, 1: {0: (1.1, 1.0, 0)}}, [(7, 'DONE', 1)])
+        b = log_of({0: {0: (1.0, 1.0, 0)}, 1: {0: (1.1, 1.0, 0)}}, [(7, 'DONE', 1)])
+        self.assertTrue(self.run_check('  - reproducible: {}\n', a, b)[0])
+        c = log_of({0: {0: (1.0, 1.0, 0)}, 1: {0: (1.1, 1.0 + 1e-9, 0)}}, [(7, 'DONE', 1)])
+        ok, measured = self.run_check('  - reproducible: {}\n', a, c)
+        self.assertFalse(ok)
+        self.assertIn('first: tick 1', measured)
+        self.assertFalse(self.run_check('  - reproducible: {}\n', a, None)[0])
+        self.assertTrue(math.isfinite(1.0))
+
+
+if __name__ == '__main__':
+    unittest.main()
