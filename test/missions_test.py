@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Missions beyond the single transport: a leader-only mission with a passive swarm, two
-queued missions (one sent as a raw New_Mission) completed one after the other, and bad
-missions rejected without any robot changing behaviour."""
+"""Missions beyond the single transport: a leader-only mission with a passive swarm, and bad
+missions rejected without any robot changing behaviour. (Two queued missions:
+test/scenarios/two_queued_missions.yaml.)"""
 
 import math
 import sys
@@ -66,32 +66,6 @@ class Missions(unittest.TestCase):
         rospy.loginfo('leader-only: %d of %d passive robots arrived in the leader\'s swarm',
                       arrived, g('passive'))
         self.assertGreaterEqual(arrived, g('min_arrived_fraction') * g('passive'))
-
-    def test_two_queued_missions_one_after_the_other(self):
-        g = lambda k: rospy.get_param('~queue/' + k)  # noqa: E731
-        robots = g('robots')
-        self.start(robots=robots, seed=g('seed'))
-        first = st.mission(31, 0, g('group'), 2, (7.0, 7.0, 2.0, 2.0), (5.0, 5.0))
-        self.assertEqual(self.submit(first).code, 0)
-        self.assertTrue(st.wait_connected(self.raw, self.timeout))
-        # The second one goes out as a raw message, like `rostopic pub` would send it.
-        self.raw.publish(st.mission(32, 0, g('group'), 2, (3.0, 8.0, 2.0, 2.0), (5.0, 8.0)))
-        self.assertTrue(st.wait_for(lambda: self.status.final(31) and self.status.final(32),
-                                    self.timeout),
-                        'states: 31 %s, 32 %s' % (self.status.states(31), self.status.states(32)))
-        done31 = self.status.first(31, 5)
-        gather32 = self.status.first(32, 1)
-        self.assertIsNotNone(done31, '31 ended %s' % self.status.states(31))
-        self.assertIsNotNone(self.status.first(32, 5), '32 ended %s' % self.status.states(32))
-        self.assertGreaterEqual(gather32.tick, done31.tick,
-                                'mission 32 started gathering before 31 was done')
-        # Each reported once, in order; 32 is QUEUED as soon as its first leader has it, while
-        # it waits behind 31.
-        phases = ['QUEUED', 'GATHERING', 'LOADING', 'TRANSPORT', 'UNLOADING', 'DONE']
-        self.assertEqual(self.status.states(31), phases)
-        self.assertEqual(self.status.states(32), phases)
-        self.assertLess(self.status.first(32, 0).tick, done31.tick,
-                        'mission 32 was not QUEUED while 31 ran')
 
     def test_bad_missions_are_rejected_and_change_nothing(self):
         robots = rospy.get_param('~bad/robots')

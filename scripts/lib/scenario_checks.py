@@ -9,14 +9,17 @@ import experiment_presets as presets
 
 class RunLog(object):
     """What a run did. positions: {tick: {robot id: (x, y, theta_deg)}} of physical robots;
-    statuses: [(mission id, state name, tick)] as the robots reported them; object_moves:
-    [(tick, mission id, x, y)]; metrics: {mission id: {column: value}} from missions.csv;
-    params: world_size_m, robot_radius_m, local_range_m."""
+    statuses: [(mission id, state name, tick)] as the robots reported them; objects: {tick:
+    {mission id: (x, y, size_x, size_y)}}, the live objects as the simulator tracks them
+    (/flock/objects); metrics: {mission id: {column: value}} from missions.csv; params:
+    world_size_m, robot_radius_m, local_range_m."""
 
-    def __init__(self, positions, statuses, object_moves=(), metrics=None, params=None):
+    def __init__(self, positions, statuses, objects=None, metrics=None, params=None,
+                 robot_states=None):
+        self.robot_states = robot_states  # {id: (mission ids, zone ids, frozen)} at the end
         self.positions = positions
         self.statuses = list(statuses)
-        self.object_moves = sorted(object_moves)
+        self.objects = objects or {}
         self.metrics = metrics or {}
         self.params = dict({'world_size_m': 11.088889, 'robot_radius_m': 0.05,
                             'local_range_m': 1.0}, **(params or {}))
@@ -56,7 +59,27 @@ def check(e, log, scenario, second=None):
         count = presets.components(list(pts.values()), log.params['local_range_m'])[0]
         return e['min'] <= count <= e['max'], '%d swarm(s) at tick %d' % (count,
                                                                          e['at_tick'])
-    if kind in ('transport_ticks', 'slip_per_robot_m'):
+    if kind == 'phases':
+        reached = [s for m, s, _ in log.statuses if m == e['mission']]
+        return reached == e['states'], 'states %s' % (' '.join(reached) or 'none')
+    if kind == 'phase_order':
+        tick = log.first_state_tick(e['mission'], e['state'])
+        before = log.first_state_tick(e['after_mission'], e['after_state'])
+        measured = 'mission %d %s at tick %s, mission %d %s at tick %s' % (
+            e['mission'], e['state'], tick, e['after_mission'], e['after_state'], before)
+        return tick is not None and before is not None and tick >= before, measured
+    if kind == 'released':
+        if log.robot_states is None:
+            return False, 'no robot states were read'
+        held = {rid: s for rid, s in log.robot_states.items() if s[0] or s[1] or s[2]}
+        return not held, ('every robot of %d holds no mission, no zone and is not frozen'
+                          % len(log.robot_states) if not held else
+                          'robot(s) still holding: %s' % sorted(held.items())[:5])
+    if kind == 'gathered':
+        return _gathered(e, log, scenario)
+    if kind == 'still_while_frozen':
+        return _still(e, log, scenario)
+    if kind in ('transport_ticks', 'slip_per_robot_m', 'object_error_m'):
         row = log.metrics.get(e['mission'], {})
         value = row.get(kind)
         if value is None or value == '' or (isinstance(value, float) and math.isnan(value)):
@@ -104,29 +127,75 @@ def _overlap(e, log):
 
 
 def _intrusion(e, log, scenario):
-    """No robot a mission does not assign is inside its object (deeper than tolerance_m) from
-    the tick the order is given until the mission ended: the object is a danger zone for them."""
+    """No robot a mission does not assign is inside its object (deeper than tolerance_m) while
+    the object is live (the simulator lists it): it is a danger zone for them. grace_ticks: a
+    robot caught inside when the object appears may take that long to leave; until_phase: stop
+    at the tick the mission reported that phase (in TRANSPORT the object moves onto robots that
+    then flee it)."""
+    assigned = {m['id']: set(m['robot_ids']) for m in scenario['missions']}
+    listed = {}  # the tick each object was first listed: a robot there may take grace_ticks
+    for tick in sorted(log.objects):
+        for mid in log.objects[tick]:
+            listed.setdefault(mid, tick)
     worst, where = 0.0, ''
-    for m in scenario['missions']:
-        if not m['object']:
-            continue
-        cx, cy, sx, sy = m['object']
-        start = m['at_tick']
-        end = log.end_tick(m['id'])
-        moves = [(t, x, y) for t, mid, x, y in log.object_moves if mid == m['id']]
-        assigned = set(m['robot_ids'])
-        k = 0
-        for tick in log.ticks():
-            if tick < start or (end is not None and tick >= end):
+    for tick, objects in log.objects.items():
+        pts = log.positions.get(tick, {})
+        for mid, (cx, cy, sx, sy) in objects.items():
+            if tick < listed[mid] + e['grace_ticks']:
                 continue
-            while k < len(moves) and moves[k][0] <= tick:
-                _, cx, cy = moves[k]
-                k += 1
-            for rid, p in log.positions[tick].items():
-                if rid in assigned:
+            if e['until_phase']:
+                until = log.first_state_tick(mid, e['until_phase'])
+                if until is not None and tick >= until:
+                    continue
+            for rid, p in pts.items():
+                if rid in assigned.get(mid, ()):
                     continue
                 depth = min(sx / 2.0 - abs(p[0] - cx), sy / 2.0 - abs(p[1] - cy))
                 if depth > worst:
                     worst, where = depth, ' (robot %d in mission %d\'s object, tick %d)' % (
-                        rid, m['id'], tick)
+                        rid, mid, tick)
     return worst <= e['tolerance_m'], 'deepest intrusion %.4f m%s' % (worst, where)
+
+
+def _mission(scenario, mid):
+    return next(m for m in scenario['missions'] if m['id'] == mid)
+
+
+def _gathered(e, log, scenario):
+    """Every assigned robot was inside the object (up to tolerance_m outside) at the tick the
+    mission reported LOADING (the first leader froze them there)."""
+    tick = log.first_state_tick(e['mission'], 'LOADING')
+    if tick is None:
+        return False, 'no LOADING'
+    obj = log.objects.get(tick, {}).get(e['mission'])
+    if obj is None:
+        return False, 'no object listed at tick %d' % tick
+    cx, cy, sx, sy = obj
+    worst, where = 0.0, ''
+    for rid in _mission(scenario, e['mission'])['robot_ids']:
+        p = log.positions.get(tick, {}).get(rid)
+        if p is None:
+            continue  # lost or killed
+        out = max(abs(p[0] - cx) - sx / 2.0, abs(p[1] - cy) - sy / 2.0, 0.0)
+        if out > worst:
+            worst, where = out, ' (robot %d)' % rid
+    return worst <= e['tolerance_m'], 'farthest outside at LOADING (tick %d) %.4f m%s' % (
+        tick, worst, where)
+
+
+def _still(e, log, scenario):
+    """The assigned robots did not move (more than tolerance_m) from settle_ticks after LOADING
+    until TRANSPORT: they were frozen for loading."""
+    loading = log.first_state_tick(e['mission'], 'LOADING')
+    transport = log.first_state_tick(e['mission'], 'TRANSPORT')
+    if loading is None or transport is None:
+        return False, 'no LOADING or no TRANSPORT'
+    a, b = log.positions.get(loading + e['settle_ticks'], {}), log.positions.get(transport, {})
+    worst, where = 0.0, ''
+    for rid in _mission(scenario, e['mission'])['robot_ids']:
+        if rid in a and rid in b:
+            d = math.hypot(a[rid][0] - b[rid][0], a[rid][1] - b[rid][1])
+            if d > worst:
+                worst, where = d, ' (robot %d)' % rid
+    return worst <= e['tolerance_m'], 'moved at most %.4f m between ticks %d and %d%s' % (
+        worst, loading + e['settle_ticks'], transport, where)

@@ -19,13 +19,19 @@ SIGNALS = ('LOADED', 'UNLOADED')
 # Expectation kind -> (required keys, optional keys with defaults).
 EXPECTATIONS = {
     'mission_state': ({'mission', 'state', 'by_tick'}, {}),
-    'no_intrusion': (set(), {'tolerance_m': 0.0}),
+    'no_intrusion': (set(), {'tolerance_m': 0.0, 'grace_ticks': 0, 'until_phase': None}),
     'no_overlap': (set(), {'tolerance_m': 0.0}),
     'in_arena': (set(), {'tolerance_m': 0.0}),
     'swarm_count': ({'at_tick'}, {'min': 1, 'max': 65535}),
     'transport_ticks': ({'mission'}, {'min': 0, 'max': float('inf')}),
     'slip_per_robot_m': ({'mission'}, {'min': 0.0, 'max': float('inf')}),
     'reproducible': (set(), {}),
+    'phases': ({'mission', 'states'}, {}),
+    'object_error_m': ({'mission'}, {'min': 0.0, 'max': float('inf')}),
+    'gathered': ({'mission'}, {'tolerance_m': 0.0}),
+    'still_while_frozen': ({'mission'}, {'settle_ticks': 3, 'tolerance_m': 0.001}),
+    'phase_order': ({'mission', 'state', 'after_mission', 'after_state'}, {}),
+    'released': (set(), {}),
 }
 TOP_KEYS = {'name', 'description', 'world', 'max_ticks', 'missions', 'events', 'expect'}
 WORLD_KEYS = {'robots', 'seed', 'placement', 'placement_file', 'config', 'base_config',
@@ -255,10 +261,15 @@ def _expectation(r, node, where, mission_ids, max_ticks):
     out.update(optional)
     for key, n in fields.items():
         kw = '%s.%s' % (w, key)
-        if key == 'mission':
+        if key in ('mission', 'after_mission'):
             out[key] = _mission_ref(r, n, kw, mission_ids)
-        elif key == 'state':
+        elif key in ('state', 'until_phase', 'after_state'):
             out[key] = r.choice(n, kw, STATES)
+        elif key == 'states':
+            out[key] = [r.choice(s, '%s[%d]' % (kw, i), STATES)
+                        for i, s in enumerate(r.sequence(n, kw))]
+        elif key in ('settle_ticks', 'grace_ticks'):
+            out[key] = r.number(n, kw, 0, max_ticks, integer=True)
         elif key in ('by_tick', 'at_tick'):
             out[key] = r.number(n, kw, 0, max_ticks, integer=True)
         else:

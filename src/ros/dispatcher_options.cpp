@@ -1,6 +1,8 @@
 #include "swarm_transport/ros/dispatcher_options.h"
 
 #include <cmath>
+#include <limits>
+#include <set>
 #include <sstream>
 
 namespace swarm_transport {
@@ -38,9 +40,11 @@ bool AsNumbers(XmlRpcValue& v, int n, std::vector<double>* out) {
 }
 
 // Reads one missions-file entry; `error` says which key is wrong.
-bool MissionFromXmlRpc(XmlRpcValue& e, core::MissionSpec* spec, std::string* error) {
-  static const std::set<std::string> kKeys = {"id",      "robots_from", "robots_to", "robot_ids",
-                                              "leaders", "object",      "target",    "mode"};
+bool MissionFromXmlRpc(XmlRpcValue& e, core::MissionSpec* spec, std::uint64_t* at_tick,
+                       std::string* error) {
+  static const std::set<std::string> kKeys = {"id",     "robots_from", "robots_to",
+                                              "robot_ids", "leaders", "object",
+                                              "target", "mode",        "at_tick"};
   if (e.getType() != XmlRpcValue::TypeStruct) {
     *error = "must be a dictionary";
     return false;
@@ -48,7 +52,8 @@ bool MissionFromXmlRpc(XmlRpcValue& e, core::MissionSpec* spec, std::string* err
   for (auto& kv : e) {
     if (kKeys.count(kv.first) == 0) {
       *error = "unknown key '" + kv.first +
-               "' (known: id, robots_from, robots_to, robot_ids, leaders, object, target, mode)";
+               "' (known: id, robots_from, robots_to, robot_ids, leaders, object, target, mode, "
+               "at_tick)";
       return false;
     }
   }
@@ -125,6 +130,14 @@ bool MissionFromXmlRpc(XmlRpcValue& e, core::MissionSpec* spec, std::string* err
     }
     m.transport_mode = static_cast<std::uint8_t>(value);
   }
+  *at_tick = 0;
+  if (e.hasMember("at_tick")) {
+    if (!AsInt(e["at_tick"], 0, std::numeric_limits<int>::max(), &value)) {
+      *error = "'at_tick' must be an integer >= 0 (0: ~start_delay_s)";
+      return false;
+    }
+    *at_tick = static_cast<std::uint64_t>(value);
+  }
   *spec = m;
   return true;
 }
@@ -146,7 +159,7 @@ std::string DispatcherOptions::Validate() const {
 }
 
 bool MissionsFromXmlRpc(XmlRpcValue& file, std::vector<core::MissionSpec>* missions,
-                        std::string* error) {
+                        std::string* error, std::vector<std::uint64_t>* at_ticks) {
   if (file.getType() != XmlRpcValue::TypeStruct || !file.hasMember("missions") ||
       file["missions"].getType() != XmlRpcValue::TypeArray) {
     *error = "the file must hold a list under the key 'missions'";
@@ -154,28 +167,34 @@ bool MissionsFromXmlRpc(XmlRpcValue& file, std::vector<core::MissionSpec>* missi
   }
   XmlRpcValue& list = file["missions"];
   std::vector<core::MissionSpec> out;
+  std::vector<std::uint64_t> ticks;
   for (int i = 0; i < list.size(); ++i) {
     core::MissionSpec spec;
+    std::uint64_t at_tick = 0;
     std::string why;
-    if (!MissionFromXmlRpc(list[i], &spec, &why)) {
+    if (!MissionFromXmlRpc(list[i], &spec, &at_tick, &why)) {
       *error = "missions[" + std::to_string(i) + "]: " + why;
       return false;
     }
     out.push_back(spec);
+    ticks.push_back(at_tick);
   }
   *missions = out;
+  if (at_ticks != nullptr) *at_ticks = ticks;
   return true;
 }
 
 bool ReadMissionsFile(const std::string& path, double world_size_m,
-                      std::vector<core::MissionSpec>* missions, std::string* error) {
+                      std::vector<core::MissionSpec>* missions, std::string* error,
+                      std::vector<std::uint64_t>* at_ticks) {
   XmlRpcValue file;
   if (!XmlRpcFromYamlFile(path, &file, error)) {
     *error = "~missions_file: " + *error;  // the reader names the path
     return false;
   }
   std::vector<core::MissionSpec> read;
-  if (!MissionsFromXmlRpc(file, &read, error)) {
+  std::vector<std::uint64_t> ticks;
+  if (!MissionsFromXmlRpc(file, &read, error, &ticks)) {
     *error = "~missions_file " + path + ": " + *error;
     return false;
   }
@@ -194,12 +213,14 @@ bool ReadMissionsFile(const std::string& path, double world_size_m,
     if (m.id != 0) context.live_missions.insert(m.id);
   }
   *missions = read;
+  if (at_ticks != nullptr) *at_ticks = ticks;
   return true;
 }
 
 bool ReadDispatcherOptions(const ros::NodeHandle& nh, const ros::NodeHandle& p,
                            SwarmConfig* config, DispatcherOptions* options,
-                           std::vector<core::MissionSpec>* file_missions, std::string* error) {
+                           std::vector<core::MissionSpec>* file_missions, std::string* error,
+                           std::vector<std::uint64_t>* file_ticks) {
   XmlRpcValue swarm;
   if (nh.getParam("/swarm", swarm) && !ConfigFromXmlRpc(swarm, config, error)) {
     *error = "/swarm: " + *error;
@@ -221,7 +242,7 @@ bool ReadDispatcherOptions(const ros::NodeHandle& nh, const ros::NodeHandle& p,
   file_missions->clear();
   if (options->missions_file.empty()) return true;
   return ReadMissionsFile(options->missions_file, config->flocking.world_size_m, file_missions,
-                          error);
+                          error, file_ticks);
 }
 
 core::MissionBookParams MissionBookParamsOf(const SwarmConfig& config,

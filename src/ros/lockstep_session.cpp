@@ -16,6 +16,9 @@
 namespace swarm_transport {
 namespace {
 
+// Relay sender of a scenario's timed events (sorted before the robots' "robot_NNNNN").
+constexpr char kEventsSender[] = "events";
+
 constexpr std::uint32_t kMissionQueue = 100;
 // Polling period of the lock-step waits (s): also bounds a robot-less tick to ~1 ms.
 constexpr double kPollS = 0.001;
@@ -81,6 +84,23 @@ void LockstepSession::Connect() {
              params_.swarm.unloaded_delay_s >= 0.0 ? "on its own" : "never (waits for you)");
   }
 }
+
+void LockstepSession::Inject(const Robot_Freeze& msg) {
+  relay_.Add(kEventsSender, msg);
+  freeze_pub_.publish(msg);
+}
+
+void LockstepSession::Inject(const Robot_Continue& msg) {
+  relay_.Add(kEventsSender, msg);
+  continue_pub_.publish(msg);
+}
+
+void LockstepSession::Inject(const Update_Object& msg) {
+  relay_.Add(kEventsSender, msg);
+  update_pub_.publish(msg);
+}
+
+void LockstepSession::Inject(const Mission_Event& msg) { relay_.Add(kEventsSender, msg); }
 
 void LockstepSession::Shutdown() {
   for (ros::Subscriber& sub : relay_subs_) sub.shutdown();

@@ -38,7 +38,8 @@ MissionDispatcher::MissionDispatcher(ros::NodeHandle nh, ros::NodeHandle private
     : nh_(nh), private_nh_(private_nh) {}
 
 bool MissionDispatcher::LoadOptions(std::string* error) {
-  if (!ReadDispatcherOptions(nh_, private_nh_, &config_, &options_, &file_missions_, error)) {
+  if (!ReadDispatcherOptions(nh_, private_nh_, &config_, &options_, &file_missions_, error,
+                             &file_ticks_)) {
     return false;
   }
   book_ = std::make_unique<core::MissionBook>(MissionBookParamsOf(config_, options_));
@@ -107,7 +108,7 @@ bool MissionDispatcher::Initialize() {
 }
 
 void MissionDispatcher::Shutdown() {
-  start_timer_.stop();
+  for (ros::Timer& timer : start_timers_) timer.stop();
   watchdog_timer_.stop();
   status_timer_.stop();
 }
@@ -175,31 +176,31 @@ core::MissionBook::Verdict MissionDispatcher::Submit(core::MissionSpec spec,
   return verdict;
 }
 
-void MissionDispatcher::SubmitFileMissions() {
-  for (const core::MissionSpec& spec : file_missions_) {
-    Submit(spec, "missions_file", true, true);
+void MissionDispatcher::SubmitFileMissions(std::uint64_t at_tick) {
+  for (std::size_t i = 0; i < file_missions_.size(); ++i) {
+    if (file_ticks_[i] == at_tick) Submit(file_missions_[i], "missions_file", true, true);
   }
-  file_missions_.clear();
 }
 
 void MissionDispatcher::ScheduleFileMissions(std::uint64_t tick) {
   // The tick of start_delay_s from the run's start, and never one that has begun.
   const auto delay_ticks = static_cast<std::uint64_t>(
       std::ceil(options_.start_delay_s / config_.tick_period_s - 1e-9));
-  const std::uint64_t start = std::max<std::uint64_t>(tick + 1, delay_ticks);
   Mission_Schedule schedule;
-  for (const core::MissionSpec& spec : file_missions_) {
-    const core::MissionBook::Verdict verdict = Submit(spec, "missions_file", true, true, start);
+  for (std::size_t i = 0; i < file_missions_.size(); ++i) {
+    // A mission's own at_tick, else start_delay_s; never a tick that has begun.
+    const std::uint64_t start =
+        std::max<std::uint64_t>(tick + 1, file_ticks_[i] > 0 ? file_ticks_[i] : delay_ticks);
+    const core::MissionBook::Verdict verdict =
+        Submit(file_missions_[i], "missions_file", true, true, start);
     if (!verdict.accepted) continue;
     schedule.mission_ids.push_back(verdict.id);
     schedule.start_ticks.push_back(start);
+    ROS_INFO("%s: file mission %u enters the run at tick %llu", kNode, verdict.id,
+             static_cast<unsigned long long>(start));
   }
   file_missions_.clear();
   schedule_pub_.publish(schedule);
-  if (!schedule.mission_ids.empty()) {
-    ROS_INFO("%s: %zu file mission(s) enter the run at tick %llu", kNode,
-             schedule.mission_ids.size(), static_cast<unsigned long long>(start));
-  }
 }
 
 void MissionDispatcher::OnPositions(const Robot_Positions::ConstPtr& msg) {
@@ -214,16 +215,22 @@ void MissionDispatcher::OnPositions(const Robot_Positions::ConstPtr& msg) {
   }
   if (file_missions_scheduled_ || file_missions_.empty()) return;
   file_missions_scheduled_ = true;
-  if (options_.start_delay_s > 0.0) {
+  // Each group of file missions after its at_tick's worth of time (0: start_delay_s).
+  for (const std::uint64_t at_tick : std::set<std::uint64_t>(file_ticks_.begin(),
+                                                             file_ticks_.end())) {
+    const double delay_s =
+        at_tick > 0 ? static_cast<double>(at_tick) * config_.tick_period_s : options_.start_delay_s;
+    if (delay_s <= 0.0) {
+      SubmitFileMissions(at_tick);
+      continue;
+    }
     // ros::Timer runs on ros::Time: simulated under /use_sim_time, like the robots' ticks.
-    start_timer_ = nh_.createTimer(ros::Duration(options_.start_delay_s),
-                                   &MissionDispatcher::OnStartTimer, this, true);
-  } else {
-    SubmitFileMissions();
+    start_timers_.push_back(nh_.createTimer(
+        ros::Duration(delay_s),
+        [this, at_tick](const ros::TimerEvent&) { SubmitFileMissions(at_tick); }, true));
   }
 }
 
-void MissionDispatcher::OnStartTimer(const ros::TimerEvent& /*event*/) { SubmitFileMissions(); }
 
 void MissionDispatcher::OnWatchdog(const ros::TimerEvent& /*event*/) {
   const double now_s = ros::Time::now().toSec();

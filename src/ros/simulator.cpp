@@ -66,6 +66,17 @@ bool Simulator::Initialize() {
                                  &params_.robots, world_.get(), &error);
     if (!ok && error.empty()) error = "the initial robots do not fit the arena";
   }
+  if (ok && !params_.events_file.empty()) {
+    std::vector<TimedEvent> events;
+    ok = ReadEventsFile(params_.events_file, &events, &error);
+    if (ok) {
+      ROS_INFO("simulator: %zu timed event(s) from %s", events.size(),
+               params_.events_file.c_str());
+      events_ = std::make_unique<EventSchedule>(std::move(events));
+    } else {
+      error = "~events_file: " + error;
+    }
+  }
   if (!ok) {
     ROS_FATAL("simulator: invalid parameters: %s", error.c_str());
     return false;
@@ -124,6 +135,8 @@ bool Simulator::Initialize() {
 }
 
 void Simulator::Connect() {
+  objects_pub_ = nh_.advertise<Mission_Objects>(
+      names::kObjects, lockstep_ ? kLockstepPositionsQueue : kPositionsQueue);
   // Latched: a late subscriber (a test after the last lock-step tick) still gets the state.
   positions_pub_ = nh_.advertise<Robot_Positions>(
       names::kPositions, lockstep_ ? kLockstepPositionsQueue : kPositionsQueue, true);
@@ -157,6 +170,13 @@ void Simulator::Connect() {
       nh_.subscribe(names::kObjectUpdate, kMissionQueue, &Simulator::OnObjectUpdate, this);
   object_delete_sub_ =
       nh_.subscribe(names::kObjectDelete, kMissionQueue, &Simulator::OnObjectDelete, this);
+  if (events_ && !lockstep_) {
+    // Real time: a timed event goes out as this node's message (robots take it as relayed).
+    event_freeze_pub_ = nh_.advertise<Robot_Freeze>(names::kFreeze, kMissionQueue);
+    event_continue_pub_ = nh_.advertise<Robot_Continue>(names::kContinue, kMissionQueue);
+    event_update_pub_ = nh_.advertise<Update_Object>(names::kObjectUpdate, kMissionQueue);
+    event_signal_pub_ = nh_.advertise<Mission_Event>(names::kMissionEvent, kMissionQueue);
+  }
   if (lockstep_) session_->Connect();
 }
 
@@ -218,6 +238,7 @@ void Simulator::RunRealtime() {
     SpinOnce();
     const ros::WallTime now = ros::WallTime::now();
     if (now >= next_radio) {
+      ApplyDueEvents();
       PublishRadio();
       ++tick_;
       next_radio += tick;
@@ -245,6 +266,7 @@ void Simulator::RunLockstep() {
   const std::uint64_t max_ticks = static_cast<std::uint64_t>(params_.lockstep_max_ticks);
   while (Running() && (max_ticks == 0 || tick_ < max_ticks)) {
     session_->BeginTick(tick_);
+    ApplyDueEvents();
     PublishClock();
     PublishRadio();
     PublishPoses();
@@ -348,6 +370,20 @@ void Simulator::PublishRadio() {
   all.sim_time = sim_time;
   all.robots = std::move(truth);
   positions_pub_.publish(all);
+  if (objects_pub_.getNumSubscribers() > 0) {
+    Mission_Objects objects;
+    objects.tick = tick_;
+    for (const auto& entry : missions_) {
+      const sim::LiveMission& m = entry.second;
+      if (m.object_size.x <= 0.0 && m.object_size.y <= 0.0) continue;  // leader-only
+      objects.mission_ids.push_back(entry.first);
+      objects.x.push_back(static_cast<float>(m.object_position.x));
+      objects.y.push_back(static_cast<float>(m.object_position.y));
+      objects.size_x.push_back(static_cast<float>(m.object_size.x));
+      objects.size_y.push_back(static_cast<float>(m.object_size.y));
+    }
+    objects_pub_.publish(objects);
+  }
 }
 
 void Simulator::PublishRobotList() {
@@ -425,6 +461,59 @@ void Simulator::OnCmdVel(std::uint16_t id, const geometry_msgs::Twist& msg) {
   }
   // Real time, or a robot outside the lock-step protocol: the command applies at once.
   if (finite) world_->SetCommand(id, ToVelocity(msg), nullptr);
+}
+
+void Simulator::ApplyDueEvents() {
+  if (!events_) return;
+  for (const TimedEvent& e : events_->Due(tick_)) {
+    switch (e.kind) {
+      case TimedEvent::Kind::kFreeze: {
+        Robot_Freeze msg;
+        msg.robot_index_from = e.from;
+        msg.robot_index_to = e.to;
+        if (session_) session_->Inject(msg); else event_freeze_pub_.publish(msg);
+        break;
+      }
+      case TimedEvent::Kind::kContinue: {
+        Robot_Continue msg;
+        msg.robot_index_from = e.from;
+        msg.robot_index_to = e.to;
+        if (session_) session_->Inject(msg); else event_continue_pub_.publish(msg);
+        break;
+      }
+      case TimedEvent::Kind::kObjectUpdate: {
+        Update_Object msg;
+        msg.mission_id = e.mission;
+        msg.object_position_x = static_cast<float>(e.x);
+        msg.object_position_y = static_cast<float>(e.y);
+        sim::UpdateMissionObject(e.mission, {e.x, e.y}, *world_, &missions_);
+        if (session_) session_->Inject(msg); else event_update_pub_.publish(msg);
+        break;
+      }
+      case TimedEvent::Kind::kSignal: {
+        Mission_Event msg;
+        msg.mission_id = e.mission;
+        msg.event = e.signal;
+        msg.not_before_tick = e.tick;
+        if (session_) session_->Inject(msg); else event_signal_pub_.publish(msg);
+        break;
+      }
+      case TimedEvent::Kind::kKill:
+        if (world_->Find(e.robot) == nullptr) {
+          ROS_WARN("simulator: timed kill of robot %u at tick %llu: no such robot", e.robot,
+                   static_cast<unsigned long long>(tick_));
+          break;
+        }
+        RemoveRobot(e.robot);
+        PublishRobotList();
+        ROS_INFO("simulator: killed robot %u (timed event, tick %llu)", e.robot,
+                 static_cast<unsigned long long>(tick_));
+        break;
+      case TimedEvent::Kind::kSpawn:
+        SpawnRobot(e.robot, {{e.x, e.y}, core::Angle(e.theta_deg)});
+        break;
+    }
+  }
 }
 
 std::string Simulator::SpawnRobot(std::uint16_t id, const core::Pose2& pose) {

@@ -64,6 +64,7 @@ bool ReadSimulatorParams(const ros::NodeHandle& nh, const ros::NodeHandle& p, bo
   if (params->placement == core::Placement::kFile) params->robots = -1;
   if (!ReadPrivate(p, "robots", &params->robots, error) ||
       !ReadPrivate(p, "placement_file", &params->placement_file, error) ||
+      !ReadPrivate(p, "events_file", &params->events_file, error) ||
       !ReadPrivate(p, "clock", &params->clock, error) ||
       !ReadPrivate(p, "lockstep_timeout_s", &params->lockstep_timeout_s, error) ||
       !ReadPrivate(p, "lockstep_max_ticks", &params->lockstep_max_ticks, error) ||

@@ -79,8 +79,8 @@ class Format(unittest.TestCase):
                           'min 3 > max 2')
 
 
-def log_of(positions, statuses=(), moves=(), metrics=None):
-    return checks.RunLog(positions, statuses, moves, metrics)
+def log_of(positions, statuses=(), objects=None, metrics=None):
+    return checks.RunLog(positions, statuses, objects, metrics)
 
 
 class Checks(unittest.TestCase):
@@ -115,19 +115,27 @@ class Checks(unittest.TestCase):
         self.assertIn('0.0200', measured)
         self.assertTrue(self.run_check('  - no_overlap: {tolerance_m: 0.03}\n', touching)[0])
 
-    def test_no_intrusion_follows_the_object_until_the_mission_ends(self):
-        # Robot 5 is not assigned; the object moves from (5, 5) to (6, 5) at tick 10.
-        statuses = [(7, 'QUEUED', 0), (7, 'DONE', 30)]
-        moves = [(10, 7, 6.0, 5.0)]
+    def test_no_intrusion_follows_the_object_while_it_is_live(self):
+        # Robot 5 is not assigned; the 1 x 1 object is at (5, 5) at tick 0, at (6, 5) at tick
+        # 20 and gone at tick 40.
+        objects = {0: {7: (5.0, 5.0, 1.0, 1.0)}, 20: {7: (6.0, 5.0, 1.0, 1.0)}, 40: {}}
         clear = log_of({0: {5: (5.6, 5.0, 0)}, 20: {5: (5.0, 5.0, 0)},
-                        40: {5: (6.0, 5.0, 0)}}, statuses, moves)
+                        40: {5: (6.0, 5.0, 0)}}, objects=objects)
         self.assertTrue(self.run_check('  - no_intrusion: {}\n', clear)[0])
-        inside = log_of({20: {5: (6.1, 5.0, 0)}}, statuses, moves)
+        inside = log_of({20: {5: (6.1, 5.0, 0)}}, objects=objects)
         ok, measured = self.run_check('  - no_intrusion: {tolerance_m: 0.1}\n', inside)
         self.assertFalse(ok)
         self.assertIn('robot 5', measured)
+        self.assertIn('tick 20', measured)
+        self.assertTrue(self.run_check('  - no_intrusion: {tolerance_m: 0.5}\n', inside)[0])
+        # Up to a phase only: from TRANSPORT on the object moves onto robots that flee it.
+        moving = log_of({20: {5: (6.1, 5.0, 0)}}, [(7, 'TRANSPORT', 15)], objects)
+        self.assertTrue(self.run_check('  - no_intrusion: {until_phase: TRANSPORT}\n',
+                                       moving)[0])
+        self.assertFalse(self.run_check('  - no_intrusion: {until_phase: DONE}\n', moving)[0])
+        # Its own robots may be inside.
         self.assertTrue(self.run_check('  - no_intrusion: {}\n',
-                                       log_of({20: {1: (6.0, 5.0, 0)}}, statuses, moves))[0])
+                                       log_of({20: {1: (6.0, 5.0, 0)}}, objects=objects))[0])
 
     def test_swarm_count_and_metrics(self):
         pts = {50: {0: (1.0, 1.0, 0), 1: (1.9, 1.0, 0), 2: (5.0, 5.0, 0)}}
@@ -144,6 +152,46 @@ class Checks(unittest.TestCase):
                                         log_of({}, metrics=metrics))[0])
         self.assertFalse(self.run_check('  - transport_ticks: {mission: 7}\n',
                                         log_of({}, metrics={7: {'transport_ticks': ''}}))[0])
+
+    def test_phases_gathered_and_still_while_frozen(self):
+        statuses = [(7, 'QUEUED', 0), (7, 'GATHERING', 0), (7, 'LOADING', 10),
+                    (7, 'TRANSPORT', 20), (7, 'DONE', 30)]
+        objects = {10: {7: (5.0, 5.0, 1.0, 1.0)}}
+        inside = {0: (4.8, 5.0, 0), 1: (5.2, 5.1, 0), 2: (5.0, 4.6, 0), 3: (5.0, 5.4, 0)}
+        moved = {**inside, 2: (5.0, 4.7, 0)}
+        log = log_of({10: inside, 13: inside, 20: inside}, statuses, objects)
+        self.assertTrue(self.run_check(
+            '  - phases: {mission: 7, states: [QUEUED, GATHERING, LOADING, TRANSPORT, DONE]}\n',
+            log)[0])
+        ok, measured = self.run_check('  - phases: {mission: 7, states: [QUEUED, DONE]}\n', log)
+        self.assertFalse(ok)
+        self.assertIn('GATHERING', measured)
+        self.assertTrue(self.run_check('  - gathered: {mission: 7}\n', log)[0])
+        out = log_of({10: {**inside, 3: (5.0, 5.7, 0)}}, statuses, objects)
+        ok, measured = self.run_check('  - gathered: {mission: 7, tolerance_m: 0.1}\n', out)
+        self.assertFalse(ok)
+        self.assertIn('robot 3', measured)
+        self.assertTrue(self.run_check('  - still_while_frozen: {mission: 7}\n', log)[0])
+        ok, measured = self.run_check('  - still_while_frozen: {mission: 7}\n',
+                                      log_of({13: inside, 20: moved}, statuses, objects))
+        self.assertFalse(ok)
+        self.assertIn('robot 2', measured)
+
+    def test_phase_order_and_released(self):
+        text = '  - phase_order: {mission: 7, state: DONE, after_mission: 7, after_state: QUEUED}\n'
+        log = log_of({}, [(7, 'QUEUED', 3), (7, 'DONE', 9)])
+        self.assertTrue(self.run_check(text, log)[0])
+        swapped = text.replace('DONE', 'X').replace('QUEUED', 'DONE').replace('X', 'QUEUED')
+        ok, measured = self.run_check(swapped, log)
+        self.assertFalse(ok)
+        self.assertIn('QUEUED at tick 3', measured)
+        free = checks.RunLog({}, [], robot_states={0: ([], [], False), 1: ([], [], False)})
+        self.assertTrue(self.run_check('  - released: {}\n', free)[0])
+        held = checks.RunLog({}, [], robot_states={0: ([], [], False), 1: ([7], [7], True)})
+        ok, measured = self.run_check('  - released: {}\n', held)
+        self.assertFalse(ok)
+        self.assertIn('(1, ([7], [7], True))', measured)
+        self.assertFalse(self.run_check('  - released: {}\n', log)[0])
 
     def test_reproducible_compares_every_tick_and_status(self):
         a = log_of({0: {0: (1.0, 1.0, 0)}, 1: {0: (1.1, 1.0, 0)}}, [(7, 'DONE', 1)])

@@ -69,4 +69,22 @@ TEST(MissionsFiles, AMalformedEntryIsNamed) {
 }
 
 }  // namespace
+TEST(MissionsFiles, AtTickIsReadPerMissionAndChecked) {
+  XmlRpc::XmlRpcValue file;
+  std::string error;
+  ASSERT_TRUE(XmlRpcFromYamlText(
+      "missions:\n"
+      "  - {id: 1, robot_ids: [0], leaders: 1, target: [2, 2], at_tick: 40}\n"
+      "  - {id: 2, robot_ids: [1], leaders: 1, target: [3, 3]}\n",
+      &file, &error))
+      << error;
+  std::vector<core::MissionSpec> missions;
+  std::vector<std::uint64_t> ticks;
+  ASSERT_TRUE(MissionsFromXmlRpc(file, &missions, &error, &ticks)) << error;
+  EXPECT_EQ(ticks, (std::vector<std::uint64_t>{40, 0}));
+  file["missions"][0]["at_tick"] = -1;
+  EXPECT_FALSE(MissionsFromXmlRpc(file, &missions, &error, &ticks));
+  EXPECT_NE(error.find("missions[0]: 'at_tick'"), std::string::npos) << error;
+}
+
 }  // namespace swarm_transport

@@ -32,21 +32,25 @@ struct DispatcherOptions {
 // Reads the `missions:` list of a missions file (already turned into XmlRpc) into specs. Each
 // entry: id (0 or missing = next free), robots_from + robots_to | robot_ids, leaders, object
 // [x, y, size_x, size_y] (missing = leader-only), target [x, y], mode (0 | 1 | swarm |
-// formation, default 0). False with `error` naming the entry and key on a malformed file.
+// formation, default 0), at_tick (lock-step: the tick the robots take it; real time: that many
+// ticks' worth of time after the first positions; 0 or missing: ~start_delay_s) into
+// `at_ticks` when given. False with `error` naming the entry and key on a malformed file.
 bool MissionsFromXmlRpc(XmlRpc::XmlRpcValue& file, std::vector<core::MissionSpec>* missions,
-                        std::string* error);
+                        std::string* error, std::vector<std::uint64_t>* at_ticks = nullptr);
 
 // Reads ~missions_file (a YAML path) into specs and checks what can be checked before any robot
 // is known: each mission valid in an arena of `world_size_m`, no id twice. False with `error`
 // starting "~missions_file" and naming the path and the entry.
 bool ReadMissionsFile(const std::string& path, double world_size_m,
-                      std::vector<core::MissionSpec>* missions, std::string* error);
+                      std::vector<core::MissionSpec>* missions, std::string* error,
+                      std::vector<std::uint64_t>* at_ticks = nullptr);
 
 // Reads /swarm through `nh` into `config` and the private parameters through `private_nh` into
 // `options` (the delays default to /swarm's), then validates them and reads the missions file.
 bool ReadDispatcherOptions(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
                            SwarmConfig* config, DispatcherOptions* options,
-                           std::vector<core::MissionSpec>* file_missions, std::string* error);
+                           std::vector<core::MissionSpec>* file_missions, std::string* error,
+                           std::vector<std::uint64_t>* file_ticks = nullptr);
 
 // The mission book the options describe.
 core::MissionBookParams MissionBookParamsOf(const SwarmConfig& config,

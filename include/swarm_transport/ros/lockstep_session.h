@@ -55,6 +55,12 @@ class LockstepSession {
   // observers' topics.
   void Connect();
   void Shutdown();
+  // A scenario's timed event (the simulator's own message): relayed to every robot in this
+  // tick's round and published for observers.
+  void Inject(const Robot_Freeze& msg);
+  void Inject(const Robot_Continue& msg);
+  void Inject(const Update_Object& msg);
+  void Inject(const Mission_Event& msg);
   void AddRobot(std::uint16_t id) { barrier_.Add(id); }
   void RemoveRobot(std::uint16_t id) { barrier_.Remove(id); }
   bool Live(std::uint16_t id) const { return barrier_.Live(id); }

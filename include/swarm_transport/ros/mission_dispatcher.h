@@ -53,7 +53,8 @@ class MissionDispatcher {
   // then; 0: when it arrives).
   core::MissionBook::Verdict Submit(core::MissionSpec spec, const std::string& source,
                                     bool auto_id, bool publish, std::uint64_t start_tick = 0);
-  void SubmitFileMissions();
+  // Real time: submits the file missions of this at_tick (0: those of start_delay_s).
+  void SubmitFileMissions(std::uint64_t at_tick);
   // Lock-step: submits the file missions stamped with their start tick (after the first
   // positions, of tick `tick`) and publishes the schedule the simulator holds its ticks for.
   void ScheduleFileMissions(std::uint64_t tick);
@@ -75,7 +76,6 @@ class MissionDispatcher {
   void OnProgress(const ros::MessageEvent<Mission_Status const>& event);
   // core::MayReport for a status or progress of `mission_id` (a throttled warning when not).
   bool MayReport(const char* kind, std::uint16_t mission_id, const std::string& publisher);
-  void OnStartTimer(const ros::TimerEvent& event);
   // Ends the missions whose first leader fell silent: ABORTED with the reason, Delete_Object.
   void OnWatchdog(const ros::TimerEvent& event);
   bool OnSubmit(Submit_Mission::Request& req, Submit_Mission::Response& res);
@@ -87,6 +87,7 @@ class MissionDispatcher {
   SwarmConfig config_;
   DispatcherOptions options_;
   std::vector<core::MissionSpec> file_missions_;
+  std::vector<std::uint64_t> file_ticks_;  // each file mission's at_tick (0: start_delay_s)
   bool file_missions_scheduled_ = false;
   bool lockstep_ = false;  // /use_sim_time: the simulator's lock-step clock
 
@@ -101,7 +102,7 @@ class MissionDispatcher {
   ros::ServiceServer submit_srv_;
   ros::ServiceServer signal_srv_;
   ros::ServiceServer status_srv_;
-  ros::Timer start_timer_;
+  std::vector<ros::Timer> start_timers_;
   ros::Timer watchdog_timer_;
   // Missions the watchdog found silent, since when (wall time): ended after a grace period.
   std::map<std::uint16_t, ros::WallTime> silent_since_;

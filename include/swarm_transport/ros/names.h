@@ -26,6 +26,7 @@ constexpr char kRobotNew[] = "/flock/robot/new";
 constexpr char kRobotDelete[] = "/flock/robot/delete";
 constexpr char kMarkers[] = "/flock/markers";
 constexpr char kStats[] = "/flock/stats";  // the recorder's Swarm_Stats
+constexpr char kObjects[] = "/flock/objects";  // Mission_Objects, per tick, on demand
 
 // Per robot, relative to the robot's namespace.
 constexpr char kCmdVel[] = "cmd_vel";

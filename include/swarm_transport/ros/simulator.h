@@ -20,6 +20,7 @@
 #include "swarm_transport/Delete_Robot.h"
 #include "swarm_transport/Kill.h"
 #include "swarm_transport/New_Robot.h"
+#include "swarm_transport/Mission_Objects.h"
 #include "swarm_transport/Mission_Status.h"
 #include "swarm_transport/Neighbors.h"
 #include "swarm_transport/New_Mission.h"
@@ -33,6 +34,7 @@
 #include "swarm_transport/core/random.h"
 #include "swarm_transport/ros/diagnostics.h"
 #include "swarm_transport/ros/direct_link.h"
+#include "swarm_transport/ros/event_schedule.h"
 #include "swarm_transport/ros/lockstep_session.h"
 #include "swarm_transport/ros/mission_relay.h"
 #include "swarm_transport/ros/robot_links.h"
@@ -135,6 +137,8 @@ class Simulator : public RobotOutlet {
   void OnRobotDelete(const Delete_Robot::ConstPtr& msg);
   // Spawns robot `id` at `pose` with its links; empty when done, else why not.
   std::string SpawnRobot(std::uint16_t id, const core::Pose2& pose);
+  // The scenario's timed events due at this tick (~events_file).
+  void ApplyDueEvents();
   void OnMissionNew(const ros::MessageEvent<New_Mission const>& event);
   // Validated like the robots do: a valid order gets its mission channel and markers.
   void RegisterMission(const New_Mission& order);
@@ -164,8 +168,14 @@ class Simulator : public RobotOutlet {
   sim::LiveMissions missions_;
 
   ros::Publisher positions_pub_;
+  ros::Publisher objects_pub_;  // Mission_Objects with every positions message, on demand
   ros::Publisher robots_pub_;
   std::unique_ptr<LockstepSession> session_;  // lock-step only
+  std::unique_ptr<EventSchedule> events_;     // with ~events_file only
+  ros::Publisher event_freeze_pub_;           // real time: the timed events' messages
+  ros::Publisher event_continue_pub_;
+  ros::Publisher event_update_pub_;
+  ros::Publisher event_signal_pub_;
   ros::Publisher clock_pub_;
   std::unique_ptr<sim::Visuals> visuals_;
   std::unique_ptr<NodeDiagnostics> diagnostics_;

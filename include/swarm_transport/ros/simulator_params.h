@@ -22,6 +22,8 @@ struct SimulatorParams {
   int robots = 0;                    // ~robots: initial robots, ids 0..robots-1
   core::Placement placement = core::Placement::kRandom;  // ~placement: random | corner | file
   std::string placement_file;        // ~placement_file: lines "x y theta_deg"
+  // ~events_file: timed events of a scenario (event_schedule.h), applied at their ticks.
+  std::string events_file;
   core::Clock clock = core::Clock::kRealtime;  // ~clock: realtime | lockstep
   double lockstep_timeout_s = 2.0;   // ~lockstep_timeout_s: wait this long for a tick's answers
   int lockstep_max_ticks = 0;        // ~lockstep_max_ticks: stop ticking after this many (0: never)

@@ -1,0 +1,51 @@
+// Timed events of a scenario (the simulator's ~events_file, issue 14): freeze / continue a
+// range, kill / spawn a robot, move a mission's object, LOADED / UNLOADED - each at a stated
+// tick, so that a lock-step run with events is the same on every machine.
+#ifndef SWARM_TRANSPORT_ROS_EVENT_SCHEDULE_H_
+#define SWARM_TRANSPORT_ROS_EVENT_SCHEDULE_H_
+
+#include <xmlrpcpp/XmlRpcValue.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace swarm_transport {
+
+struct TimedEvent {
+  enum class Kind : std::uint8_t { kFreeze, kContinue, kKill, kSpawn, kObjectUpdate, kSignal };
+  std::uint64_t tick = 0;
+  Kind kind = Kind::kFreeze;
+  std::uint16_t from = 0;     // freeze / continue: robots [from, to)
+  std::uint16_t to = 0;
+  std::uint16_t robot = 0;    // kill / spawn
+  std::uint16_t mission = 0;  // object_update / signal
+  double x = 0.0;             // spawn / object_update (m)
+  double y = 0.0;
+  double theta_deg = 0.0;     // spawn
+  std::uint8_t signal = 0;    // Mission_Event::LOADED / UNLOADED
+};
+
+// Reads `events:` - a list of {tick, kind: freeze | continue | kill | spawn | object_update |
+// signal, and the kind's fields: from, to | robot | robot, x, y, theta_deg | mission, x, y |
+// mission, event: LOADED | UNLOADED}. False with `error` naming the entry and the key.
+bool EventsFromXmlRpc(XmlRpc::XmlRpcValue& file, std::vector<TimedEvent>* events,
+                      std::string* error);
+bool ReadEventsFile(const std::string& path, std::vector<TimedEvent>* events, std::string* error);
+
+// The events not yet due, by tick (file order within a tick).
+class EventSchedule {
+ public:
+  explicit EventSchedule(std::vector<TimedEvent> events);
+  // Removes and returns the events due at or before `tick`.
+  std::vector<TimedEvent> Due(std::uint64_t tick);
+  bool empty() const { return next_ == events_.size(); }
+
+ private:
+  std::vector<TimedEvent> events_;  // stably sorted by tick
+  std::size_t next_ = 0;
+};
+
+}  // namespace swarm_transport
+
+#endif  // SWARM_TRANSPORT_ROS_EVENT_SCHEDULE_H_
