@@ -75,6 +75,8 @@ def check(e, log, scenario, second=None):
         return not held, ('every robot of %d holds no mission, no zone and is not frozen'
                           % len(log.robot_states) if not held else
                           'robot(s) still holding: %s' % sorted(held.items())[:5])
+    if kind == 'object_clear_of_zones':
+        return _object_clear(e, log, scenario)
     if kind == 'gathered':
         return _gathered(e, log, scenario)
     if kind == 'still_while_frozen':
@@ -199,3 +201,36 @@ def _still(e, log, scenario):
                 worst, where = d, ' (robot %d)' % rid
     return worst <= e['tolerance_m'], 'moved at most %.4f m between ticks %d and %d%s' % (
         worst, loading + e['settle_ticks'], transport, where)
+
+
+def _overlap_depth(obj, zone):
+    """How deep the rectangle obj = (x, y, size_x, size_y) overlaps a zone of the world's
+    danger_zones (rect or circle, as in config/obstacles.yaml); 0 when apart."""
+    x, y, sx, sy = obj
+    if zone.get('shape') == 'rect':
+        dx = (sx + zone['size_x']) / 2.0 - abs(x - zone['x'])
+        dy = (sy + zone['size_y']) / 2.0 - abs(y - zone['y'])
+        return max(0.0, min(dx, dy))
+    if zone.get('shape') == 'circle':
+        nx = min(max(zone['x'], x - sx / 2.0), x + sx / 2.0)
+        ny = min(max(zone['y'], y - sy / 2.0), y + sy / 2.0)
+        return max(0.0, zone['radius'] - math.hypot(zone['x'] - nx, zone['y'] - ny))
+    raise ValueError('object_clear_of_zones knows rect and circle zones, not %r' % zone)
+
+
+def _object_clear(e, log, scenario):
+    """The mission's object (as the simulator tracks it) never overlapped a static danger zone
+    of the world by more than tolerance_m (paths around danger, SPEC 9.8)."""
+    zones = scenario['world']['danger_zones'] or []
+    worst, where = 0.0, ''
+    for tick, objects in log.objects.items():
+        obj = objects.get(e['mission'])
+        if obj is None:
+            continue
+        for k, zone in enumerate(zones):
+            d = _overlap_depth(obj, zone)
+            if d > worst:
+                worst, where = d, ' (danger_zones[%d], tick %d)' % (k, tick)
+    listed = sum(1 for objects in log.objects.values() if e['mission'] in objects)
+    return worst <= e['tolerance_m'] and listed > 0, 'deepest overlap %.4f m%s over %d ticks' % (
+        worst, where, listed)

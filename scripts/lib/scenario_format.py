@@ -32,6 +32,7 @@ EXPECTATIONS = {
     'still_while_frozen': ({'mission'}, {'settle_ticks': 3, 'tolerance_m': 0.001}),
     'phase_order': ({'mission', 'state', 'after_mission', 'after_state'}, {}),
     'released': (set(), {}),
+    'object_clear_of_zones': ({'mission'}, {'tolerance_m': 0.0}),
 }
 TOP_KEYS = {'name', 'description', 'world', 'max_ticks', 'missions', 'events', 'expect'}
 WORLD_KEYS = {'robots', 'seed', 'placement', 'placement_file', 'config', 'base_config',

@@ -124,9 +124,25 @@ std::uint64_t SignalTick(std::uint64_t phase_tick, double delay_s, double tick_p
   return phase_tick + static_cast<std::uint64_t>(std::ceil(delay_s / tick_period_s - 1e-9));
 }
 
+std::optional<std::vector<Vec2>> ObjectRoute(const MissionSpec& mission,
+                                             const std::vector<Zone>& zones,
+                                             double world_size_m) {
+  if (zones.empty() || mission.LeaderOnly()) return std::vector<Vec2>{mission.target};
+  PathParams p;
+  p.world_size_m = world_size_m;
+  p.clearance_m =
+      0.5 * std::hypot(mission.object_size.x, mission.object_size.y) + kRouteClearanceM;
+  return PlanPath(mission.object_centre, mission.target, zones, p);
+}
+
 std::string AdmitMission(const MissionSpec& mission, const MissionContext& context) {
   std::string reason = ValidateMission(mission, context);
   if (!reason.empty()) return reason;
+  if (!context.static_zones.empty() && !mission.LeaderOnly() &&
+      !ObjectRoute(mission, context.static_zones, context.world_size_m)) {
+    return "no route for the object around the danger zones (SPEC 9.8): the target is "
+           "walled off or the object does not fit through";
+  }
   const std::size_t live = context.live_missions.size();
   if (context.max_live_missions > 0 &&
       live >= static_cast<std::size_t>(context.max_live_missions)) {

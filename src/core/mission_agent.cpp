@@ -1,6 +1,7 @@
 #include "swarm_transport/core/mission_agent.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 namespace swarm_transport {
@@ -18,6 +19,10 @@ bool MissionAgent::OnNewMission(const MissionSpec& mission, std::string* why) {
   live.spec = mission;
   live.centre = mission.object_centre;
   live.centre_tick = tick_;
+  if (!mission.LeaderOnly()) {
+    live.route = ObjectRoute(mission, params_.static_zones, params_.world_size_m)
+                     .value_or(std::vector<Vec2>{mission.target});
+  }
   live_.emplace(mission.id, live);
   if (mission.Assigns(self_id_)) queue_.push_back(mission.id);
   return true;
@@ -429,7 +434,13 @@ MissionPlan MissionAgent::Tick(const Pose2& self, const std::vector<Neighbour>& 
       carry.leader = std::find(leaders.begin(), leaders.end(), self_id_) != leaders.end();
       carry.centre = live.centre;
       carry.object = spec.ObjectAt(live.centre);
-      carry.target = spec.target;
+      // Along its route around the static danger zones: the next waypoint, passed within reach
+      // (the target itself ends the transport as before).
+      while (live.leg + 1 < live.route.size() &&
+             Distance(live.centre, live.route[live.leg]) <= params_.waypoint_reach_m) {
+        ++live.leg;
+      }
+      carry.target = live.route.empty() ? spec.target : live.route[live.leg];
       carry.goal_tolerance_m = params_.goal_tolerance_m;
       carry.formation_offset = live.place;
       carry.leaders = leaders;

@@ -64,6 +64,7 @@ MissionContext MissionBook::Context(const std::set<std::uint16_t>& known_robots,
   MissionContext c;
   c.world_size_m = params_.world_size_m;
   c.known_robots = known_robots;
+  c.static_zones = params_.static_zones;
   for (const auto& kv : entries_) {
     if (kv.second.Live() && kv.first != ignore_id) c.live_missions.insert(kv.first);
   }

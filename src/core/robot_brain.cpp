@@ -16,6 +16,7 @@ MissionAgentParams MissionParams(const SwarmConfig& p) {
   m.local_range_m = p.flocking.local_range_m;
   m.world_size_m = p.flocking.world_size_m;
   m.speed_m_per_tick = p.flocking.speed_m_per_tick;
+  m.static_zones = p.danger_zones;
   m.lost_after_ticks = static_cast<std::uint64_t>(
       std::max(1.0, std::ceil(p.lost_after_s / p.tick_period_s - 1e-9)));
   return m;
@@ -51,6 +52,7 @@ std::string RobotBrain::OnNewMission(const MissionSpec& mission,
   context.world_size_m = params_.flocking.world_size_m;
   context.known_robots = known_robots;
   context.live_missions = agent_.LiveIds();
+  context.static_zones = params_.danger_zones;
   // Admitted by the dispatcher already, or admitted here with the dispatcher's own decision.
   if (params_.admission == Admission::kRobots) context.max_live_missions = params_.max_live_missions;
   std::string why = AdmitMission(mission, context);

@@ -349,6 +349,7 @@ bool Run::SetUp(const XmlRpc::XmlRpcValue& base_config, std::string* error) {
     book.tick_period_s = config_.tick_period_s;
     book.loaded_delay_s = config_.loaded_delay_s;
     book.unloaded_delay_s = config_.unloaded_delay_s;
+    book.static_zones = config_.danger_zones;
     book_ = std::make_unique<core::MissionBook>(book);
     const core::MissionBook::Verdict verdict =
         book_->Submit(ToMissionSpec(job_.mission), "service", true, false, known_robots_, 0.0);

@@ -249,6 +249,7 @@ core::MissionBookParams MissionBookParamsOf(const SwarmConfig& config,
                                             const DispatcherOptions& options) {
   core::MissionBookParams book;
   book.world_size_m = config.flocking.world_size_m;
+  book.static_zones = config.danger_zones;
   book.tick_period_s = config.tick_period_s;
   book.loaded_delay_s = options.loaded_delay_s;
   book.unloaded_delay_s = options.unloaded_delay_s;

@@ -193,6 +193,25 @@ class Checks(unittest.TestCase):
         self.assertIn('(1, ([7], [7], True))', measured)
         self.assertFalse(self.run_check('  - released: {}\n', log)[0])
 
+    def test_object_clear_of_zones(self):
+        s = fmt.parse(MINIMAL.replace('  robots: 6', '  robots: 6\n  danger_zones:\n'
+                                      '    - {shape: rect, x: 5.0, y: 3.0, size_x: 1.0, '
+                                      'size_y: 1.0}\n    - {shape: circle, x: 8.0, y: 8.0, '
+                                      'radius: 0.5}') + '  - object_clear_of_zones: '
+                      '{mission: 7}\n', 'z.yaml')
+        e = s['expect'][-1]
+        clear = log_of({}, objects={1: {7: (5.0, 4.6, 1.0, 1.0)}, 2: {7: (7.0, 8.0, 1.0, 1.0)}})
+        self.assertTrue(checks.check(e, clear, s)[0])
+        rect = log_of({}, objects={1: {7: (5.0, 3.9, 1.0, 1.0)}})
+        ok, measured = checks.check(e, rect, s)
+        self.assertFalse(ok)
+        self.assertIn('0.1000 m (danger_zones[0], tick 1)', measured)
+        circle = log_of({}, objects={3: {7: (7.2, 8.0, 1.0, 1.0)}})
+        ok, measured = checks.check(e, circle, s)
+        self.assertFalse(ok)
+        self.assertIn('danger_zones[1], tick 3', measured)
+        self.assertFalse(checks.check(e, log_of({}, objects={}), s)[0])  # never listed
+
     def test_reproducible_compares_every_tick_and_status(self):
         a = log_of({0: {0: (1.0, 1.0, 0)}, 1: {0: (1.1, 1.0, 0)}}, [(7, 'DONE', 1)])
         b = log_of({0: {0: (1.0, 1.0, 0)}, 1: {0: (1.1, 1.0, 0)}}, [(7, 'DONE', 1)])

@@ -3,11 +3,13 @@
 #define SWARM_TRANSPORT_CORE_MISSION_H_
 
 #include <cstdint>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "swarm_transport/core/geometry.h"
+#include "swarm_transport/core/path_planner.h"
 
 namespace swarm_transport {
 namespace core {
@@ -67,6 +69,8 @@ struct MissionContext {
   std::set<std::uint16_t> live_missions;
   // AdmitMission: at most this many live missions (0: no limit).
   int max_live_missions = 0;
+  // The static danger zones: a transport must have a route around them (ObjectRoute).
+  std::vector<Zone> static_zones;
 };
 
 // Empty when the mission is acceptable, else the reason (one sentence) [SPEC 10]: non-finite
@@ -80,6 +84,16 @@ std::string ValidateMission(const MissionSpec& mission, const MissionContext& co
 // dispatcher decides with it; with no dispatcher (Admission::kRobots) every robot decides with
 // it on its own table, so that robots and dispatcher cannot disagree.
 std::string AdmitMission(const MissionSpec& mission, const MissionContext& context);
+
+// Paths around danger (SPEC 9.8): the route of a transport mission's object around the static
+// danger zones - waypoints with the target last, just the target when the straight line is
+// clear - keeping the object's half diagonal plus kRouteClearanceM from every zone;
+// std::nullopt when there is none (the order is refused). Every robot computes the same route
+// from the same order and configuration.
+constexpr double kRouteClearanceM = 0.1;
+std::optional<std::vector<Vec2>> ObjectRoute(const MissionSpec& mission,
+                                             const std::vector<Zone>& zones,
+                                             double world_size_m);
 
 // Who admits orders (/swarm/mission_admission): the dispatcher (robots act only on the orders it
 // publishes; a hand-made New_Mission reaches them after it admitted it), or, with no dispatcher

@@ -42,6 +42,11 @@ struct MissionAgentParams {
   // member counts where it was last heard; in transport the object is re-anchored when one is
   // lost, so that it does not jump. Robots take it from /swarm/lost_after_s.
   std::uint64_t lost_after_ticks = 20;
+  // Paths around danger (SPEC 9.8): the static danger zones, and how far a transport's object
+  // centre keeps from them (half its diagonal plus route_clearance_m). The leaders steer for
+  // each waypoint in turn and pass it within waypoint_reach_m.
+  std::vector<Zone> static_zones;
+  double waypoint_reach_m = 0.3;
 };
 
 // How far an object may move in `ticks` ticks when its robots drive at most `speed_m_per_tick`:
@@ -167,6 +172,8 @@ class MissionAgent {
     std::uint64_t first_since = 0;  // tick it became first leader by promotion (0: none)
     bool promoted = false;     // it leads as first leader because the first leader was lost
     bool announced = false;    // ... and said so
+    std::vector<Vec2> route;   // transport: the object's waypoints, the target last
+    std::size_t leg = 0;       // ... the one it heads for now
   };
   // Of a live mission, with its lost robots: the robots left (ascending), its leaders now (the
   // first leader_number of them) and its first leader now (the lowest; 0 when none is left).

@@ -31,6 +31,7 @@ struct MissionBookParams {
   // A running mission (GATHERING .. UNLOADING) whose first leader said nothing (no phase, no
   // progress report) for this long is silent: its first leader is lost (< 0: never).
   double silent_after_s = -1.0;
+  std::vector<Zone> static_zones;  // a transport must have a route around them (SPEC 9.8)
 };
 
 // A LOADED / UNLOADED the dispatcher must send now, taking effect at `not_before_tick`.
