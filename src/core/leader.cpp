@@ -31,6 +31,9 @@ std::string LeaderParams::Validate() const {
   if (!(wait_fraction > 0.0 && wait_fraction <= 1.0)) {
     return Problem("wait_fraction", "in (0, 1]", wait_fraction);
   }
+  if (virtual_copies < 1 || virtual_copies > 255) {
+    return Problem("leader_virtual_copies", "in [1, 255]", virtual_copies);
+  }
   if (swerve_after_blocked_ticks < 0) {
     return Problem("leader_swerve_after_blocked_ticks", ">= 0", swerve_after_blocked_ticks);
   }

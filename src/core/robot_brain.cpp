@@ -134,6 +134,30 @@ BrainTick RobotBrain::Tick(Perception in, std::uint64_t tick, bool publish) {
       agent_.LeaderArrived(*plan.active, &out.outbox);
       out.arrived = true;
     }
+  } else if (params_.leader.virtual_copies > 1 && !agent_.LeadingAlone().empty()) {
+    // Virtual leaders (SPEC 9.2): a leading robot heard weighs virtual_copies times in the
+    // alignment; collisions see only the robots.
+    const std::vector<std::uint16_t> leaders = agent_.LeadingAlone();
+    Perception weighted = in;
+    for (const Neighbour& n : in.others) {
+      if (n.type != 0 || n.sub_id != 0 ||
+          !std::binary_search(leaders.begin(), leaders.end(), n.id)) {
+        continue;
+      }
+      for (int k = 1; k < params_.leader.virtual_copies; ++k) {
+        Neighbour copy = n;
+        copy.type = 1;
+        copy.sub_id = static_cast<std::uint8_t>(k);
+        weighted.others.push_back(copy);
+      }
+    }
+    bool fleeing = false;
+    int neighbourhood_size = 0;
+    const Angle desired = DesiredHeading(weighted, params_.flocking, rng_, &fleeing,
+                                         &neighbourhood_size);
+    out.move = AvoidCollisions(in, params_.flocking, desired, dt);
+    out.move.fleeing = fleeing;
+    out.move.neighbours_in_range = neighbourhood_size;
   } else {
     out.move = FlockingStep(in, params_.flocking, rng_, dt);
   }

@@ -162,6 +162,7 @@ bool ConfigFromXmlRpc(XmlRpc::XmlRpcValue& dict, SwarmConfig* config, std::strin
             ReadBool(dict, "leader_wait_behind", &c.leader.wait_behind, error) &&
             ReadInt(dict, "leader_swerve_after_blocked_ticks",
                     &c.leader.swerve_after_blocked_ticks, error) &&
+            ReadInt(dict, "leader_virtual_copies", &c.leader.virtual_copies, error) &&
             ReadDouble(dict, "tick_period_s", &c.tick_period_s, error) &&
             ReadInt(dict, "seed", &seed, error) &&
             ReadDouble(dict, "loaded_delay_s", &c.loaded_delay_s, error) &&

@@ -198,6 +198,41 @@ TEST(RobotBrainTest, AdmittingItselfARobotHoldsTheDispatchersLimit) {
   EXPECT_NE(self.missions().Find(2), nullptr);
 }
 
+TEST(RobotBrainTest, VirtualLeaderCopiesWeighInAlignmentOnly) {
+  // Robot 4 hears robot 9 (heading 0, the leader of a leader-only mission under way) and two
+  // robots heading 90. No free will, no cohesion: the desired heading is the alignment mean.
+  SwarmConfig p = Params();
+  p.flocking.free_will_deg = 0.0;
+  p.flocking.cohesion = 0.0;
+  p.flocking.neighbourhood = Neighbourhood::kDisc;
+  MissionSpec trip;
+  trip.id = 3;
+  trip.range_from = 9;
+  trip.range_to = 10;
+  trip.leader_number = 1;
+  trip.target = {9.0, 9.0};
+  trip.object_centre = trip.target;
+  const Perception in = Sees(5.0, 5.0, 90.0, {At(9, 5.5, 5.0, 0.0), At(1, 4.5, 5.0, 90.0),
+                                               At(2, 5.0, 5.5, 90.0)});
+  double desired[2];
+  for (const int k : {1, 4}) {
+    p.leader.virtual_copies = k;
+    RobotBrain brain(4, p);
+    ASSERT_EQ(brain.OnNewMission(trip, {}, nullptr), "");
+    brain.OnStatus(3, MissionPhase::kTransport);
+    const BrainTick t = brain.Tick(in, 1, true);
+    desired[k == 1 ? 0 : 1] = t.move.desired_heading.degrees();
+    EXPECT_EQ(t.move.neighbours_in_range, 4) << k;  // itself and 3: copies are nobody
+  }
+  // The mean of unit headings: itself, 1 and 2 at 90 and 9 at 0 -> atan2(3, 1) = 71.6 deg;
+  // with 3 copies of 9 -> atan2(3, 4) = 36.9 deg.
+  EXPECT_NEAR(desired[0], 71.565, 0.01);
+  EXPECT_NEAR(desired[1], 36.870, 0.01);
+  LeaderParams bad;
+  bad.virtual_copies = 0;
+  EXPECT_NE(bad.Validate(), "");
+}
+
 }  // namespace
 }  // namespace core
 }  // namespace swarm_transport

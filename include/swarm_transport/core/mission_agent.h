@@ -117,6 +117,9 @@ class MissionAgent {
   // Inbox. Each returns false with a reason when the message is rejected (state unchanged).
   // `mission` must already have passed ValidateMission with LiveIds() in its context.
   bool OnNewMission(const MissionSpec& mission, std::string* why);
+  // The leaders of the leader-only missions under way (in TRANSPORT as far as this robot knows),
+  // ascending: their neighbours stack them (SPEC 9.2).
+  std::vector<std::uint16_t> LeadingAlone() const;
   bool OnObjectUpdate(std::uint16_t mission_id, Vec2 centre, std::string* why);
   bool OnObjectDelete(std::uint16_t mission_id, std::string* why);
   // The first leader acts on it at tick `not_before_tick` at the earliest (0: at once).
