@@ -336,15 +336,21 @@ void MissionAgent::RunFirstLeader(Live* live, const Pose2& self, const Group& gr
   }
 
   // Lost members are dropped: the rest goes on without them, unless too few are left to staff
-  // the leaders.
+  // the leaders (or fewer than min_robots).
   const std::size_t left = Left(*live).size();
-  if (!live->lost.empty() && left < static_cast<std::size_t>(spec.leader_number) &&
+  const std::size_t needed = static_cast<std::size_t>(std::max(spec.leader_number,
+                                                               params_.min_robots));
+  if (!live->lost.empty() && left < needed &&
       live->phase >= MissionPhase::kGathering && live->phase <= MissionPhase::kUnloading) {
     outbox->resume = spec.AssignedRuns();
     outbox->delete_object = spec.id;
     EnterPhase(live, MissionPhase::kAborted, tick, inside, outbox);
     outbox->statuses.back().reason =
-        "robot(s) " + lost.str() + lost_for + ": fewer robots than leaders left";
+        "robot(s) " + lost.str() + lost_for +
+        (left < static_cast<std::size_t>(spec.leader_number)
+             ? std::string(": fewer robots than leaders left")
+             : ": " + std::to_string(left) + " robots left, fewer than mission_min_robots " +
+                   std::to_string(params_.min_robots));
     return;
   }
 

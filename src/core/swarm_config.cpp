@@ -24,6 +24,8 @@ std::string SwarmConfig::Validate() const {
     os << "chain_hops must be >= 1 but is " << chain_hops;
   } else if (!std::isfinite(lost_after_s) || !(lost_after_s > 0.0)) {
     os << "lost_after_s must be > 0 (s) but is " << lost_after_s;
+  } else if (mission_min_robots < 0 || mission_min_robots > 65535) {
+    os << "mission_min_robots must be in [0, 65535] but is " << mission_min_robots;
   } else if (max_live_missions < 1 || max_live_missions > 65535) {
     os << "max_live_missions must be in [1, 65535] but is " << max_live_missions;
   }

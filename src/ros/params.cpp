@@ -175,6 +175,7 @@ bool ConfigFromXmlRpc(XmlRpc::XmlRpcValue& dict, SwarmConfig* config, std::strin
             ReadChoice(dict, "mission_admission", "dispatcher or robots", &c.admission, error,
                        core::ParseAdmission) &&
             ReadInt(dict, "max_live_missions", &c.max_live_missions, error) &&
+            ReadInt(dict, "mission_min_robots", &c.mission_min_robots, error) &&
             ReadChoice(dict, "gathering", "hold or fill", &c.transport.gathering, error,
                        core::ParseGatherMode) &&
             ReadBool(dict, "leaders_bound", &c.transport.leaders_bound, error) &&

@@ -572,6 +572,35 @@ TEST(MissionAgentTest, AMissionWithFewerRobotsLeftThanLeadersEndsAborted) {
   EXPECT_EQ(out.resume.size(), 1u);  // everyone it froze is released
 }
 
+TEST(MissionAgentTest, AMissionBelowMinRobotsEndsAbortedNamingTheLost) {
+  // Robots [0, 3), robot 0 leads; robot 1 is a member. Robot 0 falls silent: robot 1 is
+  // promoted, and with mission_min_robots 3 the two left are too few.
+  for (const int min_robots : {3, 0}) {
+    MissionAgentParams params;
+    params.lost_after_ticks = 5;
+    params.min_robots = min_robots;
+    MissionAgent robot1(1, params);
+    MemberIntoTransport(&robot1);
+    MissionOutbox out;
+    std::vector<std::string> phases;
+    for (std::uint64_t t = 11; t <= 18; ++t) {
+      out = MissionOutbox();
+      robot1.Tick(PoseAt(7.4, 7.4), {At(2, 6.4, 6.4)}, t, &out);
+      for (const std::string& phase : Phases(out)) phases.push_back(phase);
+      if (!out.statuses.empty() && Phases(out).back() == "ABORTED") {
+        EXPECT_NE(out.statuses.back().reason.find("robot(s) 0 lost"), std::string::npos)
+            << out.statuses.back().reason;
+        EXPECT_NE(out.statuses.back().reason.find(
+                      "2 robots left, fewer than mission_min_robots 3"),
+                  std::string::npos)
+            << out.statuses.back().reason;
+      }
+    }
+    const bool aborted = std::find(phases.begin(), phases.end(), "ABORTED") != phases.end();
+    EXPECT_EQ(aborted, min_robots == 3) << min_robots;  // the default only drops the robot
+  }
+}
+
 TEST(MissionAgentTest, ARobotThatMissedItsTicksCountsItselfLostAndDoesNotLead) {
   MissionAgentParams params;
   params.lost_after_ticks = 5;

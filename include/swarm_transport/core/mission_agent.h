@@ -42,6 +42,10 @@ struct MissionAgentParams {
   // member counts where it was last heard; in transport the object is re-anchored when one is
   // lost, so that it does not jump. Robots take it from /swarm/lost_after_s.
   std::uint64_t lost_after_ticks = 20;
+  // A running transport with fewer robots left than this (and always with fewer than its
+  // leaders) ends ABORTED naming the lost robots (SPEC 9.7, /swarm/mission_min_robots; 0: the
+  // leaders' number).
+  int min_robots = 0;
   // Paths around danger (SPEC 9.8): the static danger zones, and how far a transport's object
   // centre keeps from them (half its diagonal plus route_clearance_m). The leaders steer for
   // each waypoint in turn and pass it within waypoint_reach_m.

@@ -33,6 +33,9 @@ struct SwarmConfig {
   // A mission robot not heard for this long (s) is lost for its mission (SPEC 9.7): dropped, a
   // lost leader replaced by the next assigned robot. At least one tick.
   double lost_after_s = 0.5;
+  // A running transport with fewer robots left than this ends ABORTED (SPEC 9.7; 0: its
+  // leaders' number, the least it can run with).
+  int mission_min_robots = 0;
   // Who admits mission orders (SPEC 9.7, issue 11): the dispatcher, or every robot itself when
   // no dispatcher runs (swarm.launch dispatcher:=false sets robots).
   Admission admission = Admission::kDispatcher;
