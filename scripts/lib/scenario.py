@@ -80,6 +80,10 @@ def write_inputs(s, directory):
             elif e['kind'] == 'spawn':
                 entry.update({'robot': e['robot'], 'x': e['x'], 'y': e['y'],
                               'theta_deg': e['theta_deg']})
+            elif e['kind'] in ('statist', 'remove_statist'):
+                entry.update({'robot': e['robot'], 'sub_id': e['sub_id']})
+                if e['kind'] == 'statist':
+                    entry.update({'x': e['x'], 'y': e['y']})
             elif e['kind'] == 'object_update':
                 entry.update({'mission': e['mission'], 'x': e['x'], 'y': e['y']})
             else:

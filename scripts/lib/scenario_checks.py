@@ -75,6 +75,15 @@ def check(e, log, scenario, second=None):
         return not held, ('every robot of %d holds no mission, no zone and is not frozen'
                           % len(log.robot_states) if not held else
                           'robot(s) still holding: %s' % sorted(held.items())[:5])
+    if kind == 'centroid_near':
+        pts = log.positions.get(e['at_tick'])
+        if not pts:
+            return False, 'no positions at tick %d' % e['at_tick']
+        cx = sum(p[0] for p in pts.values()) / len(pts)
+        cy = sum(p[1] for p in pts.values()) / len(pts)
+        d = math.hypot(cx - e['x'], cy - e['y'])
+        return e['min_m'] <= d <= e['max_m'], 'centroid (%.2f, %.2f) at tick %d, %.2f m away' % (
+            cx, cy, e['at_tick'], d)
     if kind == 'object_clear_of_zones':
         return _object_clear(e, log, scenario)
     if kind == 'gathered':

@@ -14,7 +14,8 @@ CLOCKS = ('lockstep', 'realtime')
 PLACEMENTS = ('random', 'corner', 'file')
 STATES = ('QUEUED', 'GATHERING', 'LOADING', 'TRANSPORT', 'UNLOADING', 'DONE', 'ABORTED',
           'REJECTED')
-EVENT_KINDS = ('freeze', 'continue', 'kill', 'spawn', 'object_update', 'signal')
+EVENT_KINDS = ('freeze', 'continue', 'kill', 'spawn', 'object_update', 'signal', 'statist',
+               'remove_statist')
 SIGNALS = ('LOADED', 'UNLOADED')
 # Expectation kind -> (required keys, optional keys with defaults).
 EXPECTATIONS = {
@@ -33,6 +34,7 @@ EXPECTATIONS = {
     'phase_order': ({'mission', 'state', 'after_mission', 'after_state'}, {}),
     'released': (set(), {}),
     'object_clear_of_zones': ({'mission'}, {'tolerance_m': 0.0}),
+    'centroid_near': ({'at_tick', 'x', 'y'}, {'min_m': 0.0, 'max_m': float('inf')}),
 }
 TOP_KEYS = {'name', 'description', 'world', 'max_ticks', 'missions', 'events', 'expect'}
 WORLD_KEYS = {'robots', 'seed', 'placement', 'placement_file', 'config', 'base_config',
@@ -233,6 +235,14 @@ def _event(r, node, where, robots, max_ticks, mission_ids):
         s = r.mapping(v, w, {'mission', 'x', 'y'}, required=('mission', 'x', 'y'))
         out.update(mission=_mission_ref(r, s['mission'], w + '.mission', mission_ids),
                    x=r.number(s['x'], w + '.x'), y=r.number(s['y'], w + '.y'))
+    elif kind in ('statist', 'remove_statist'):
+        keys = {'id', 'sub_id', 'x', 'y'} if kind == 'statist' else {'id', 'sub_id'}
+        s = r.mapping(v, w, keys, required=tuple(sorted(keys - {'sub_id'})))
+        out.update(robot=r.number(s['id'], w + '.id', 0, 65535, integer=True),
+                   sub_id=r.number(s['sub_id'], w + '.sub_id', 0, 255, integer=True)
+                   if 'sub_id' in s else 0)
+        if kind == 'statist':
+            out.update(x=r.number(s['x'], w + '.x'), y=r.number(s['y'], w + '.y'))
     elif kind == 'signal':
         s = r.mapping(v, w, {'mission', 'event'}, required=('mission', 'event'))
         out.update(mission=_mission_ref(r, s['mission'], w + '.mission', mission_ids),

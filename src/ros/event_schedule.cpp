@@ -42,11 +42,15 @@ bool EventFromXmlRpc(XmlRpcValue& e, TimedEvent* event, std::string* error) {
        {"kill", {TimedEvent::Kind::kKill, {"robot"}}},
        {"spawn", {TimedEvent::Kind::kSpawn, {"robot", "x", "y", "theta_deg"}}},
        {"object_update", {TimedEvent::Kind::kObjectUpdate, {"mission", "x", "y"}}},
-       {"signal", {TimedEvent::Kind::kSignal, {"mission", "event"}}}};
+       {"signal", {TimedEvent::Kind::kSignal, {"mission", "event"}}},
+       {"statist", {TimedEvent::Kind::kStatist, {"robot", "sub_id", "x", "y"}}},
+       {"remove_statist", {TimedEvent::Kind::kRemoveStatist, {"robot", "sub_id"}}}};
   if (e.getType() != XmlRpcValue::TypeStruct || !e.hasMember("kind") ||
       e["kind"].getType() != XmlRpcValue::TypeString ||
       kKinds.count(static_cast<std::string>(e["kind"])) == 0) {
-    *error = "needs 'kind': freeze, continue, kill, spawn, object_update or signal";
+    *error =
+        "needs 'kind': freeze, continue, kill, spawn, object_update, signal, statist or "
+        "remove_statist";
     return false;
   }
   const auto& kind = kKinds.at(static_cast<std::string>(e["kind"]));
@@ -84,6 +88,16 @@ bool EventFromXmlRpc(XmlRpcValue& e, TimedEvent* event, std::string* error) {
       ok = Id(e, "mission", &ev.mission) && Number(e, "x", &ev.x) && Number(e, "y", &ev.y);
       if (!ok) *error = "an object_update needs 'mission' and finite 'x', 'y'";
       break;
+    case TimedEvent::Kind::kStatist:
+    case TimedEvent::Kind::kRemoveStatist: {
+      std::uint16_t sub = 0;
+      ok = Id(e, "robot", &ev.robot) && Id(e, "sub_id", &sub) && sub <= 255 &&
+           (ev.kind == TimedEvent::Kind::kRemoveStatist ||
+            (Number(e, "x", &ev.x) && Number(e, "y", &ev.y)));
+      ev.sub_id = static_cast<std::uint8_t>(sub);
+      if (!ok) *error = "a statist needs 'robot', 'sub_id' in [0, 255] (and finite 'x', 'y')";
+      break;
+    }
     case TimedEvent::Kind::kSignal: {
       ok = Id(e, "mission", &ev.mission) && e.hasMember("event") &&
            e["event"].getType() == XmlRpcValue::TypeString;

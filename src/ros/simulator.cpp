@@ -512,6 +512,19 @@ void Simulator::ApplyDueEvents() {
       case TimedEvent::Kind::kSpawn:
         SpawnRobot(e.robot, {{e.x, e.y}, core::Angle(e.theta_deg)});
         break;
+      case TimedEvent::Kind::kStatist: {
+        Robot_Position statist;
+        statist.robot_id = e.robot;
+        statist.sub_id = e.sub_id;
+        statist.type = Robot_Position::TYPE_STATIST;
+        statist.pos_x = static_cast<float>(e.x);
+        statist.pos_y = static_cast<float>(e.y);
+        relayed_.Take(statist);
+        break;
+      }
+      case TimedEvent::Kind::kRemoveStatist:
+        relayed_.Erase(e.robot, e.sub_id);
+        break;
     }
   }
 }

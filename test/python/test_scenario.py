@@ -212,6 +212,21 @@ class Checks(unittest.TestCase):
         self.assertIn('danger_zones[1], tick 3', measured)
         self.assertFalse(checks.check(e, log_of({}, objects={}), s)[0])  # never listed
 
+    def test_centroid_near_and_statist_events(self):
+        s = fmt.parse(MINIMAL + 'events:\n  - at_tick: 2\n    statist: {id: 900, x: 8, y: 8}\n'
+                      '  - at_tick: 9\n    remove_statist: {id: 900}\n', 'm.yaml')
+        self.assertEqual([(e['kind'], e['robot'], e['sub_id']) for e in s['events']],
+                         [('statist', 900, 0), ('remove_statist', 900, 0)])
+        log = log_of({5: {0: (1.0, 1.0, 0), 1: (3.0, 1.0, 0)}})
+        self.assertTrue(self.run_check('  - centroid_near: {at_tick: 5, x: 2, y: 1, max_m: 0.1}\n',
+                                       log)[0])
+        ok, measured = self.run_check('  - centroid_near: {at_tick: 5, x: 8, y: 8, max_m: 2}\n',
+                                      log)
+        self.assertFalse(ok)
+        self.assertIn('centroid (2.00, 1.00)', measured)
+        self.assertTrue(self.run_check('  - centroid_near: {at_tick: 5, x: 8, y: 8, min_m: 5}\n',
+                                       log)[0])
+
     def test_reproducible_compares_every_tick_and_status(self):
         a = log_of({0: {0: (1.0, 1.0, 0)}, 1: {0: (1.1, 1.0, 0)}}, [(7, 'DONE', 1)])
         b = log_of({0: {0: (1.0, 1.0, 0)}, 1: {0: (1.1, 1.0, 0)}}, [(7, 'DONE', 1)])

@@ -31,9 +31,14 @@ TEST(EventScheduleTest, ReadsEveryKind) {
       "  - {tick: 7, kind: kill, robot: 4}\n"
       "  - {tick: 2, kind: spawn, robot: 30, x: 1.5, y: 2, theta_deg: 90}\n"
       "  - {tick: 3, kind: object_update, mission: 7, x: 6.5, y: 7}\n"
-      "  - {tick: 4, kind: signal, mission: 7, event: UNLOADED}\n",
+      "  - {tick: 4, kind: signal, mission: 7, event: UNLOADED}\n"
+      "  - {tick: 6, kind: statist, robot: 900, sub_id: 2, x: 8, y: 3}\n"
+      "  - {tick: 8, kind: remove_statist, robot: 900, sub_id: 2}\n",
       &error);
-  ASSERT_EQ(events.size(), 6u) << error;
+  ASSERT_EQ(events.size(), 8u) << error;
+  EXPECT_EQ(events[6].kind, TimedEvent::Kind::kStatist);
+  EXPECT_EQ(events[6].sub_id, 2);
+  EXPECT_EQ(events[7].kind, TimedEvent::Kind::kRemoveStatist);
   EXPECT_EQ(events[0].kind, TimedEvent::Kind::kFreeze);
   EXPECT_EQ(events[0].to, 3);
   EXPECT_EQ(events[2].robot, 4);

@@ -13,12 +13,17 @@
 namespace swarm_transport {
 
 struct TimedEvent {
-  enum class Kind : std::uint8_t { kFreeze, kContinue, kKill, kSpawn, kObjectUpdate, kSignal };
+  enum class Kind : std::uint8_t {
+    kFreeze, kContinue, kKill, kSpawn, kObjectUpdate, kSignal,
+    kStatist,        // a motionless virtual robot (SPEC 9.3) appears at (x, y): robot, sub_id
+    kRemoveStatist,  // ... and goes
+  };
   std::uint64_t tick = 0;
   Kind kind = Kind::kFreeze;
   std::uint16_t from = 0;     // freeze / continue: robots [from, to)
   std::uint16_t to = 0;
-  std::uint16_t robot = 0;    // kill / spawn
+  std::uint16_t robot = 0;    // kill / spawn / statist
+  std::uint8_t sub_id = 0;    // statist
   std::uint16_t mission = 0;  // object_update / signal
   double x = 0.0;             // spawn / object_update (m)
   double y = 0.0;
@@ -27,8 +32,9 @@ struct TimedEvent {
 };
 
 // Reads `events:` - a list of {tick, kind: freeze | continue | kill | spawn | object_update |
-// signal, and the kind's fields: from, to | robot | robot, x, y, theta_deg | mission, x, y |
-// mission, event: LOADED | UNLOADED}. False with `error` naming the entry and the key.
+// signal | statist | remove_statist, and the kind's fields: from, to | robot | robot, x, y,
+// theta_deg | mission, x, y | mission, event: LOADED | UNLOADED | robot, sub_id, x, y | robot,
+// sub_id}. False with `error` naming the entry and the key.
 bool EventsFromXmlRpc(XmlRpc::XmlRpcValue& file, std::vector<TimedEvent>* events,
                       std::string* error);
 bool ReadEventsFile(const std::string& path, std::vector<TimedEvent>* events, std::string* error);
