@@ -284,5 +284,23 @@ MoveDecision FlockingStep(const Perception& in, const FlockingParams& p, Rng& rn
   return decision;
 }
 
+Perception StackLeaders(const Perception& in, const std::vector<std::uint16_t>& leaders,
+                        int weight) {
+  Perception stacked = in;
+  for (const Neighbour& n : in.others) {
+    if (n.type != kTypePhysical || n.sub_id != 0 ||
+        !std::binary_search(leaders.begin(), leaders.end(), n.id)) {
+      continue;
+    }
+    for (int k = 1; k < weight; ++k) {
+      Neighbour copy = n;
+      copy.type = kTypeVirtual;
+      copy.sub_id = static_cast<std::uint8_t>(k);
+      stacked.others.push_back(copy);
+    }
+  }
+  return stacked;
+}
+
 }  // namespace core
 }  // namespace swarm_transport

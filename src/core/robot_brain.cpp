@@ -138,20 +138,8 @@ BrainTick RobotBrain::Tick(Perception in, std::uint64_t tick, bool publish) {
   } else if (params_.leader.virtual_copies > 1 && !agent_.LeadingAlone().empty()) {
     // Virtual leaders (SPEC 9.2): a leading robot heard weighs virtual_copies times in the
     // alignment; collisions see only the robots.
-    const std::vector<std::uint16_t> leaders = agent_.LeadingAlone();
-    Perception weighted = in;
-    for (const Neighbour& n : in.others) {
-      if (n.type != 0 || n.sub_id != 0 ||
-          !std::binary_search(leaders.begin(), leaders.end(), n.id)) {
-        continue;
-      }
-      for (int k = 1; k < params_.leader.virtual_copies; ++k) {
-        Neighbour copy = n;
-        copy.type = 1;
-        copy.sub_id = static_cast<std::uint8_t>(k);
-        weighted.others.push_back(copy);
-      }
-    }
+    const Perception weighted =
+        StackLeaders(in, agent_.LeadingAlone(), params_.leader.virtual_copies);
     bool fleeing = false;
     int neighbourhood_size = 0;
     const Angle desired = DesiredHeading(weighted, params_.flocking, rng_, &fleeing,

@@ -223,19 +223,7 @@ MoveDecision CarryStep(const Perception& in, const FlockingParams& p, const Tran
   // The leaders' virtual copies (stacking) for its alignment; collisions see only the robots.
   Perception weighted;
   if (tp.transport_leader_weight > 1) {
-    weighted = in;
-    for (const Neighbour& n : in.others) {
-      if (n.type != 0 || n.sub_id != 0 ||
-          !std::binary_search(carry.leaders.begin(), carry.leaders.end(), n.id)) {
-        continue;
-      }
-      for (int k = 1; k < tp.transport_leader_weight; ++k) {
-        Neighbour copy = n;
-        copy.type = 1;
-        copy.sub_id = static_cast<std::uint8_t>(k);
-        weighted.others.push_back(copy);
-      }
-    }
+    weighted = StackLeaders(in, carry.leaders, tp.transport_leader_weight);
   }
   const Perception& aligned = tp.transport_leader_weight > 1 ? weighted : in;
   const Angle desired = DesiredHeading(aligned, p, rng, &fleeing, &neighbourhood_size);

@@ -100,6 +100,12 @@ int NeighbourhoodSize(const std::vector<Neighbour>& neighbourhood);
 Angle DesiredHeading(const Perception& in, const FlockingParams& p, Rng& rng, bool* fleeing,
                      int* neighbourhood_size = nullptr);
 
+// Leader stacking (SPEC 9.2): `in` with weight - 1 virtual copies (type 1, sub_id 1..) of every
+// physical robot heard whose id is in `leaders` (ascending), for an alignment that weighs each
+// of them `weight` times; collisions and the neighbourhood count take `in` itself.
+Perception StackLeaders(const Perception& in, const std::vector<std::uint16_t>& leaders,
+                        int weight);
+
 // True when a move from `self` turning to `heading` and driving `distance_m` within
 // `duration_s` is valid: the destination keeps MinSeparation() to every other physical robot,
 // lies inside the arena by one radius, is not forbidden by a zone (a robot already in a
