@@ -168,6 +168,9 @@ void Simulator::Connect() {
   }
   object_update_sub_ =
       nh_.subscribe(names::kObjectUpdate, kMissionQueue, &Simulator::OnObjectUpdate, this);
+  // Each mission's phase, for the status line in rviz (lock-step: this node's own relay).
+  status_sub_ = nh_.subscribe(names::kMissionStatus, kMissionQueue, &Simulator::OnMissionStatus,
+                              this);
   object_delete_sub_ =
       nh_.subscribe(names::kObjectDelete, kMissionQueue, &Simulator::OnObjectDelete, this);
   if (events_ && !lockstep_) {
@@ -211,6 +214,7 @@ void Simulator::Shutdown() {
   mission_new_sub_.shutdown();
   if (session_) session_->Shutdown();
   object_update_sub_.shutdown();
+  status_sub_.shutdown();
   object_delete_sub_.shutdown();
   spawn_srv_.shutdown();
   kill_srv_.shutdown();
@@ -404,7 +408,7 @@ void Simulator::PublishPoses() {
 }
 
 void Simulator::PublishVisualsIfDue() {
-  if (visuals_->Due()) visuals_->Publish(*world_, missions_, Stamp());
+  if (visuals_->Due()) visuals_->Publish(*world_, missions_, Stamp(), tick_);
   diagnostics_->PublishIfDue([this](NodeStatus* s) {
     const std::size_t robots = world_->size();
     const std::size_t live = session_ ? session_->LiveCount() : robots;
@@ -656,6 +660,16 @@ void Simulator::OnObjectUpdate(const ros::MessageEvent<Update_Object const>& eve
 void Simulator::OnObjectDelete(const ros::MessageEvent<Delete_Object const>& event) {
   if (!MayReport(event.getConstMessage()->mission_id, event.getPublisherName())) return;
   missions_.erase(event.getConstMessage()->mission_id);
+}
+
+void Simulator::OnMissionStatus(const ros::MessageEvent<Mission_Status const>& event) {
+  const Mission_Status& msg = *event.getConstMessage();
+  auto it = missions_.find(msg.mission_id);
+  if (it == missions_.end() || msg.state > Mission_Status::REJECTED ||
+      !MayReport(msg.mission_id, event.getPublisherName())) {
+    return;
+  }
+  it->second.phase = std::max<int>(it->second.phase, msg.state);
 }
 
 bool Simulator::MayReport(std::uint16_t mission_id, const std::string& publisher) const {

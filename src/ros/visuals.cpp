@@ -5,8 +5,11 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include <cmath>
+#include <sstream>
 #include <utility>
 
+#include "swarm_transport/core/metrics.h"
+#include "swarm_transport/core/mission.h"
 #include "swarm_transport/ros/names.h"
 
 namespace swarm_transport {
@@ -20,6 +23,7 @@ constexpr float kZoneAlpha = 0.35f;
 constexpr float kObjectAlpha = 0.6f;
 constexpr float kRangeAlpha = 0.08f;
 constexpr double kTargetDiameterM = 0.1;
+constexpr double kTextHeightM = 0.4;  // the status line above the arena
 // 1 / golden ratio: consecutive ids get well separated hues.
 constexpr double kHueStep = 0.618033988749895;
 
@@ -53,6 +57,11 @@ std_msgs::ColorRGBA Rgba(float r, float g, float b, float a) {
 
 std_msgs::ColorRGBA RobotColour(std::uint16_t id, float alpha) {
   return Hsv(std::fmod(id * kHueStep, 1.0), 0.8, 0.95, alpha);
+}
+
+// Swarm k's colour: well separated hues for the first swarms (numbered by their lowest robot).
+std_msgs::ColorRGBA SwarmColour(std::size_t k, float alpha) {
+  return Hsv(std::fmod(0.08 + static_cast<double>(k) * kHueStep, 1.0), 0.85, 0.95, alpha);
 }
 
 geometry_msgs::Quaternion YawQuaternion(double yaw_rad) {
@@ -93,8 +102,9 @@ bool Visuals::Due() {
   return true;
 }
 
-void Visuals::Publish(const World2D& world, const LiveMissions& missions, ros::Time stamp) {
-  if (markers_pub_.getNumSubscribers() > 0) PublishMarkers(world, missions, stamp);
+void Visuals::Publish(const World2D& world, const LiveMissions& missions, ros::Time stamp,
+                      std::uint64_t tick) {
+  if (markers_pub_.getNumSubscribers() > 0) PublishMarkers(world, missions, stamp, tick);
   if (tf_broadcaster_) PublishTransforms(world, stamp);
 }
 
@@ -103,16 +113,20 @@ void Visuals::Shutdown() {
   tf_broadcaster_.reset();
 }
 
-void Visuals::PublishMarkers(const World2D& world, const LiveMissions& missions, ros::Time stamp) {
+visualization_msgs::MarkerArray BuildMarkers(const World2D& world, const LiveMissions& missions,
+                                             const VisualsParams& params, ros::Time stamp,
+                                             std::uint64_t tick) {
   using visualization_msgs::Marker;
   const double r = world.params().robot_radius_m;
   visualization_msgs::MarkerArray array;
-  std::set<std::pair<std::string, int>> shown;
-  auto add = [&array, &shown](const Marker& m) {
-    array.markers.push_back(m);
-    shown.emplace(m.ns, m.id);
-  };
+  auto add = [&array](const Marker& m) { array.markers.push_back(m); };
 
+  // One colour per swarm (robots linked hop by hop within the local range).
+  std::vector<core::Vec2> positions;
+  positions.reserve(world.size());
+  for (const auto& entry : world.robots()) positions.push_back(entry.second.pose.position);
+  const core::SwarmComponents swarms(positions, params.local_range_m);
+  std::size_t index = 0;
   for (const auto& entry : world.robots()) {
     const core::Pose2& pose = entry.second.pose;
     const double yaw = pose.heading.radians();
@@ -124,13 +138,13 @@ void Visuals::PublishMarkers(const World2D& world, const LiveMissions& missions,
     arrow.scale.x = 3.0 * r;
     arrow.scale.y = r;
     arrow.scale.z = r;
-    arrow.color = RobotColour(entry.first, 1.0f);
+    arrow.color = SwarmColour(swarms.ComponentOf(index++), 1.0f);
     add(arrow);
-    if (params_.range_circles) {
+    if (params.range_circles) {
       Marker circle = MakeMarker("ranges", entry.first, Marker::CYLINDER, stamp);
       circle.pose.position.x = pose.position.x;
       circle.pose.position.y = pose.position.y;
-      circle.scale.x = circle.scale.y = 2.0 * params_.local_range_m;
+      circle.scale.x = circle.scale.y = 2.0 * params.local_range_m;
       circle.scale.z = 0.5 * kFlatM;
       circle.color = RobotColour(entry.first, kRangeAlpha);
       add(circle);
@@ -138,7 +152,7 @@ void Visuals::PublishMarkers(const World2D& world, const LiveMissions& missions,
   }
 
   int zone_part = 0;
-  for (const core::Zone& zone : params_.danger_zones) {
+  for (const core::Zone& zone : params.danger_zones) {
     for (const core::Primitive& part : zone.shape.parts()) {
       const bool is_rect = part.kind == core::Primitive::Kind::kRect;
       Marker m =
@@ -190,6 +204,34 @@ void Visuals::PublishMarkers(const World2D& world, const LiveMissions& missions,
       add(halo);
     }
   }
+
+  // The line of text above the arena: tick, swarm count, each mission's phase.
+  std::ostringstream text;
+  text << "tick " << tick << "   " << swarms.SwarmCount() << " swarm"
+       << (swarms.SwarmCount() == 1 ? "" : "s");
+  for (const auto& entry : missions) {
+    text << "   mission " << entry.first << " "
+         << (entry.second.phase >= 0
+                 ? core::PhaseName(static_cast<core::MissionPhase>(entry.second.phase))
+                 : "ordered");
+  }
+  Marker label = MakeMarker("status", 0, Marker::TEXT_VIEW_FACING, stamp);
+  const double size = world.params().world_size_m;
+  label.pose.position.x = 0.5 * size;
+  label.pose.position.y = size + kTextHeightM;
+  label.scale.z = kTextHeightM;
+  label.color = Rgba(1.0f, 1.0f, 1.0f, 1.0f);
+  label.text = text.str();
+  add(label);
+  return array;
+}
+
+void Visuals::PublishMarkers(const World2D& world, const LiveMissions& missions, ros::Time stamp,
+                             std::uint64_t tick) {
+  using visualization_msgs::Marker;
+  visualization_msgs::MarkerArray array = BuildMarkers(world, missions, params_, stamp, tick);
+  std::set<std::pair<std::string, int>> shown;
+  for (const Marker& m : array.markers) shown.emplace(m.ns, m.id);
 
   // Whatever was on screen and is gone now (killed robots, deleted objects) is deleted.
   for (const auto& key : shown_) {

@@ -144,6 +144,7 @@ class Simulator : public RobotOutlet {
   void RegisterMission(const New_Mission& order);
   void OnObjectUpdate(const ros::MessageEvent<Update_Object const>& event);
   void OnObjectDelete(const ros::MessageEvent<Delete_Object const>& event);
+  void OnMissionStatus(const ros::MessageEvent<Mission_Status const>& event);
   // core::MayReport against the mission mirror's members.
   bool MayReport(std::uint16_t mission_id, const std::string& publisher) const;
 
@@ -187,6 +188,7 @@ class Simulator : public RobotOutlet {
   ros::Subscriber robot_delete_sub_;
   ros::Subscriber mission_new_sub_;
   ros::Subscriber object_update_sub_;
+  ros::Subscriber status_sub_;
   ros::Subscriber object_delete_sub_;
 
   std::uint64_t tick_ = 0;    // radio rounds so far (lock-step: ticks)

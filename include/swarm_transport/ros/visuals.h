@@ -1,12 +1,15 @@
-// What the simulator shows: rviz markers (robots, range circles, danger zones, objects,
-// targets, leaders) on /flock/markers and tf world -> robot_<id>/base_link, at most
+// What the simulator shows: rviz markers (robots coloured by the swarm they belong to, range
+// circles, danger zones, objects, targets, leaders, a line of text with the tick, the swarm
+// count and each mission's phase) on /flock/markers and tf world -> robot_<id>/base_link, at most
 // markers_rate_hz of wall time. Only publishes: it holds no state of the world.
 #ifndef SWARM_TRANSPORT_ROS_VISUALS_H_
 #define SWARM_TRANSPORT_ROS_VISUALS_H_
 
 #include <ros/ros.h>
 #include <tf2_ros/transform_broadcaster.h>
+#include <visualization_msgs/MarkerArray.h>
 
+#include <cstdint>
 #include <memory>
 #include <set>
 #include <string>
@@ -28,6 +31,14 @@ struct VisualsParams {
   std::vector<core::Zone> danger_zones;
 };
 
+// The markers of the world and its live missions at `tick` (nothing deleted): robots as arrows
+// coloured by their swarm (SwarmComponents within local_range_m: one colour per swarm), range
+// circles, danger zones, objects, targets, leaders, and the text line "tick T  S swarms
+// mission M PHASE ..." above the arena.
+visualization_msgs::MarkerArray BuildMarkers(const World2D& world, const LiveMissions& missions,
+                                             const VisualsParams& params, ros::Time stamp,
+                                             std::uint64_t tick);
+
 class Visuals {
  public:
   Visuals(ros::NodeHandle nh, VisualsParams params);
@@ -36,11 +47,13 @@ class Visuals {
   // True when a period of wall time has passed since the last true (and the rate is > 0).
   bool Due();
   // Markers (if anybody listens) and tf of the world and its live missions, stamped `stamp`.
-  void Publish(const World2D& world, const LiveMissions& missions, ros::Time stamp);
+  void Publish(const World2D& world, const LiveMissions& missions, ros::Time stamp,
+               std::uint64_t tick);
   void Shutdown();
 
  private:
-  void PublishMarkers(const World2D& world, const LiveMissions& missions, ros::Time stamp);
+  void PublishMarkers(const World2D& world, const LiveMissions& missions, ros::Time stamp,
+                      std::uint64_t tick);
   void PublishTransforms(const World2D& world, ros::Time stamp);
 
   VisualsParams params_;

@@ -22,6 +22,7 @@ struct LiveMission {
   core::Vec2 object_position;
   core::Vec2 object_size;              // 0 x 0: a leader-only mission
   core::Vec2 target;
+  int phase = -1;  // the last phase its robots reported (Mission_Status state); -1: none yet
 };
 
 // By mission id.
