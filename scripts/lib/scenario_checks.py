@@ -45,8 +45,8 @@ def check(e, log, scenario, second=None):
         measured = '%s at tick %s (states %s)' % (e['state'], tick, ' '.join(reached) or 'none')
         return tick is not None and tick <= e['by_tick'], measured
     if kind == 'in_arena':
-        size = log.params['world_size_m']
-        worst, where = _worst(log, lambda x, y: max(-x, -y, x - size, y - size, 0.0))
+        lo, hi = e['inset_m'], log.params['world_size_m'] - e['inset_m']
+        worst, where = _worst(log, lambda x, y: max(lo - x, lo - y, x - hi, y - hi, 0.0))
         return worst <= e['tolerance_m'], 'farthest outside %.4f m%s' % (worst, where)
     if kind == 'no_overlap':
         return _overlap(e, log)
@@ -62,6 +62,19 @@ def check(e, log, scenario, second=None):
     if kind == 'phases':
         reached = [s for m, s, _ in log.statuses if m == e['mission']]
         return reached == e['states'], 'states %s' % (' '.join(reached) or 'none')
+    if kind == 'moved':
+        ticks = log.ticks()
+        if not ticks:
+            return False, 'no positions'
+        first, last = log.positions[ticks[0]], log.positions[ticks[-1]]
+        least, who = float('inf'), None
+        for rid, p in first.items():
+            if rid in last:
+                d = math.hypot(last[rid][0] - p[0], last[rid][1] - p[1])
+                if d < least:
+                    least, who = d, rid
+        return who is not None and least > e['min_m'], \
+            'least start-to-end displacement %.4f m (robot %s)' % (least, who)
     if kind == 'phase_order':
         tick = log.first_state_tick(e['mission'], e['state'])
         before = log.first_state_tick(e['after_mission'], e['after_state'])

@@ -227,6 +227,20 @@ class Checks(unittest.TestCase):
         self.assertTrue(self.run_check('  - centroid_near: {at_tick: 5, x: 8, y: 8, min_m: 5}\n',
                                        log)[0])
 
+    def test_moved_and_in_arena_with_an_inset(self):
+        log = log_of({0: {0: (1.0, 1.0, 0), 1: (2.0, 2.0, 0)},
+                      9: {0: (1.5, 1.0, 0), 1: (2.0, 2.02, 0)}})
+        self.assertTrue(self.run_check('  - moved: {min_m: 0.01}\n', log)[0])
+        ok, measured = self.run_check('  - moved: {min_m: 0.05}\n', log)
+        self.assertFalse(ok)
+        self.assertIn('0.0200 m (robot 1)', measured)
+        edge = log_of({0: {0: (0.03, 5.0, 0)}})
+        self.assertTrue(self.run_check('  - in_arena: {}\n', edge)[0])
+        ok, measured = self.run_check('  - in_arena: {inset_m: 0.05, tolerance_m: 0.001}\n',
+                                      edge)
+        self.assertFalse(ok)
+        self.assertIn('0.0200 m', measured)
+
     def test_reproducible_compares_every_tick_and_status(self):
         a = log_of({0: {0: (1.0, 1.0, 0)}, 1: {0: (1.1, 1.0, 0)}}, [(7, 'DONE', 1)])
         b = log_of({0: {0: (1.0, 1.0, 0)}, 1: {0: (1.1, 1.0, 0)}}, [(7, 'DONE', 1)])
