@@ -665,7 +665,8 @@ void Simulator::OnObjectDelete(const ros::MessageEvent<Delete_Object const>& eve
 void Simulator::OnMissionStatus(const ros::MessageEvent<Mission_Status const>& event) {
   const Mission_Status& msg = *event.getConstMessage();
   auto it = missions_.find(msg.mission_id);
-  if (it == missions_.end() || msg.state > Mission_Status::REJECTED ||
+  // A REJECTED names an order refused, which may carry a live mission's id (a duplicate).
+  if (it == missions_.end() || msg.state >= Mission_Status::REJECTED ||
       !MayReport(msg.mission_id, event.getPublisherName())) {
     return;
   }
