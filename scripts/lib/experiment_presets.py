@@ -28,7 +28,10 @@ METRICS = {
 TOP_KEYS = {'description', 'kind', 'order', 'section', 'figures', 'runs', 'seed_base',
             'base_config', 'config', 'robots', 'placement', 'cluster', 'max_ticks',
             'trim_each_end', 'x_label', 'group_label', 'thesis', 'note', 'expect', 'mission',
-            'settings', 'jobs', 'name'}
+            'settings', 'jobs', 'name', 'thesis_measured'}
+# thesis_measured: the thesis's own figures per setting where its raw data survives
+# ({source: text, metrics: [metric, ...], rows: [{setting: name, label: text, <metric>: value}]}).
+MEASURED_KEYS = {'source', 'metrics', 'rows'}
 SETTING_KEYS = {'name', 'label', 'x', 'group', 'robots', 'config', 'mission', 'placement',
                 'max_ticks'}
 MISSION_KEYS = {'id', 'object', 'target', 'leaders', 'group', 'leader', 'mode'}
@@ -143,6 +146,18 @@ def validate(preset, name):
         if e.get('trend') not in TRENDS or e.get('metric') not in METRICS[p['kind']] + [
                 'swarm_count_slope_per_h']:
             fail('expect entries need metric (one of the kind\'s) and trend %s' % (TRENDS,))
+    measured = p.get('thesis_measured')
+    if measured is not None:
+        if not isinstance(measured, dict) or set(measured) - MEASURED_KEYS or \
+                not isinstance(measured.get('metrics'), list) or \
+                not isinstance(measured.get('rows'), list):
+            fail('thesis_measured: a mapping of source, metrics (a list) and rows (a list)')
+        for row in measured['rows']:
+            if not isinstance(row, dict) or 'label' not in row:
+                fail('thesis_measured: every row is a mapping with a label')
+            for m in measured['metrics']:
+                if not isinstance(row.get(m), (int, float)) or isinstance(row.get(m), bool):
+                    fail('thesis_measured: row %s has no number for %s' % (row.get('label'), m))
     if p.get('cluster') is not None and set(p['cluster']) - CLUSTER_KEYS:
         fail('unknown cluster keys %s' % sorted(set(p['cluster']) - CLUSTER_KEYS))
     return p

@@ -21,6 +21,8 @@ TITLES = {
     'leader_waits': 'leader waits',
     'leader_ticks': 'leader ticks to goal',
     'transport_ticks': 'transport ticks',
+    'transport_ticks_median': 'median transport ticks',
+    'runs_over_2x_median': 'runs > 2x median',
     'slip_per_robot_m': 'slip per robot (m)',
     'distance_per_robot_m': 'distance per robot (m)',
     'object_error_m': 'object error (m)',
@@ -120,6 +122,22 @@ def markdown_table(preset, summary):
                                                        _num(_scale(c, row.get('median'))))
                          if t is not None else '–')
         lines.append('| %s | %d | %s |' % (_setting_title(v), n, ' | '.join(cells)))
+    return lines
+
+
+def measured_table(preset):
+    """The thesis's own figures (its raw data, where it survives) beside ours: one row per
+    setting it measured, the same metrics and units as the table above."""
+    m = preset.get('thesis_measured')
+    if not m:
+        return []
+    cols = m['metrics']
+    lines = ['**Thesis, measured** (%s):' % ' '.join(str(m.get('source', '')).split()), '',
+             '| thesis setting | ' + ' | '.join(TITLES.get(c, c) for c in cols) + ' |',
+             '|---|' + '---:|' * len(cols)]
+    for row in m['rows']:
+        lines.append('| %s | %s |' % (row['label'], ' | '.join(_num(row[c]) for c in cols)))
+    lines.append('')
     return lines
 
 
@@ -343,6 +361,8 @@ def cmd_report(dirs, out_md):
         try:
             current = presets.load_preset(preset['name'])
             preset['thesis'], preset['note'] = current['thesis'], current['note']
+            if current.get('thesis_measured'):
+                preset['thesis_measured'] = current['thesis_measured']
         except presets.PresetError:
             pass
         summary, plots = aggregate_dir(d, preset)
@@ -385,6 +405,7 @@ def cmd_report(dirs, out_md):
         if preset.get('thesis'):
             lines.append('**Thesis:** %s' % preset['thesis'].strip())
             lines.append('')
+        lines.extend(measured_table(preset))
         trends = trend_lines(preset, summary)
         if trends:
             lines.append('**Measured trend:**')

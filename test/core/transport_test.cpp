@@ -214,9 +214,15 @@ TEST(CarryStepTest, APassiveRobotWeighsItsLeadersHeadingsKTimes) {
   one.transport_leader_weight = 1;
   EXPECT_NEAR(CarryStep(s.in, Quiet(), one, s.carry, rng, kTick).desired_heading.degrees(), 90.0,
               1e-9);
-  const MoveDecision d = CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick);
-  EXPECT_EQ(TransportParams().transport_leader_weight, 3);
+  TransportParams three;
+  three.transport_leader_weight = 3;
+  const MoveDecision d = CarryStep(s.in, Quiet(), three, s.carry, rng, kTick);
   EXPECT_NEAR(d.desired_heading.degrees(), std::atan2(1.0, -2.0) * 180.0 / M_PI, 1e-9);
+  // The default, 4: (-3, 1) -> 161.6 degrees.
+  EXPECT_EQ(TransportParams().transport_leader_weight, 4);
+  EXPECT_NEAR(CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick)
+                  .desired_heading.degrees(),
+              std::atan2(1.0, -3.0) * 180.0 / M_PI, 1e-9);
   EXPECT_EQ(d.neighbours_in_range, 3);
   TransportParams bad;
   bad.transport_leader_weight = 0;

@@ -55,6 +55,27 @@ class Presets(unittest.TestCase):
             presets.load_preset('no_such_preset')
         self.assertIn('smoke', str(cm.exception))  # it lists what there is
 
+    def test_the_thesis_measured_table_is_checked_and_rendered(self):
+        import experiment_report as report
+        p = copy.deepcopy(GOOD)
+        p['thesis_measured'] = {'source': 'a file', 'metrics': ['transport_ticks'],
+                                'rows': [{'label': '10R 2L', 'transport_ticks': 60.7}]}
+        lines = report.measured_table(presets.validate(p, 'good'))
+        self.assertIn('a file', lines[0])
+        self.assertIn('| 10R 2L | 60.7 |', lines)
+        self.assertEqual(report.measured_table(copy.deepcopy(GOOD)), [])
+        for bad in ({'rows': []}, {'source': 'x', 'metrics': ['transport_ticks'],
+                                   'rows': [{'label': 'a'}]},
+                    {'source': 'x', 'metrics': [], 'rows': [], 'colour': 1}):
+            q = copy.deepcopy(p)
+            q['thesis_measured'] = bad
+            with self.assertRaises(presets.PresetError) as cm:
+                presets.validate(q, 'bad')
+            self.assertIn('thesis_measured', str(cm.exception))
+        # The shipped composition preset carries the evaluated code's raw statistics.
+        rows = presets.load_preset('transport_composition')['thesis_measured']['rows']
+        self.assertEqual(len(rows), 7)
+
     def test_components_link_hop_by_hop_within_range(self):
         # A chain 0.9 m apart is one swarm though its ends are 1.8 m apart; a robot 1.01 m
         # from the nearest is a swarm of its own; exactly the range links.
