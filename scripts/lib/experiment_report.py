@@ -375,7 +375,8 @@ def cmd_report(dirs, out_md):
              'the metrics and how to regenerate this page). Every table cell is the thesis\'s '
              '"mean of the middle runs" (trimmed mean) with <sub>(mean / median)</sub>; bars '
              'show all three. The trend line compares the measured direction along the '
-             'settings with what the thesis\'s text says.', '']
+             'settings with what the thesis says: its text, or its own raw measurement where that '
+             'survives and disagrees with the text (then tabled as "Thesis, measured").', '']
     for preset, meta, summary, plots, d in entries:
         t = meta.get('timing', {})
         lines.append('## `%s`: %s' % (preset['name'], preset['description']))
