@@ -5,9 +5,17 @@ parse(text, path) returns the scenario as plain dicts, or raises ScenarioError w
 naming the file, the line and the key ("thesis.yaml:12: missions[0].leaders: ..."), before
 anything is started."""
 
+import difflib
 import math
+import os
 
 import yaml
+
+# The package's config/ folder: world.base_config names a file of it, and its swarm.yaml lists
+# every /swarm key (with the kind of its value) that world.config may set.
+CONFIG_DIR = os.path.abspath(os.path.join(os.path.dirname(__file__), '..', '..', 'config'))
+# /swarm keys the nodes read that config/swarm.yaml leaves out (their default applies).
+EXTRA_CONFIG_KEYS = {'radio_loss': 0.0}
 
 DEPLOYS = ('process', 'host', 'host_sim')
 CLOCKS = ('lockstep', 'realtime')
@@ -67,8 +75,14 @@ class _Reader(object):
             if key in out:
                 self.fail(key_node, '%s.%s' % (where, key), 'given twice')
             if key not in allowed:
+                if len(allowed) <= 20:
+                    known = 'allowed: %s' % ', '.join(sorted(allowed))
+                else:  # /swarm's keys: the near ones, and where the rest are
+                    near = difflib.get_close_matches(str(key), sorted(allowed), 3)
+                    known = '%sthe keys are those of config/swarm.yaml' % (
+                        'did you mean %s? ' % ' or '.join(near) if near else '')
                 self.fail(key_node, '%s.%s' % (where, key) if where else key,
-                          'unknown key (allowed: %s)' % ', '.join(sorted(allowed)))
+                          'unknown key (%s)' % known)
             out[key] = value_node
         for key in required:
             if key not in out:
@@ -162,18 +176,82 @@ def _world(r, node):
            'base_config': str(r.value(w['base_config'], 'world.base_config'))
            if 'base_config' in w else 'swarm.yaml',
            'config': {}, 'danger_zones': None, 'placement_file': ''}
+    base = os.path.join(CONFIG_DIR, out['base_config'])
+    if not os.path.isfile(base):
+        r.fail(w.get('base_config'), 'world.base_config',
+               'no file %r in %s' % (out['base_config'], CONFIG_DIR))
     if 'config' in w:
-        # Keys of /swarm (config/swarm.yaml); the nodes validate them before the run starts.
-        if not isinstance(w['config'], yaml.MappingNode):
-            r.fail(w['config'], 'world.config', 'must be a mapping of /swarm keys')
-        out['config'] = r.plain(w['config'])
+        out['config'] = _config(r, w['config'], base)
     if 'danger_zones' in w:
         zones = r.sequence(w['danger_zones'], 'world.danger_zones')
-        out['danger_zones'] = [r.plain(z) for z in zones]
+        out['danger_zones'] = [_zone(r, z, 'world.danger_zones[%d]' % i)
+                               for i, z in enumerate(zones)]
     if out['placement'] == 'file':
         if 'placement_file' not in w:
             r.fail(node, 'world.placement_file', 'required with placement: file')
         out['placement_file'] = str(r.value(w['placement_file'], 'world.placement_file'))
+        path = out['placement_file']
+        if not os.path.isabs(path) and r.path != '<scenario>':
+            path = os.path.join(os.path.dirname(os.path.abspath(r.path)), path)
+        if os.path.isabs(path) and not os.path.isfile(path):
+            r.fail(w['placement_file'], 'world.placement_file', 'no file %s' % path)
+    return out
+
+
+def _zone(r, node, where):
+    """A static danger zone as config/obstacles.yaml writes it: {shape: rect, x, y, size_x,
+    size_y} or {shape: circle, x, y, radius}, sizes > 0."""
+    if not isinstance(node, yaml.MappingNode):
+        r.fail(node, where, 'must be a mapping with a shape of rect or circle')
+    shape_node = dict((k.value, v) for k, v in node.value).get('shape')
+    if shape_node is None:
+        r.fail(node, where, "missing 'shape' (rect or circle)")
+    shape = r.choice(shape_node, where + '.shape', ('rect', 'circle'))
+    sizes = ('size_x', 'size_y') if shape == 'rect' else ('radius',)
+    z = r.mapping(node, where, {'shape', 'x', 'y'} | set(sizes),
+                  required=('shape', 'x', 'y') + sizes)
+    out = {'shape': shape}
+    for key in ('x', 'y'):
+        out[key] = r.number(z[key], '%s.%s' % (where, key))
+    for key in sizes:
+        out[key] = r.number(z[key], '%s.%s' % (where, key), 1e-9)
+    return out
+
+
+def _kind(value):
+    if isinstance(value, bool):
+        return 'true or false'
+    if isinstance(value, (int, float)):
+        return 'a number'
+    if isinstance(value, str):
+        return 'a string'
+    if isinstance(value, list):
+        return 'a list'
+    return 'a mapping'
+
+
+def _config(r, node, base):
+    """world.config: /swarm keys over the base config. A key neither config/swarm.yaml nor the
+    base config knows, or a value of another kind than there (a number for a number, true /
+    false for a flag, ...), is an error naming its line; the nodes check the ranges."""
+    known = dict(EXTRA_CONFIG_KEYS)
+    for path in (os.path.join(CONFIG_DIR, 'swarm.yaml'), base):
+        with open(path) as f:
+            known.update(yaml.safe_load(f) or {})
+    fields = r.mapping(node, 'world.config', set(known))
+    out = {}
+    for key, n in fields.items():
+        where = 'world.config.%s' % key
+        if key == 'danger_zones':
+            out[key] = [_zone(r, z, '%s[%d]' % (where, i))
+                        for i, z in enumerate(r.sequence(n, where))]
+            continue
+        v = r.plain(n)
+        want = _kind(known[key])
+        if _kind(v) != want or (want == 'a number' and not math.isfinite(v)):
+            r.fail(n, where, 'must be %s (as in config/swarm.yaml) but is %r'
+                   % ('a finite number' if want == 'a number' else want, v))
+        out[key] = v
     return out
 
 

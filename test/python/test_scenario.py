@@ -78,6 +78,40 @@ class Format(unittest.TestCase):
         self.expect_error(MINIMAL + '  - swarm_count: {at_tick: 50, min: 3, max: 2}\n', 13,
                           'min 3 > max 2')
 
+    def test_a_malformed_world_names_the_line_and_the_key(self):
+        world = lambda text: MINIMAL.replace('  robots: 6', '  robots: 6\n' + text)  # noqa
+        # /swarm keys: a misspelt one is named with the near key, a value of the wrong kind too
+        self.expect_error(world('  config:\n    free_will_dg: 45'), 4,
+                          'world.config.free_will_dg: unknown key (did you mean free_will_deg?')
+        self.expect_error(world('  config:\n    cohesion: 0.3\n    free_will_deg: fast'), 5,
+                          "world.config.free_will_deg: must be a finite number (as in "
+                          "config/swarm.yaml) but is 'fast'")
+        self.expect_error(world('  config:\n    free_will_deg: .inf'), 4,
+                          'world.config.free_will_deg: must be a finite number')
+        self.expect_error(world('  base_config: thesis.yaml'), 3,
+                          "world.base_config: no file 'thesis.yaml'")
+        self.expect_error(world('  placement: file\n  placement_file: /no/such/file.txt'), 4,
+                          'world.placement_file: no file /no/such/file.txt')
+        # danger zones, in world or in world.config, as config/obstacles.yaml writes them
+        self.expect_error(world('  danger_zones:\n    - {shape: square, x: 5, y: 5}'), 4,
+                          "world.danger_zones[0].shape: must be one of rect, circle but is "
+                          "'square'")
+        self.expect_error(world('  danger_zones:\n    - {shape: circle, x: 5, y: 5, radius: 1}'
+                                '\n    - {shape: rect, x: 5, y: 5, size_x: 0, size_y: 1}'),
+                          5, 'world.danger_zones[1].size_x: must be a finite number in [1e-09')
+        self.expect_error(world('  danger_zones:\n    - {shape: circle, x: 5, y: 5}'), 4,
+                          "world.danger_zones[0]: missing 'radius'")
+        self.expect_error(world('  config:\n    danger_zones:\n'
+                                '      - {shape: rect, x: 1, y: 1}'), 5,
+                          "world.config.danger_zones[0]: missing 'size_x'")
+        # and the good ones pass through
+        s = fmt.parse(world('  base_config: thesis_transport.yaml\n  config:\n'
+                            '    free_will_deg: 45\n    radio_loss: 0.1\n  danger_zones:\n'
+                            '    - {shape: circle, x: 5, y: 5, radius: 1}'), 'ok.yaml')
+        self.assertEqual(s['world']['config'], {'free_will_deg': 45, 'radio_loss': 0.1})
+        self.assertEqual(s['world']['danger_zones'],
+                         [{'shape': 'circle', 'x': 5, 'y': 5, 'radius': 1}])
+
 
 def log_of(positions, statuses=(), objects=None, metrics=None):
     return checks.RunLog(positions, statuses, objects, metrics)
