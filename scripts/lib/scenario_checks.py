@@ -97,6 +97,8 @@ def check(e, log, scenario, second=None):
         d = math.hypot(cx - e['x'], cy - e['y'])
         return e['min_m'] <= d <= e['max_m'], 'centroid (%.2f, %.2f) at tick %d, %.2f m away' % (
             cx, cy, e['at_tick'], d)
+    if kind in ('robot_near', 'swarm_of'):
+        return _at_a_tick(e, log)
     if kind == 'object_clear_of_zones':
         return _object_clear(e, log, scenario)
     if kind == 'gathered':
@@ -122,6 +124,35 @@ def check(e, log, scenario, second=None):
             (' (first: tick %d)' % diffs[0] if diffs else ''))
         return not diffs and same_status and bool(log.positions), measured
     raise ValueError('unknown expectation %r' % kind)
+
+
+def _at_a_tick(e, log):
+    """robot_near / swarm_of: one robot at at_tick, or at the tick its mission first reported
+    a state."""
+    if e['at_tick'] is not None:
+        tick, when = e['at_tick'], 'tick %d' % e['at_tick']
+    else:
+        tick = log.first_state_tick(e['mission'], e['state'])
+        if tick is None:
+            return False, 'mission %d never reported %s' % (e['mission'], e['state'])
+        when = 'tick %d (mission %d %s)' % (tick, e['mission'], e['state'])
+    pts = log.positions.get(tick)
+    if not pts or e['robot'] not in pts:
+        return False, 'no position of robot %d at %s' % (e['robot'], when)
+    if e['kind'] == 'robot_near':
+        p = pts[e['robot']]
+        d = math.hypot(p[0] - e['x'], p[1] - e['y'])
+        return e['min_m'] <= d <= e['max_m'], 'robot %d at (%.2f, %.2f) at %s, %.3f m away' % (
+            e['robot'], p[0], p[1], when, d)
+    ids = sorted(pts)
+    labels = presets.components([pts[i] for i in ids], log.params['local_range_m'])[1]
+    own = labels[ids.index(e['robot'])]
+    others = len(ids) - 1
+    with_it = sum(1 for i, label in zip(ids, labels) if label == own and i != e['robot'])
+    fraction = with_it / float(others) if others else 1.0
+    return e['min_fraction'] <= fraction <= e['max_fraction'], (
+        '%d of the %d other robots in robot %d\'s swarm at %s (%.2f)'
+        % (with_it, others, e['robot'], when, fraction))
 
 
 def _worst(log, badness):

@@ -44,7 +44,14 @@ EXPECTATIONS = {
     'released': (set(), {}),
     'object_clear_of_zones': ({'mission'}, {'tolerance_m': 0.0}),
     'centroid_near': ({'at_tick', 'x', 'y'}, {'min_m': 0.0, 'max_m': float('inf')}),
+    # At a tick: at_tick, or the tick `mission` first reported `state`.
+    'robot_near': ({'robot', 'x', 'y'}, {'min_m': 0.0, 'max_m': float('inf'), 'at_tick': None,
+                                         'mission': None, 'state': None}),
+    'swarm_of': ({'robot'}, {'min_fraction': 0.0, 'max_fraction': 1.0, 'at_tick': None,
+                             'mission': None, 'state': None}),
 }
+# Expectations measured at one tick: at_tick or (mission, state), exactly one of them.
+AT_A_TICK = ('robot_near', 'swarm_of')
 TOP_KEYS = {'name', 'description', 'world', 'max_ticks', 'missions', 'events', 'expect'}
 WORLD_KEYS = {'robots', 'seed', 'placement', 'placement_file', 'config', 'base_config',
               'danger_zones', 'deploy', 'clock'}
@@ -362,10 +369,23 @@ def _expectation(r, node, where, mission_ids, max_ticks):
             out[key] = r.number(n, kw, 0, max_ticks, integer=True)
         elif key in ('by_tick', 'at_tick'):
             out[key] = r.number(n, kw, 0, max_ticks, integer=True)
+        elif key == 'robot':
+            out[key] = r.number(n, kw, 0, 65535, integer=True)
+        elif key in ('min_fraction', 'max_fraction'):
+            out[key] = r.number(n, kw, 0.0, 1.0)
         else:
             out[key] = r.number(n, kw, 0)
     if 'min' in out and 'max' in out and out['min'] > out['max']:
         r.fail(node, w, 'min %s > max %s' % (out['min'], out['max']))
+    for lo, hi in (('min_m', 'max_m'), ('min_fraction', 'max_fraction')):
+        if lo in out and hi in out and out[lo] > out[hi]:
+            r.fail(node, w, '%s %s > %s %s' % (lo, out[lo], hi, out[hi]))
+    if kind in AT_A_TICK:
+        by_state = out['mission'] is not None or out['state'] is not None
+        if (out['at_tick'] is None) == (not by_state) or \
+                (by_state and (out['mission'] is None or out['state'] is None)):
+            r.fail(node, w, 'needs either at_tick or mission and state (the tick the mission '
+                   'first reported that state)')
     return out
 
 

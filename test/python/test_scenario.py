@@ -261,6 +261,56 @@ class Checks(unittest.TestCase):
         self.assertTrue(self.run_check('  - centroid_near: {at_tick: 5, x: 8, y: 8, min_m: 5}\n',
                                        log)[0])
 
+    def test_robot_near_and_swarm_of_at_a_tick_or_a_state(self):
+        # robot 4 leads to (5, 5): at DONE (tick 6) it is 0.1 m from it with robots 0 and 1 in
+        # its swarm (hop by hop within 1 m), robot 2 far away; robot 3 has not arrived at tick 2.
+        log = log_of({2: {0: (1.0, 1.0, 0), 1: (1.5, 1.0, 0), 2: (9.0, 9.0, 0), 4: (2.0, 2.0, 0)},
+                      6: {0: (4.0, 5.0, 0), 1: (3.2, 5.0, 0), 2: (9.0, 9.0, 0),
+                          4: (4.9, 5.0, 0)}},
+                     [(7, 'QUEUED', 0), (7, 'TRANSPORT', 1), (7, 'DONE', 6)])
+        near = '  - robot_near: {robot: 4, x: 5, y: 5, max_m: %s, mission: 7, state: DONE}\n'
+        ok, measured = self.run_check(near % 0.11, log)
+        self.assertTrue(ok, measured)
+        self.assertIn('robot 4 at (4.90, 5.00) at tick 6 (mission 7 DONE), 0.100 m away',
+                      measured)
+        self.assertFalse(self.run_check(near % 0.09, log)[0])
+        self.assertFalse(self.run_check(
+            '  - robot_near: {robot: 4, x: 5, y: 5, max_m: 1, at_tick: 2}\n', log)[0])
+        ok, measured = self.run_check(
+            '  - robot_near: {robot: 4, x: 5, y: 5, mission: 7, state: UNLOADING}\n', log)
+        self.assertFalse(ok)
+        self.assertIn('never reported UNLOADING', measured)
+        self.assertFalse(self.run_check(
+            '  - robot_near: {robot: 9, x: 5, y: 5, at_tick: 6}\n', log)[0])  # no robot 9
+        of = '  - swarm_of: {robot: 4, min_fraction: %s, mission: 7, state: DONE}\n'
+        ok, measured = self.run_check(of % 0.66, log)
+        self.assertTrue(ok, measured)
+        self.assertIn("2 of the 3 other robots in robot 4's swarm at tick 6", measured)
+        self.assertFalse(self.run_check(of % 0.8, log)[0])
+        ok, measured = self.run_check(
+            '  - swarm_of: {robot: 4, min_fraction: 0.3, at_tick: 2}\n', log)
+        self.assertFalse(ok)
+        self.assertIn('0 of the 3 other robots', measured)  # 1.1 m from robot 1
+        self.assertTrue(self.run_check(
+            '  - swarm_of: {robot: 2, max_fraction: 0.0, at_tick: 6}\n', log)[0])
+
+    def test_a_tick_is_named_once_for_robot_near_and_swarm_of(self):
+        for bad, words in (('{robot: 4, x: 5, y: 5}', 'needs either at_tick or mission and'),
+                           ('{robot: 4, x: 5, y: 5, at_tick: 3, mission: 7, state: DONE}',
+                            'needs either at_tick or mission and'),
+                           ('{robot: 4, x: 5, y: 5, mission: 7}', 'needs either at_tick'),
+                           ('{robot: 4, x: 5, y: 5, at_tick: 3, min_m: 2, max_m: 1}',
+                            'min_m 2 > max_m 1')):
+            with self.assertRaises(fmt.ScenarioError) as cm:
+                fmt.parse(MINIMAL + '  - robot_near: %s\n' % bad, 'bad.yaml')
+            self.assertIn('bad.yaml:13: expect[1].robot_near', str(cm.exception))
+            self.assertIn(words, str(cm.exception))
+        with self.assertRaises(fmt.ScenarioError) as cm:
+            fmt.parse(MINIMAL + '  - swarm_of: {robot: 4, min_fraction: 1.5, at_tick: 3}\n',
+                      'bad.yaml')
+        self.assertIn('expect[1].swarm_of.min_fraction: must be a finite number in [0.0, 1.0]',
+                      str(cm.exception))
+
     def test_moved_and_in_arena_with_an_inset(self):
         log = log_of({0: {0: (1.0, 1.0, 0), 1: (2.0, 2.0, 0)},
                       9: {0: (1.5, 1.0, 0), 1: (2.0, 2.02, 0)}})
