@@ -99,6 +99,8 @@ def check(e, log, scenario, second=None):
             cx, cy, e['at_tick'], d)
     if kind in ('robot_near', 'swarm_of'):
         return _at_a_tick(e, log)
+    if kind in ('stands', 'drives'):
+        return _paths(e, log)
     if kind == 'object_clear_of_zones':
         return _object_clear(e, log, scenario)
     if kind == 'gathered':
@@ -153,6 +155,30 @@ def _at_a_tick(e, log):
     return e['min_fraction'] <= fraction <= e['max_fraction'], (
         '%d of the %d other robots in robot %d\'s swarm at %s (%.2f)'
         % (with_it, others, e['robot'], when, fraction))
+
+
+def _paths(e, log):
+    """stands / drives: the path each robot of [from, to) drove over [from_tick, to_tick] (the
+    sum of its per-tick moves; a tick missing from the log shortens it to a chord)."""
+    lo, hi = e['robots']
+    frames = [(t, log.positions[t]) for t in range(e['from_tick'], e['to_tick'] + 1)
+              if t in log.positions]
+    if len(frames) < 2 or frames[0][0] != e['from_tick'] or frames[-1][0] != e['to_tick']:
+        return False, 'no positions over ticks %d..%d' % (e['from_tick'], e['to_tick'])
+    path = {}
+    for rid in range(lo, hi):
+        if any(rid not in pts for _, pts in frames):
+            return False, 'robot %d missing in ticks %d..%d' % (rid, e['from_tick'], e['to_tick'])
+        path[rid] = sum(math.hypot(b[rid][0] - a[rid][0], b[rid][1] - a[rid][1])
+                        for (_, a), (_, b) in zip(frames, frames[1:]))
+    span = 'robots [%d, %d) over ticks %d..%d' % (lo, hi, e['from_tick'], e['to_tick'])
+    if e['kind'] == 'stands':
+        rid = max(path, key=lambda i: path[i])
+        return path[rid] <= e['tolerance_m'], '%s: the most driven %.4f m (robot %d)' % (
+            span, path[rid], rid)
+    rid = (max if e['any'] else min)(path, key=lambda i: path[i])
+    return path[rid] > e['min_m'], '%s: the %s driven %.4f m (robot %d)' % (
+        span, 'most' if e['any'] else 'least', path[rid], rid)
 
 
 def _worst(log, badness):

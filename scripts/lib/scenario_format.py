@@ -49,6 +49,11 @@ EXPECTATIONS = {
                                          'mission': None, 'state': None}),
     'swarm_of': ({'robot'}, {'min_fraction': 0.0, 'max_fraction': 1.0, 'at_tick': None,
                              'mission': None, 'state': None}),
+    # Robots [from, to) over the ticks [from_tick, to_tick]: each drives a path (the sum of its
+    # per-tick moves) of at most tolerance_m (stands), of more than min_m (drives; any: true
+    # when one of them is enough).
+    'stands': ({'robots', 'from_tick', 'to_tick'}, {'tolerance_m': 0.0}),
+    'drives': ({'robots', 'from_tick', 'to_tick', 'min_m'}, {'any': False}),
 }
 # Expectations measured at one tick: at_tick or (mission, state), exactly one of them.
 AT_A_TICK = ('robot_near', 'swarm_of')
@@ -367,8 +372,14 @@ def _expectation(r, node, where, mission_ids, max_ticks):
                         for i, s in enumerate(r.sequence(n, kw))]
         elif key in ('settle_ticks', 'grace_ticks'):
             out[key] = r.number(n, kw, 0, max_ticks, integer=True)
-        elif key in ('by_tick', 'at_tick'):
+        elif key in ('by_tick', 'at_tick', 'from_tick', 'to_tick'):
             out[key] = r.number(n, kw, 0, max_ticks, integer=True)
+        elif key == 'robots':
+            out[key] = _range(r, n, kw, None)
+        elif key == 'any':
+            out[key] = r.value(n, kw)
+            if not isinstance(out[key], bool):
+                r.fail(n, kw, 'must be true or false but is %r' % out[key])
         elif key == 'robot':
             out[key] = r.number(n, kw, 0, 65535, integer=True)
         elif key in ('min_fraction', 'max_fraction'):
@@ -380,6 +391,8 @@ def _expectation(r, node, where, mission_ids, max_ticks):
     for lo, hi in (('min_m', 'max_m'), ('min_fraction', 'max_fraction')):
         if lo in out and hi in out and out[lo] > out[hi]:
             r.fail(node, w, '%s %s > %s %s' % (lo, out[lo], hi, out[hi]))
+    if 'from_tick' in out and out['from_tick'] >= out['to_tick']:
+        r.fail(node, w, 'from_tick %d must be < to_tick %d' % (out['from_tick'], out['to_tick']))
     if kind in AT_A_TICK:
         by_state = out['mission'] is not None or out['state'] is not None
         if (out['at_tick'] is None) == (not by_state) or \

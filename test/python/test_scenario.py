@@ -294,6 +294,43 @@ class Checks(unittest.TestCase):
         self.assertTrue(self.run_check(
             '  - swarm_of: {robot: 2, max_fraction: 0.0, at_tick: 6}\n', log)[0])
 
+    def test_stands_and_drives_over_ticks(self):
+        # robots 0, 1 frozen over ticks 10..12 (robot 1 pushed 0.0005 m); robot 2 drives 0.2 m
+        # and back (a path of 0.4 m, no displacement); robot 3 creeps 0.01 m.
+        log = log_of({10: {0: (1.0, 1.0, 0), 1: (2.0, 1.0, 0), 2: (5.0, 5.0, 0), 3: (8, 8, 0)},
+                      11: {0: (1.0, 1.0, 0), 1: (2.0005, 1.0, 0), 2: (5.2, 5.0, 0),
+                           3: (8.005, 8, 0)},
+                      12: {0: (1.0, 1.0, 0), 1: (2.0005, 1.0, 0), 2: (5.0, 5.0, 0),
+                           3: (8.01, 8, 0)}})
+        stands = '  - stands: {robots: [%d, %d], from_tick: 10, to_tick: 12, tolerance_m: %s}\n'
+        self.assertTrue(self.run_check(stands % (0, 2, 0.001), log)[0])
+        ok, measured = self.run_check(stands % (0, 2, 0.0001), log)
+        self.assertFalse(ok)
+        self.assertIn('robots [0, 2) over ticks 10..12: the most driven 0.0005 m (robot 1)',
+                      measured)
+        ok, measured = self.run_check(stands % (0, 3, 0.001), log)  # a path, not a displacement
+        self.assertFalse(ok)
+        self.assertIn('0.4000 m (robot 2)', measured)
+        drives = '  - drives: {robots: [2, 4], from_tick: 10, to_tick: 12, min_m: 0.05%s}\n'
+        ok, measured = self.run_check(drives % '', log)
+        self.assertFalse(ok)  # robot 3 drove 0.01 m only
+        self.assertIn('the least driven 0.0100 m (robot 3)', measured)
+        self.assertTrue(self.run_check(drives % ', any: true', log)[0])
+        self.assertFalse(self.run_check(
+            '  - drives: {robots: [0, 2], from_tick: 10, to_tick: 12, min_m: 0.05, any: true}\n',
+            log)[0])
+        ok, measured = self.run_check(
+            '  - drives: {robots: [2, 4], from_tick: 10, to_tick: 13, min_m: 0.05}\n', log)
+        self.assertFalse(ok)
+        self.assertIn('no positions over ticks 10..13', measured)
+        for bad, words in (('{robots: [3, 2], from_tick: 1, to_tick: 5}', '.robots: must be'),
+                           ('{robots: [0, 2], from_tick: 5, to_tick: 5}',
+                            'from_tick 5 must be < to_tick 5')):
+            with self.assertRaises(fmt.ScenarioError) as cm:
+                fmt.parse(MINIMAL + '  - stands: %s\n' % bad, 'bad.yaml')
+            self.assertIn('bad.yaml:13: expect[1].stands', str(cm.exception))
+            self.assertIn(words, str(cm.exception))
+
     def test_a_tick_is_named_once_for_robot_near_and_swarm_of(self):
         for bad, words in (('{robot: 4, x: 5, y: 5}', 'needs either at_tick or mission and'),
                            ('{robot: 4, x: 5, y: 5, at_tick: 3, mission: 7, state: DONE}',
