@@ -414,18 +414,39 @@ TEST(MissionAgentTest, AFirstLeaderDropsAMemberSilentInGatheringOrAbortsWithoutE
   MissionOutbox out;
   std::vector<MissionPhase> phases;
   std::string reason;
+  std::string notice;
+  std::uint64_t notice_tick = 0;
   for (std::uint64_t t = 1; t <= 10; ++t) {
     out = MissionOutbox();
     leader.Tick(PoseAt(7.0, 7.0), heard, t, &out);
     for (const StatusReport& r : out.statuses) {
       phases.push_back(r.phase);
       if (r.phase == MissionPhase::kLoading) reason = r.reason;
+      if (r.phase == MissionPhase::kGathering && !r.reason.empty()) {
+        EXPECT_TRUE(notice.empty()) << "named twice: " << notice << " / " << r.reason;
+        notice = r.reason;
+        notice_tick = t;
+      }
     }
   }
-  // Gathered without it once it was silent for more than 5 ticks (from the first tick on).
+  // Gathered without it once it was silent for more than 5 ticks (from the first tick on): the
+  // first leader names it at once (GATHERING again: a progress report), then loads.
   ASSERT_EQ(phases, (std::vector<MissionPhase>{MissionPhase::kGathering,
+                                               MissionPhase::kGathering,
                                                MissionPhase::kLoading}));
+  EXPECT_EQ(notice_tick, 7u);
+  EXPECT_EQ(notice, "robot(s) 2 lost (not heard for 5 ticks): the mission goes on without them");
   EXPECT_NE(reason.find("without robot(s) 2 (lost"), std::string::npos) << reason;
+  // The sequencer sends the repeat as progress, so the phase reports stay one per phase.
+  StatusSequencer sequencer;
+  std::vector<StatusReport> reports(2), progress;
+  reports[0].mission_id = reports[1].mission_id = spec.id;
+  reports[0].phase = reports[1].phase = MissionPhase::kGathering;
+  reports[1].reason = notice;
+  sequencer.Sequence(true, &reports, &progress);
+  ASSERT_EQ(reports.size(), 1u);
+  ASSERT_EQ(progress.size(), 1u);
+  EXPECT_EQ(progress[0].reason, notice);
 
   // With 2 leaders and both others silent, fewer robots than leaders are left: ABORTED.
   spec.id = 8;
