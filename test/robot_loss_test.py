@@ -8,6 +8,7 @@
   says so in a TRANSPORT status naming the lost robot, and the mission ends DONE;
 - both leaders in TRANSPORT (lock-step and real time): the next two assigned robots are
   promoted, the mission ends DONE;
+- a mission ordered after its first leader's process died: the next robot leads it to DONE;
 - a leader of a two-robot mission with two leaders: fewer robots than leaders are left, the
   mission ends ABORTED with the reason, and the other robot drops it."""
 
@@ -19,6 +20,7 @@ import unittest
 import rospy
 import rostest
 from swarm_transport.msg import New_Mission
+from swarm_transport.srv import Submit_Mission
 
 import swarm_testing as st
 
@@ -113,6 +115,31 @@ class RobotLoss(unittest.TestCase):
     def test_all_lost_leaders_are_replaced_realtime(self):
         status, _, killed_at = self.kill_in_phase(8, 3, [0, 1], leaders=2, lockstep=False)
         self.promoted(status, 8, killed_at, [0, 1], 2, g('max_ticks_to_promote_realtime'))
+
+    def test_a_mission_naming_a_dead_first_leader_goes_on_without_it(self):
+        """Its first leader's process died before the order: the order is taken (the robot is
+        still in the world), the next robot is promoted once the dead one is not heard, and the
+        mission ends DONE - it does not wait in QUEUED for good."""
+        timeout = g('timeout_s')
+        status = st.StatusLog()
+        log = st.PositionLog()
+        self.addCleanup(log.close)
+        swarm = st.launch_swarm(robots=g('robots'), seed=g('seed'), lockstep=True, max_ticks=0)
+        self.addCleanup(swarm.shutdown)
+        self.assertTrue(log.wait_tick(3, timeout), 'the swarm never ticked')
+        os.kill(st.node_pid('/robot_0/robot'), signal.SIGKILL)
+        killed_at = log.latest_tick()
+        self.assertTrue(log.wait_tick(killed_at + 20, timeout), 'the swarm stopped ticking')
+        submit = rospy.ServiceProxy('/mission_dispatcher/submit', Submit_Mission)
+        submit.wait_for_service(timeout)
+        answer = submit(st.mission(9, 0, g('group'), 1, (7.0, 7.0, 2.0, 2.0), (3.0, 3.0)))
+        self.assertEqual(answer.code, 0, answer.message)
+        self.assertTrue(st.wait_for(lambda: status.final(9), timeout),
+                        'mission 9 never ended; states %s' % status.states(9))
+        states = status.states(9)
+        self.assertEqual(states[-1], 'DONE', [(m.state, m.reason) for m in status.of(9)])
+        reasons = [m.reason for m in status.of(9) if m.reason]
+        self.assertTrue(any('robot 1 leads: robot(s) 0 lost' in r for r in reasons), reasons)
 
     def test_too_few_robots_left_for_the_leaders_aborts(self):
         status, log, killed_at = self.kill_in_phase(2, 3, [1], group=2, leaders=2)
