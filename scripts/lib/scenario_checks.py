@@ -52,6 +52,12 @@ def check(e, log, scenario, second=None):
         return _overlap(e, log)
     if kind == 'no_intrusion':
         return _intrusion(e, log, scenario)
+    if kind == 'robot_count':
+        pts = log.positions.get(e['at_tick'])
+        if pts is None:
+            return False, 'no positions at tick %d' % e['at_tick']
+        return e['min'] <= len(pts) <= e['max'], '%d robot(s) at tick %d: %s' % (
+            len(pts), e['at_tick'], _ids(sorted(pts)))
     if kind == 'swarm_count':
         pts = log.positions.get(e['at_tick'])
         if pts is None:
@@ -126,6 +132,17 @@ def check(e, log, scenario, second=None):
             (' (first: tick %d)' % diffs[0] if diffs else ''))
         return not diffs and same_status and bool(log.positions), measured
     raise ValueError('unknown expectation %r' % kind)
+
+
+def _ids(ids):
+    """Robot ids as ranges: [0, 1, 2, 5] -> '0-2, 5'."""
+    runs = []
+    for i in ids:
+        if runs and i == runs[-1][1] + 1:
+            runs[-1][1] = i
+        else:
+            runs.append([i, i])
+    return ', '.join('%d' % a if a == b else '%d-%d' % (a, b) for a, b in runs) or 'none'
 
 
 def _at_a_tick(e, log):

@@ -33,6 +33,7 @@ EXPECTATIONS = {
     'in_arena': (set(), {'tolerance_m': 0.0, 'inset_m': 0.0}),
     'moved': (set(), {'min_m': 0.0}),
     'swarm_count': ({'at_tick'}, {'min': 1, 'max': 65535}),
+    'robot_count': ({'at_tick'}, {'min': 0, 'max': 65535}),
     'transport_ticks': ({'mission'}, {'min': 0, 'max': float('inf')}),
     'slip_per_robot_m': ({'mission'}, {'min': 0.0, 'max': float('inf')}),
     'reproducible': (set(), {}),

@@ -331,6 +331,18 @@ class Checks(unittest.TestCase):
             self.assertIn('bad.yaml:13: expect[1].stands', str(cm.exception))
             self.assertIn(words, str(cm.exception))
 
+    def test_robot_count_at_a_tick(self):
+        log = log_of({3: {0: (1, 1, 0), 1: (2, 2, 0), 2: (3, 3, 0), 5: (4, 4, 0)},
+                      4: {0: (1, 1, 0), 1: (2, 2, 0), 2: (3, 3, 0)}})
+        ok, measured = self.run_check('  - robot_count: {at_tick: 3, min: 4, max: 4}\n', log)
+        self.assertTrue(ok, measured)
+        self.assertEqual(measured, '4 robot(s) at tick 3: 0-2, 5')
+        ok, measured = self.run_check('  - robot_count: {at_tick: 4, min: 4}\n', log)
+        self.assertFalse(ok)
+        self.assertEqual(measured, '3 robot(s) at tick 4: 0-2')
+        self.assertFalse(self.run_check('  - robot_count: {at_tick: 3, max: 3}\n', log)[0])
+        self.assertFalse(self.run_check('  - robot_count: {at_tick: 7}\n', log)[0])
+
     def test_a_tick_is_named_once_for_robot_near_and_swarm_of(self):
         for bad, words in (('{robot: 4, x: 5, y: 5}', 'needs either at_tick or mission and'),
                            ('{robot: 4, x: 5, y: 5, at_tick: 3, mission: 7, state: DONE}',
