@@ -161,9 +161,10 @@ def parse(text, path='<scenario>'):
     ids = [m['id'] for m in s['missions']]
     if len(set(ids)) != len(ids):
         r.fail(top['missions'], 'missions', 'mission ids must be unique: %s' % ids)
+    event_nodes = r.sequence(top['events'], 'events') if 'events' in top else []
     s['events'] = [_event(r, n, 'events[%d]' % i, robots, s['max_ticks'], ids)
-                   for i, n in enumerate(r.sequence(top['events'], 'events'))] \
-        if 'events' in top else []
+                   for i, n in enumerate(event_nodes)]
+    _robots_over_time(r, event_nodes, s['events'], robots)
     s['expect'] = [_expectation(r, n, 'expect[%d]' % i, ids, s['max_ticks'])
                    for i, n in enumerate(r.sequence(top['expect'], 'expect'))]
     if not s['expect']:
@@ -340,6 +341,26 @@ def _event(r, node, where, robots, max_ticks, mission_ids):
         out.update(mission=_mission_ref(r, s['mission'], w + '.mission', mission_ids),
                    event=r.choice(s['event'], w + '.event', SIGNALS))
     return out
+
+
+def _robots_over_time(r, nodes, events, robots):
+    """A kill names a robot in the world at its tick, a spawn one that is not (robots 0..N-1
+    from the start, then the spawns and kills in tick order, file order within a tick)."""
+    alive = set(range(robots))
+    order = sorted(range(len(events)), key=lambda i: (events[i]['at_tick'], i))
+    for i in order:
+        e = events[i]
+        if e['kind'] not in ('spawn', 'kill'):
+            continue
+        where = 'events[%d].%s' % (i, e['kind'])
+        node = dict((k.value, v) for k, v in nodes[i].value)[e['kind']]
+        if e['kind'] == 'kill' and e['robot'] not in alive:
+            r.fail(node, where, 'no robot %d in the world at tick %d (world.robots: 0..%d, then '
+                   'the spawns and kills before it)' % (e['robot'], e['at_tick'], robots - 1))
+        if e['kind'] == 'spawn' and e['robot'] in alive:
+            r.fail(node, where, 'robot %d is in the world already at tick %d'
+                   % (e['robot'], e['at_tick']))
+        (alive.discard if e['kind'] == 'kill' else alive.add)(e['robot'])
 
 
 def _mission_ref(r, node, where, mission_ids):

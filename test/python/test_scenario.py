@@ -78,6 +78,22 @@ class Format(unittest.TestCase):
         self.expect_error(MINIMAL + '  - swarm_count: {at_tick: 50, min: 3, max: 2}\n', 13,
                           'min 3 > max 2')
 
+    def test_spawns_and_kills_name_robots_that_are_or_are_not_there(self):
+        ev = lambda text: MINIMAL + 'events:\n' + text  # noqa: E731
+        self.expect_error(ev('  - at_tick: 5\n    kill: 6\n'), 15,
+                          'events[0].kill: no robot 6 in the world at tick 5 (world.robots: 0..5')
+        self.expect_error(ev('  - at_tick: 5\n    spawn: {id: 2, x: 1, y: 1}\n'), 15,
+                          'events[0].spawn: robot 2 is in the world already at tick 5')
+        # in tick order, whatever the file order: killed at 9, robot 3 cannot be killed at 20
+        self.expect_error(ev('  - at_tick: 20\n    kill: 3\n  - at_tick: 9\n    kill: 3\n'),
+                          15, 'events[0].kill: no robot 3 in the world at tick 20')
+        s = fmt.parse(ev('  - at_tick: 30\n    kill: 6\n  - at_tick: 10\n'
+                         '    spawn: {id: 6, x: 1, y: 1}\n  - at_tick: 40\n'
+                         '    spawn: {id: 6, x: 2, y: 2}\n  - at_tick: 40\n    kill: 0\n'),
+                      'ok.yaml')
+        self.assertEqual([(e['kind'], e['at_tick']) for e in s['events']],
+                         [('kill', 30), ('spawn', 10), ('spawn', 40), ('kill', 40)])
+
     def test_a_malformed_world_names_the_line_and_the_key(self):
         world = lambda text: MINIMAL.replace('  robots: 6', '  robots: 6\n' + text)  # noqa
         # /swarm keys: a misspelt one is named with the near key, a value of the wrong kind too
