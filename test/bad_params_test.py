@@ -53,6 +53,11 @@ class BadParams(unittest.TestCase):
         self.check('simulator', ['_real_time_factor:=-1.0', '__name:=sim_bad_pacing'], {},
                    'real_time_factor must be a finite number >= 0')
 
+    def test_dispatcher_missing_events_file(self):
+        self.check('mission_dispatcher', ['_events_file:=/no/such/events.yaml',
+                                          '__name:=dispatcher_bad_events'], {},
+                   '~events_file /no/such/events.yaml')
+
 
 if __name__ == '__main__':
     rospy.init_node('bad_params_test')

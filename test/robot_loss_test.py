@@ -1,10 +1,14 @@
 #!/usr/bin/env python3
 """Robots lost during a mission (issue 11, SPEC 9.7), their processes killed (SIGKILL):
-- a passive robot in GATHERING: its radio falls silent, the group loses it after lost_after_s
-  and gathers, loads and carries without it (LOADING names it);
+- a passive robot in GATHERING (lock-step and real time): its radio falls silent, the group
+  loses it after lost_after_s, the first leader names it at once on /flock/mission/progress
+  (within the bound of the .test) and the group gathers, loads and carries without it (LOADING
+  names it);
 - the first leader in TRANSPORT (lock-step and real time): the next assigned robot is promoted,
   says so in a TRANSPORT status naming the lost robot, and the mission ends DONE;
-- both leaders in TRANSPORT: the next two assigned robots are promoted, the mission ends DONE;
+- both leaders in TRANSPORT (lock-step and real time): the next two assigned robots are
+  promoted, the mission ends DONE;
+- a mission ordered after its first leader's process died: the next robot leads it to DONE;
 - a leader of a two-robot mission with two leaders: fewer robots than leaders are left, the
   mission ends ABORTED with the reason, and the other robot drops it."""
 
@@ -16,6 +20,7 @@ import unittest
 import rospy
 import rostest
 from swarm_transport.msg import New_Mission
+from swarm_transport.srv import Submit_Mission
 
 import swarm_testing as st
 
@@ -33,6 +38,7 @@ class RobotLoss(unittest.TestCase):
         at cleanup."""
         timeout = g('timeout_s')
         status = st.StatusLog()
+        self.progress = st.StatusLog('/flock/mission/progress')
         pub = rospy.Publisher('/flock/mission/new', New_Mission, queue_size=10)
         swarm = st.launch_swarm(robots=g('robots'), seed=g('seed'), lockstep=lockstep,
                                 max_ticks=0)
@@ -70,12 +76,29 @@ class RobotLoss(unittest.TestCase):
                              'killed at tick %d, taken over at tick %d'
                              % (killed_at, takeovers[0].tick))
 
-    def test_a_passive_robot_lost_in_gathering_is_dropped(self):
+    def dropped(self, mission_id, lockstep, bound):
+        """A passive robot killed in GATHERING: named lost on the progress topic within `bound`
+        ticks of the kill, the mission DONE without it."""
         lost = g('lost_robot')
-        status, _, _ = self.kill_in_phase(6, 1, [lost])
-        self.assertEqual(status.states(6), ['QUEUED', 'GATHERING', 'LOADING', 'TRANSPORT',
-                                            'UNLOADING', 'DONE'])
-        self.assertIn('without robot(s) %d (lost' % lost, status.first(6, 2).reason)
+        status, _, killed_at = self.kill_in_phase(mission_id, 1, [lost], lockstep=lockstep)
+        self.assertEqual(status.states(mission_id), ['QUEUED', 'GATHERING', 'LOADING',
+                                                     'TRANSPORT', 'UNLOADING', 'DONE'])
+        self.assertIn('without robot(s) %d (lost' % lost, status.first(mission_id, 2).reason)
+        want = 'robot(s) %d lost (not heard for' % lost
+        notices = [m for m in self.progress.of(mission_id) if want in m.reason]
+        self.assertEqual(len(notices), 1, [(m.tick, st.NAMES[m.state], m.reason)
+                                           for m in self.progress.of(mission_id)])
+        self.assertEqual(st.NAMES[notices[0].state], 'GATHERING', notices[0].reason)
+        self.assertIn('the mission goes on without them', notices[0].reason)
+        self.assertLessEqual(notices[0].tick - killed_at, bound,
+                             'killed at tick %d, named lost at tick %d'
+                             % (killed_at, notices[0].tick))
+
+    def test_a_passive_robot_lost_in_gathering_is_dropped(self):
+        self.dropped(6, True, g('max_ticks_to_promote'))
+
+    def test_a_passive_robot_lost_in_gathering_is_dropped_realtime(self):
+        self.dropped(7, False, g('max_ticks_to_promote_realtime'))
 
     def test_a_lost_first_leader_is_replaced_lockstep(self):
         status, _, killed_at = self.kill_in_phase(5, 3, [0])
@@ -88,6 +111,35 @@ class RobotLoss(unittest.TestCase):
     def test_all_lost_leaders_are_replaced(self):
         status, _, killed_at = self.kill_in_phase(3, 3, [0, 1], leaders=2)
         self.promoted(status, 3, killed_at, [0, 1], 2, g('max_ticks_to_promote'))
+
+    def test_all_lost_leaders_are_replaced_realtime(self):
+        status, _, killed_at = self.kill_in_phase(8, 3, [0, 1], leaders=2, lockstep=False)
+        self.promoted(status, 8, killed_at, [0, 1], 2, g('max_ticks_to_promote_realtime'))
+
+    def test_a_mission_naming_a_dead_first_leader_goes_on_without_it(self):
+        """Its first leader's process died before the order: the order is taken (the robot is
+        still in the world), the next robot is promoted once the dead one is not heard, and the
+        mission ends DONE - it does not wait in QUEUED for good."""
+        timeout = g('timeout_s')
+        status = st.StatusLog()
+        log = st.PositionLog()
+        self.addCleanup(log.close)
+        swarm = st.launch_swarm(robots=g('robots'), seed=g('seed'), lockstep=True, max_ticks=0)
+        self.addCleanup(swarm.shutdown)
+        self.assertTrue(log.wait_tick(3, timeout), 'the swarm never ticked')
+        os.kill(st.node_pid('/robot_0/robot'), signal.SIGKILL)
+        killed_at = log.latest_tick()
+        self.assertTrue(log.wait_tick(killed_at + 20, timeout), 'the swarm stopped ticking')
+        submit = rospy.ServiceProxy('/mission_dispatcher/submit', Submit_Mission)
+        submit.wait_for_service(timeout)
+        answer = submit(st.mission(9, 0, g('group'), 1, (7.0, 7.0, 2.0, 2.0), (3.0, 3.0)))
+        self.assertEqual(answer.code, 0, answer.message)
+        self.assertTrue(st.wait_for(lambda: status.final(9), timeout),
+                        'mission 9 never ended; states %s' % status.states(9))
+        states = status.states(9)
+        self.assertEqual(states[-1], 'DONE', [(m.state, m.reason) for m in status.of(9)])
+        reasons = [m.reason for m in status.of(9) if m.reason]
+        self.assertTrue(any('robot 1 leads: robot(s) 0 lost' in r for r in reasons), reasons)
 
     def test_too_few_robots_left_for_the_leaders_aborts(self):
         status, log, killed_at = self.kill_in_phase(2, 3, [1], group=2, leaders=2)

@@ -196,11 +196,13 @@ NAMES = {0: 'QUEUED', 1: 'GATHERING', 2: 'LOADING', 3: 'TRANSPORT', 4: 'UNLOADIN
 
 
 class StatusLog(object):
-    def __init__(self):
+    """The Mission_Status messages of /flock/mission/status (or of `topic`, e.g.
+    /flock/mission/progress) as they arrive."""
+
+    def __init__(self, topic='/flock/mission/status'):
         self.lock = threading.Lock()
         self.items = []
-        self.sub = rospy.Subscriber('/flock/mission/status', Mission_Status, self._cb,
-                                    queue_size=1000)
+        self.sub = rospy.Subscriber(topic, Mission_Status, self._cb, queue_size=1000)
 
     def _cb(self, msg):
         with self.lock:

@@ -52,6 +52,12 @@ def check(e, log, scenario, second=None):
         return _overlap(e, log)
     if kind == 'no_intrusion':
         return _intrusion(e, log, scenario)
+    if kind == 'robot_count':
+        pts = log.positions.get(e['at_tick'])
+        if pts is None:
+            return False, 'no positions at tick %d' % e['at_tick']
+        return e['min'] <= len(pts) <= e['max'], '%d robot(s) at tick %d: %s' % (
+            len(pts), e['at_tick'], _ids(sorted(pts)))
     if kind == 'swarm_count':
         pts = log.positions.get(e['at_tick'])
         if pts is None:
@@ -97,6 +103,10 @@ def check(e, log, scenario, second=None):
         d = math.hypot(cx - e['x'], cy - e['y'])
         return e['min_m'] <= d <= e['max_m'], 'centroid (%.2f, %.2f) at tick %d, %.2f m away' % (
             cx, cy, e['at_tick'], d)
+    if kind in ('robot_near', 'swarm_of'):
+        return _at_a_tick(e, log)
+    if kind in ('stands', 'drives'):
+        return _paths(e, log)
     if kind == 'object_clear_of_zones':
         return _object_clear(e, log, scenario)
     if kind == 'gathered':
@@ -122,6 +132,70 @@ def check(e, log, scenario, second=None):
             (' (first: tick %d)' % diffs[0] if diffs else ''))
         return not diffs and same_status and bool(log.positions), measured
     raise ValueError('unknown expectation %r' % kind)
+
+
+def _ids(ids):
+    """Robot ids as ranges: [0, 1, 2, 5] -> '0-2, 5'."""
+    runs = []
+    for i in ids:
+        if runs and i == runs[-1][1] + 1:
+            runs[-1][1] = i
+        else:
+            runs.append([i, i])
+    return ', '.join('%d' % a if a == b else '%d-%d' % (a, b) for a, b in runs) or 'none'
+
+
+def _at_a_tick(e, log):
+    """robot_near / swarm_of: one robot at at_tick, or at the tick its mission first reported
+    a state."""
+    if e['at_tick'] is not None:
+        tick, when = e['at_tick'], 'tick %d' % e['at_tick']
+    else:
+        tick = log.first_state_tick(e['mission'], e['state'])
+        if tick is None:
+            return False, 'mission %d never reported %s' % (e['mission'], e['state'])
+        when = 'tick %d (mission %d %s)' % (tick, e['mission'], e['state'])
+    pts = log.positions.get(tick)
+    if not pts or e['robot'] not in pts:
+        return False, 'no position of robot %d at %s' % (e['robot'], when)
+    if e['kind'] == 'robot_near':
+        p = pts[e['robot']]
+        d = math.hypot(p[0] - e['x'], p[1] - e['y'])
+        return e['min_m'] <= d <= e['max_m'], 'robot %d at (%.2f, %.2f) at %s, %.3f m away' % (
+            e['robot'], p[0], p[1], when, d)
+    ids = sorted(pts)
+    labels = presets.components([pts[i] for i in ids], log.params['local_range_m'])[1]
+    own = labels[ids.index(e['robot'])]
+    others = len(ids) - 1
+    with_it = sum(1 for i, label in zip(ids, labels) if label == own and i != e['robot'])
+    fraction = with_it / float(others) if others else 1.0
+    return e['min_fraction'] <= fraction <= e['max_fraction'], (
+        '%d of the %d other robots in robot %d\'s swarm at %s (%.2f)'
+        % (with_it, others, e['robot'], when, fraction))
+
+
+def _paths(e, log):
+    """stands / drives: the path each robot of [from, to) drove over [from_tick, to_tick] (the
+    sum of its per-tick moves; a tick missing from the log shortens it to a chord)."""
+    lo, hi = e['robots']
+    frames = [(t, log.positions[t]) for t in range(e['from_tick'], e['to_tick'] + 1)
+              if t in log.positions]
+    if len(frames) < 2 or frames[0][0] != e['from_tick'] or frames[-1][0] != e['to_tick']:
+        return False, 'no positions over ticks %d..%d' % (e['from_tick'], e['to_tick'])
+    path = {}
+    for rid in range(lo, hi):
+        if any(rid not in pts for _, pts in frames):
+            return False, 'robot %d missing in ticks %d..%d' % (rid, e['from_tick'], e['to_tick'])
+        path[rid] = sum(math.hypot(b[rid][0] - a[rid][0], b[rid][1] - a[rid][1])
+                        for (_, a), (_, b) in zip(frames, frames[1:]))
+    span = 'robots [%d, %d) over ticks %d..%d' % (lo, hi, e['from_tick'], e['to_tick'])
+    if e['kind'] == 'stands':
+        rid = max(path, key=lambda i: path[i])
+        return path[rid] <= e['tolerance_m'], '%s: the most driven %.4f m (robot %d)' % (
+            span, path[rid], rid)
+    rid = (max if e['any'] else min)(path, key=lambda i: path[i])
+    return path[rid] > e['min_m'], '%s: the %s driven %.4f m (robot %d)' % (
+        span, 'most' if e['any'] else 'least', path[rid], rid)
 
 
 def _worst(log, badness):

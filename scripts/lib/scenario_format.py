@@ -5,9 +5,17 @@ parse(text, path) returns the scenario as plain dicts, or raises ScenarioError w
 naming the file, the line and the key ("thesis.yaml:12: missions[0].leaders: ..."), before
 anything is started."""
 
+import difflib
 import math
+import os
 
 import yaml
+
+# The package's config/ folder: world.base_config names a file of it, and its swarm.yaml lists
+# every /swarm key (with the kind of its value) that world.config may set.
+CONFIG_DIR = os.path.abspath(os.path.join(os.path.dirname(__file__), '..', '..', 'config'))
+# /swarm keys the nodes read that config/swarm.yaml leaves out (their default applies).
+EXTRA_CONFIG_KEYS = {'radio_loss': 0.0}
 
 DEPLOYS = ('process', 'host', 'host_sim')
 CLOCKS = ('lockstep', 'realtime')
@@ -25,6 +33,7 @@ EXPECTATIONS = {
     'in_arena': (set(), {'tolerance_m': 0.0, 'inset_m': 0.0}),
     'moved': (set(), {'min_m': 0.0}),
     'swarm_count': ({'at_tick'}, {'min': 1, 'max': 65535}),
+    'robot_count': ({'at_tick'}, {'min': 0, 'max': 65535}),
     'transport_ticks': ({'mission'}, {'min': 0, 'max': float('inf')}),
     'slip_per_robot_m': ({'mission'}, {'min': 0.0, 'max': float('inf')}),
     'reproducible': (set(), {}),
@@ -36,7 +45,19 @@ EXPECTATIONS = {
     'released': (set(), {}),
     'object_clear_of_zones': ({'mission'}, {'tolerance_m': 0.0}),
     'centroid_near': ({'at_tick', 'x', 'y'}, {'min_m': 0.0, 'max_m': float('inf')}),
+    # At a tick: at_tick, or the tick `mission` first reported `state`.
+    'robot_near': ({'robot', 'x', 'y'}, {'min_m': 0.0, 'max_m': float('inf'), 'at_tick': None,
+                                         'mission': None, 'state': None}),
+    'swarm_of': ({'robot'}, {'min_fraction': 0.0, 'max_fraction': 1.0, 'at_tick': None,
+                             'mission': None, 'state': None}),
+    # Robots [from, to) over the ticks [from_tick, to_tick]: each drives a path (the sum of its
+    # per-tick moves) of at most tolerance_m (stands), of more than min_m (drives; any: true
+    # when one of them is enough).
+    'stands': ({'robots', 'from_tick', 'to_tick'}, {'tolerance_m': 0.0}),
+    'drives': ({'robots', 'from_tick', 'to_tick', 'min_m'}, {'any': False}),
 }
+# Expectations measured at one tick: at_tick or (mission, state), exactly one of them.
+AT_A_TICK = ('robot_near', 'swarm_of')
 TOP_KEYS = {'name', 'description', 'world', 'max_ticks', 'missions', 'events', 'expect'}
 WORLD_KEYS = {'robots', 'seed', 'placement', 'placement_file', 'config', 'base_config',
               'danger_zones', 'deploy', 'clock'}
@@ -67,8 +88,14 @@ class _Reader(object):
             if key in out:
                 self.fail(key_node, '%s.%s' % (where, key), 'given twice')
             if key not in allowed:
+                if len(allowed) <= 20:
+                    known = 'allowed: %s' % ', '.join(sorted(allowed))
+                else:  # /swarm's keys: the near ones, and where the rest are
+                    near = difflib.get_close_matches(str(key), sorted(allowed), 3)
+                    known = '%sthe keys are those of config/swarm.yaml' % (
+                        'did you mean %s? ' % ' or '.join(near) if near else '')
                 self.fail(key_node, '%s.%s' % (where, key) if where else key,
-                          'unknown key (allowed: %s)' % ', '.join(sorted(allowed)))
+                          'unknown key (%s)' % known)
             out[key] = value_node
         for key in required:
             if key not in out:
@@ -134,9 +161,10 @@ def parse(text, path='<scenario>'):
     ids = [m['id'] for m in s['missions']]
     if len(set(ids)) != len(ids):
         r.fail(top['missions'], 'missions', 'mission ids must be unique: %s' % ids)
+    event_nodes = r.sequence(top['events'], 'events') if 'events' in top else []
     s['events'] = [_event(r, n, 'events[%d]' % i, robots, s['max_ticks'], ids)
-                   for i, n in enumerate(r.sequence(top['events'], 'events'))] \
-        if 'events' in top else []
+                   for i, n in enumerate(event_nodes)]
+    _robots_over_time(r, event_nodes, s['events'], robots)
     s['expect'] = [_expectation(r, n, 'expect[%d]' % i, ids, s['max_ticks'])
                    for i, n in enumerate(r.sequence(top['expect'], 'expect'))]
     if not s['expect']:
@@ -162,18 +190,82 @@ def _world(r, node):
            'base_config': str(r.value(w['base_config'], 'world.base_config'))
            if 'base_config' in w else 'swarm.yaml',
            'config': {}, 'danger_zones': None, 'placement_file': ''}
+    base = os.path.join(CONFIG_DIR, out['base_config'])
+    if not os.path.isfile(base):
+        r.fail(w.get('base_config'), 'world.base_config',
+               'no file %r in %s' % (out['base_config'], CONFIG_DIR))
     if 'config' in w:
-        # Keys of /swarm (config/swarm.yaml); the nodes validate them before the run starts.
-        if not isinstance(w['config'], yaml.MappingNode):
-            r.fail(w['config'], 'world.config', 'must be a mapping of /swarm keys')
-        out['config'] = r.plain(w['config'])
+        out['config'] = _config(r, w['config'], base)
     if 'danger_zones' in w:
         zones = r.sequence(w['danger_zones'], 'world.danger_zones')
-        out['danger_zones'] = [r.plain(z) for z in zones]
+        out['danger_zones'] = [_zone(r, z, 'world.danger_zones[%d]' % i)
+                               for i, z in enumerate(zones)]
     if out['placement'] == 'file':
         if 'placement_file' not in w:
             r.fail(node, 'world.placement_file', 'required with placement: file')
         out['placement_file'] = str(r.value(w['placement_file'], 'world.placement_file'))
+        path = out['placement_file']
+        if not os.path.isabs(path) and r.path != '<scenario>':
+            path = os.path.join(os.path.dirname(os.path.abspath(r.path)), path)
+        if os.path.isabs(path) and not os.path.isfile(path):
+            r.fail(w['placement_file'], 'world.placement_file', 'no file %s' % path)
+    return out
+
+
+def _zone(r, node, where):
+    """A static danger zone as config/obstacles.yaml writes it: {shape: rect, x, y, size_x,
+    size_y} or {shape: circle, x, y, radius}, sizes > 0."""
+    if not isinstance(node, yaml.MappingNode):
+        r.fail(node, where, 'must be a mapping with a shape of rect or circle')
+    shape_node = dict((k.value, v) for k, v in node.value).get('shape')
+    if shape_node is None:
+        r.fail(node, where, "missing 'shape' (rect or circle)")
+    shape = r.choice(shape_node, where + '.shape', ('rect', 'circle'))
+    sizes = ('size_x', 'size_y') if shape == 'rect' else ('radius',)
+    z = r.mapping(node, where, {'shape', 'x', 'y'} | set(sizes),
+                  required=('shape', 'x', 'y') + sizes)
+    out = {'shape': shape}
+    for key in ('x', 'y'):
+        out[key] = r.number(z[key], '%s.%s' % (where, key))
+    for key in sizes:
+        out[key] = r.number(z[key], '%s.%s' % (where, key), 1e-9)
+    return out
+
+
+def _kind(value):
+    if isinstance(value, bool):
+        return 'true or false'
+    if isinstance(value, (int, float)):
+        return 'a number'
+    if isinstance(value, str):
+        return 'a string'
+    if isinstance(value, list):
+        return 'a list'
+    return 'a mapping'
+
+
+def _config(r, node, base):
+    """world.config: /swarm keys over the base config. A key neither config/swarm.yaml nor the
+    base config knows, or a value of another kind than there (a number for a number, true /
+    false for a flag, ...), is an error naming its line; the nodes check the ranges."""
+    known = dict(EXTRA_CONFIG_KEYS)
+    for path in (os.path.join(CONFIG_DIR, 'swarm.yaml'), base):
+        with open(path) as f:
+            known.update(yaml.safe_load(f) or {})
+    fields = r.mapping(node, 'world.config', set(known))
+    out = {}
+    for key, n in fields.items():
+        where = 'world.config.%s' % key
+        if key == 'danger_zones':
+            out[key] = [_zone(r, z, '%s[%d]' % (where, i))
+                        for i, z in enumerate(r.sequence(n, where))]
+            continue
+        v = r.plain(n)
+        want = _kind(known[key])
+        if _kind(v) != want or (want == 'a number' and not math.isfinite(v)):
+            r.fail(n, where, 'must be %s (as in config/swarm.yaml) but is %r'
+                   % ('a finite number' if want == 'a number' else want, v))
+        out[key] = v
     return out
 
 
@@ -251,6 +343,26 @@ def _event(r, node, where, robots, max_ticks, mission_ids):
     return out
 
 
+def _robots_over_time(r, nodes, events, robots):
+    """A kill names a robot in the world at its tick, a spawn one that is not (robots 0..N-1
+    from the start, then the spawns and kills in tick order, file order within a tick)."""
+    alive = set(range(robots))
+    order = sorted(range(len(events)), key=lambda i: (events[i]['at_tick'], i))
+    for i in order:
+        e = events[i]
+        if e['kind'] not in ('spawn', 'kill'):
+            continue
+        where = 'events[%d].%s' % (i, e['kind'])
+        node = dict((k.value, v) for k, v in nodes[i].value)[e['kind']]
+        if e['kind'] == 'kill' and e['robot'] not in alive:
+            r.fail(node, where, 'no robot %d in the world at tick %d (world.robots: 0..%d, then '
+                   'the spawns and kills before it)' % (e['robot'], e['at_tick'], robots - 1))
+        if e['kind'] == 'spawn' and e['robot'] in alive:
+            r.fail(node, where, 'robot %d is in the world already at tick %d'
+                   % (e['robot'], e['at_tick']))
+        (alive.discard if e['kind'] == 'kill' else alive.add)(e['robot'])
+
+
 def _mission_ref(r, node, where, mission_ids):
     mid = r.number(node, where, 1, 65535, integer=True)
     if mid not in mission_ids:
@@ -282,12 +394,33 @@ def _expectation(r, node, where, mission_ids, max_ticks):
                         for i, s in enumerate(r.sequence(n, kw))]
         elif key in ('settle_ticks', 'grace_ticks'):
             out[key] = r.number(n, kw, 0, max_ticks, integer=True)
-        elif key in ('by_tick', 'at_tick'):
+        elif key in ('by_tick', 'at_tick', 'from_tick', 'to_tick'):
             out[key] = r.number(n, kw, 0, max_ticks, integer=True)
+        elif key == 'robots':
+            out[key] = _range(r, n, kw, None)
+        elif key == 'any':
+            out[key] = r.value(n, kw)
+            if not isinstance(out[key], bool):
+                r.fail(n, kw, 'must be true or false but is %r' % out[key])
+        elif key == 'robot':
+            out[key] = r.number(n, kw, 0, 65535, integer=True)
+        elif key in ('min_fraction', 'max_fraction'):
+            out[key] = r.number(n, kw, 0.0, 1.0)
         else:
             out[key] = r.number(n, kw, 0)
     if 'min' in out and 'max' in out and out['min'] > out['max']:
         r.fail(node, w, 'min %s > max %s' % (out['min'], out['max']))
+    for lo, hi in (('min_m', 'max_m'), ('min_fraction', 'max_fraction')):
+        if lo in out and hi in out and out[lo] > out[hi]:
+            r.fail(node, w, '%s %s > %s %s' % (lo, out[lo], hi, out[hi]))
+    if 'from_tick' in out and out['from_tick'] >= out['to_tick']:
+        r.fail(node, w, 'from_tick %d must be < to_tick %d' % (out['from_tick'], out['to_tick']))
+    if kind in AT_A_TICK:
+        by_state = out['mission'] is not None or out['state'] is not None
+        if (out['at_tick'] is None) == (not by_state) or \
+                (by_state and (out['mission'] is None or out['state'] is None)):
+            r.fail(node, w, 'needs either at_tick or mission and state (the tick the mission '
+                   'first reported that state)')
     return out
 
 

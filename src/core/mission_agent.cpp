@@ -309,6 +309,7 @@ void MissionAgent::RunFirstLeader(Live* live, const Pose2& self, const Group& gr
     if (live->promoted) {
       outbox->statuses.back().reason = "robot " + std::to_string(self_id_) +
                                        " leads: robot(s) " + lost.str() + lost_for;
+      live->lost_told = live->lost.size();
     }
   }
   // A report within the phase every progress_every_ticks, in every phase: also the first
@@ -352,6 +353,16 @@ void MissionAgent::RunFirstLeader(Live* live, const Pose2& self, const Group& gr
              : ": " + std::to_string(left) + " robots left, fewer than mission_min_robots " +
                    std::to_string(params_.min_robots));
     return;
+  }
+
+  // A member newly lost: the first leader says so at once, with its phase again (a progress
+  // report: /flock/mission/progress), and the mission goes on without it.
+  if (live->lost.size() > live->lost_told &&
+      live->phase >= MissionPhase::kGathering && live->phase <= MissionPhase::kUnloading) {
+    live->lost_told = live->lost.size();
+    outbox->statuses.push_back(Report(*live, inside));
+    outbox->statuses.back().reason =
+        "robot(s) " + lost.str() + lost_for + ": the mission goes on without them";
   }
 
   switch (live->phase) {

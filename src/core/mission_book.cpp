@@ -183,6 +183,9 @@ void MissionBook::OnProgress(const MissionReport& report, double now_s) {
   if (it == entries_.end() || !it->second.Live()) return;
   Entry& m = it->second;
   m.heard_s = now_s;
+  // A progress report with a reason says why (a robot lost, the mission going on without it):
+  // `mission status` shows it.
+  if (!report.reason.empty()) m.reason = report.reason;
   if (report.robots_assigned > 0) m.robots_assigned = report.robots_assigned;
   m.robots_inside = report.robots_inside;
   m.distance_to_target_m = report.distance_to_target_m;

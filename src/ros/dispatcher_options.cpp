@@ -232,6 +232,7 @@ bool ReadDispatcherOptions(const ros::NodeHandle& nh, const ros::NodeHandle& p,
   if (!ReadPrivate(p, "loaded_delay_s", &options->loaded_delay_s, error) ||
       !ReadPrivate(p, "unloaded_delay_s", &options->unloaded_delay_s, error) ||
       !ReadPrivate(p, "missions_file", &options->missions_file, error) ||
+      !ReadPrivate(p, "events_file", &options->events_file, error) ||
       !ReadPrivate(p, "start_delay_s", &options->start_delay_s, error) ||
       !ReadPrivate(p, "max_live_missions", &options->max_live_missions, error) ||
       !ReadPrivate(p, "silent_abort_ticks", &options->silent_abort_ticks, error)) {
@@ -239,6 +240,12 @@ bool ReadDispatcherOptions(const ros::NodeHandle& nh, const ros::NodeHandle& p,
   }
   *error = options->Validate();
   if (!error->empty()) return false;
+  options->events.clear();
+  if (!options->events_file.empty() &&
+      !ReadEventsFile(options->events_file, &options->events, error)) {
+    *error = "~events_file " + options->events_file + ": " + *error;
+    return false;
+  }
   file_missions->clear();
   if (options->missions_file.empty()) return true;
   return ReadMissionsFile(options->missions_file, config->flocking.world_size_m, file_missions,

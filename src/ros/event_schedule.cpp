@@ -151,6 +151,16 @@ EventSchedule::EventSchedule(std::vector<TimedEvent> events) : events_(std::move
                    [](const TimedEvent& a, const TimedEvent& b) { return a.tick < b.tick; });
 }
 
+std::set<std::uint16_t> RobotsAt(std::set<std::uint16_t> robots,
+                                 const std::vector<TimedEvent>& events, std::uint64_t tick) {
+  EventSchedule schedule(events);
+  for (const TimedEvent& e : schedule.Due(tick)) {
+    if (e.kind == TimedEvent::Kind::kSpawn) robots.insert(e.robot);
+    if (e.kind == TimedEvent::Kind::kKill) robots.erase(e.robot);
+  }
+  return robots;
+}
+
 std::vector<TimedEvent> EventSchedule::Due(std::uint64_t tick) {
   std::vector<TimedEvent> due;
   while (next_ < events_.size() && events_[next_].tick <= tick) due.push_back(events_[next_++]);

@@ -148,8 +148,15 @@ void MissionDispatcher::PublishStatus(const core::MissionSpec& spec, MissionPhas
 core::MissionBook::Verdict MissionDispatcher::Submit(core::MissionSpec spec,
                                                      const std::string& source, bool auto_id,
                                                      bool publish, std::uint64_t start_tick) {
+  return Submit(std::move(spec), source, auto_id, publish, start_tick, KnownRobots());
+}
+
+core::MissionBook::Verdict MissionDispatcher::Submit(core::MissionSpec spec,
+                                                     const std::string& source, bool auto_id,
+                                                     bool publish, std::uint64_t start_tick,
+                                                     const std::set<std::uint16_t>& robots) {
   const core::MissionBook::Verdict verdict =
-      book_->Submit(std::move(spec), source, auto_id, !publish, KnownRobots(),
+      book_->Submit(std::move(spec), source, auto_id, !publish, robots,
                     ros::Time::now().toSec());
   if (!verdict.accepted) {
     ROS_WARN("%s: rejected mission %u from %s: %s", kNode, verdict.id, source.c_str(),
@@ -191,8 +198,11 @@ void MissionDispatcher::ScheduleFileMissions(std::uint64_t tick) {
     // A mission's own at_tick, else start_delay_s; never a tick that has begun.
     const std::uint64_t start =
         std::max<std::uint64_t>(tick + 1, file_ticks_[i] > 0 ? file_ticks_[i] : delay_ticks);
+    // Checked against the robots of its start tick: those of now, with the spawns and kills
+    // of the simulator's events until then (a scenario's robot that joins later can be named).
     const core::MissionBook::Verdict verdict =
-        Submit(file_missions_[i], "missions_file", true, true, start);
+        Submit(file_missions_[i], "missions_file", true, true, start,
+               RobotsAt(KnownRobots(), options_.events, start));
     if (!verdict.accepted) continue;
     schedule.mission_ids.push_back(verdict.id);
     schedule.start_ticks.push_back(start);

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <set>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -414,18 +415,39 @@ TEST(MissionAgentTest, AFirstLeaderDropsAMemberSilentInGatheringOrAbortsWithoutE
   MissionOutbox out;
   std::vector<MissionPhase> phases;
   std::string reason;
+  std::string notice;
+  std::uint64_t notice_tick = 0;
   for (std::uint64_t t = 1; t <= 10; ++t) {
     out = MissionOutbox();
     leader.Tick(PoseAt(7.0, 7.0), heard, t, &out);
     for (const StatusReport& r : out.statuses) {
       phases.push_back(r.phase);
       if (r.phase == MissionPhase::kLoading) reason = r.reason;
+      if (r.phase == MissionPhase::kGathering && !r.reason.empty()) {
+        EXPECT_TRUE(notice.empty()) << "named twice: " << notice << " / " << r.reason;
+        notice = r.reason;
+        notice_tick = t;
+      }
     }
   }
-  // Gathered without it once it was silent for more than 5 ticks (from the first tick on).
+  // Gathered without it once it was silent for more than 5 ticks (from the first tick on): the
+  // first leader names it at once (GATHERING again: a progress report), then loads.
   ASSERT_EQ(phases, (std::vector<MissionPhase>{MissionPhase::kGathering,
+                                               MissionPhase::kGathering,
                                                MissionPhase::kLoading}));
+  EXPECT_EQ(notice_tick, 7u);
+  EXPECT_EQ(notice, "robot(s) 2 lost (not heard for 5 ticks): the mission goes on without them");
   EXPECT_NE(reason.find("without robot(s) 2 (lost"), std::string::npos) << reason;
+  // The sequencer sends the repeat as progress, so the phase reports stay one per phase.
+  StatusSequencer sequencer;
+  std::vector<StatusReport> reports(2), progress;
+  reports[0].mission_id = reports[1].mission_id = spec.id;
+  reports[0].phase = reports[1].phase = MissionPhase::kGathering;
+  reports[1].reason = notice;
+  sequencer.Sequence(true, &reports, &progress);
+  ASSERT_EQ(reports.size(), 1u);
+  ASSERT_EQ(progress.size(), 1u);
+  EXPECT_EQ(progress[0].reason, notice);
 
   // With 2 leaders and both others silent, fewer robots than leaders are left: ABORTED.
   spec.id = 8;
@@ -549,6 +571,44 @@ TEST(MissionAgentTest, LostLeadersAreReplacedInOrderAndAFirstLeaderToBeKeepsTheS
   robot2.Tick(self, {At(3, 7.0, 7.5)}, 12, &out);
   EXPECT_EQ(Phases(out), std::vector<std::string>{"TRANSPORT"});
   EXPECT_EQ(out.resume.size(), 1u);
+}
+
+TEST(MissionAgentTest, AFirstLeaderDropsAMemberLostInLoadingAndCarriesOn) {
+  MissionAgentParams params;
+  params.lost_after_ticks = 5;
+  const MissionSpec spec = Thesis();  // robots [0, 3), robot 0 the only leader, object at (7, 7)
+  MissionAgent leader(0, params);
+  std::string why;
+  ASSERT_TRUE(leader.OnNewMission(spec, &why)) << why;
+  const Pose2 self = PoseAt(7.0, 7.0);
+  const std::vector<Neighbour> both = {At(1, 7.2, 7.0), At(2, 6.8, 7.0)};
+  MissionOutbox out;
+  std::uint64_t t = 0;
+  std::uint64_t loading = 0;
+  while (loading == 0 && t < 10) {
+    out = MissionOutbox();
+    leader.Tick(self, both, ++t, &out);
+    for (const StatusReport& r : out.statuses) {
+      if (r.phase == MissionPhase::kLoading) loading = t;
+    }
+  }
+  ASSERT_GT(loading, 0u) << "never loaded";
+  ASSERT_TRUE(leader.OnEvent(7, MissionEventKind::kLoaded, loading + 20, &why)) << why;
+  // Robot 2 falls silent in LOADING: named at once when lost, and the mission carries on.
+  std::vector<std::pair<std::uint64_t, StatusReport>> reports;
+  for (t = loading + 1; t <= loading + 20; ++t) {
+    out = MissionOutbox();
+    leader.Tick(self, {At(1, 7.2, 7.0)}, t, &out);
+    for (const StatusReport& r : out.statuses) reports.emplace_back(t, r);
+  }
+  ASSERT_EQ(reports.size(), 2u);
+  EXPECT_EQ(reports[0].first, loading + 6);  // silent for more than 5 ticks
+  EXPECT_EQ(reports[0].second.phase, MissionPhase::kLoading);
+  EXPECT_EQ(reports[0].second.reason,
+            "robot(s) 2 lost (not heard for 5 ticks): the mission goes on without them");
+  EXPECT_EQ(reports[1].first, loading + 20);  // the LOADED takes effect
+  EXPECT_EQ(reports[1].second.phase, MissionPhase::kTransport);
+  EXPECT_EQ(leader.LostOf(7), (std::set<std::uint16_t>{2}));
 }
 
 TEST(MissionAgentTest, AMissionWithFewerRobotsLeftThanLeadersEndsAborted) {

@@ -130,6 +130,20 @@ TEST(MissionBookTest, ForgetsTheOldestFinishedMissionsFirst) {
   EXPECT_NE(book.Find(6), nullptr);
 }
 
+TEST(MissionBookTest, AProgressReportWithAReasonShowsInTheTable) {
+  MissionBook book(Params());
+  ASSERT_TRUE(book.Submit(Thesis(7), "service", false, false, Robots(25), 0.0).accepted);
+  book.OnStatus(Report(7, MissionPhase::kGathering, 10), 1.0);
+  book.OnProgress(Report(7, MissionPhase::kGathering, 20), 2.0);  // no reason: none shown
+  EXPECT_EQ(book.Find(7)->reason, "");
+  EXPECT_NE(book.Table(3.0).find(" G 2.0\n"), std::string::npos) << book.Table(3.0);  // row ends
+  MissionReport lost = Report(7, MissionPhase::kGathering, 30);
+  lost.reason = "robot(s) 2 lost (not heard for 5 ticks): the mission goes on without them";
+  book.OnProgress(lost, 3.0);
+  EXPECT_NE(book.Table(4.0).find(" | " + lost.reason), std::string::npos) << book.Table(4.0);
+  EXPECT_EQ(book.Find(7)->phase, MissionPhase::kGathering);  // progress changes no phase
+}
+
 TEST(MissionBookTest, ARunningMissionWhoseFirstLeaderFellSilentIsEnded) {
   MissionBookParams p = Params();
   p.silent_after_s = 30.0;

@@ -78,6 +78,56 @@ class Format(unittest.TestCase):
         self.expect_error(MINIMAL + '  - swarm_count: {at_tick: 50, min: 3, max: 2}\n', 13,
                           'min 3 > max 2')
 
+    def test_spawns_and_kills_name_robots_that_are_or_are_not_there(self):
+        ev = lambda text: MINIMAL + 'events:\n' + text  # noqa: E731
+        self.expect_error(ev('  - at_tick: 5\n    kill: 6\n'), 15,
+                          'events[0].kill: no robot 6 in the world at tick 5 (world.robots: 0..5')
+        self.expect_error(ev('  - at_tick: 5\n    spawn: {id: 2, x: 1, y: 1}\n'), 15,
+                          'events[0].spawn: robot 2 is in the world already at tick 5')
+        # in tick order, whatever the file order: killed at 9, robot 3 cannot be killed at 20
+        self.expect_error(ev('  - at_tick: 20\n    kill: 3\n  - at_tick: 9\n    kill: 3\n'),
+                          15, 'events[0].kill: no robot 3 in the world at tick 20')
+        s = fmt.parse(ev('  - at_tick: 30\n    kill: 6\n  - at_tick: 10\n'
+                         '    spawn: {id: 6, x: 1, y: 1}\n  - at_tick: 40\n'
+                         '    spawn: {id: 6, x: 2, y: 2}\n  - at_tick: 40\n    kill: 0\n'),
+                      'ok.yaml')
+        self.assertEqual([(e['kind'], e['at_tick']) for e in s['events']],
+                         [('kill', 30), ('spawn', 10), ('spawn', 40), ('kill', 40)])
+
+    def test_a_malformed_world_names_the_line_and_the_key(self):
+        world = lambda text: MINIMAL.replace('  robots: 6', '  robots: 6\n' + text)  # noqa
+        # /swarm keys: a misspelt one is named with the near key, a value of the wrong kind too
+        self.expect_error(world('  config:\n    free_will_dg: 45'), 4,
+                          'world.config.free_will_dg: unknown key (did you mean free_will_deg?')
+        self.expect_error(world('  config:\n    cohesion: 0.3\n    free_will_deg: fast'), 5,
+                          "world.config.free_will_deg: must be a finite number (as in "
+                          "config/swarm.yaml) but is 'fast'")
+        self.expect_error(world('  config:\n    free_will_deg: .inf'), 4,
+                          'world.config.free_will_deg: must be a finite number')
+        self.expect_error(world('  base_config: thesis.yaml'), 3,
+                          "world.base_config: no file 'thesis.yaml'")
+        self.expect_error(world('  placement: file\n  placement_file: /no/such/file.txt'), 4,
+                          'world.placement_file: no file /no/such/file.txt')
+        # danger zones, in world or in world.config, as config/obstacles.yaml writes them
+        self.expect_error(world('  danger_zones:\n    - {shape: square, x: 5, y: 5}'), 4,
+                          "world.danger_zones[0].shape: must be one of rect, circle but is "
+                          "'square'")
+        self.expect_error(world('  danger_zones:\n    - {shape: circle, x: 5, y: 5, radius: 1}'
+                                '\n    - {shape: rect, x: 5, y: 5, size_x: 0, size_y: 1}'),
+                          5, 'world.danger_zones[1].size_x: must be a finite number in [1e-09')
+        self.expect_error(world('  danger_zones:\n    - {shape: circle, x: 5, y: 5}'), 4,
+                          "world.danger_zones[0]: missing 'radius'")
+        self.expect_error(world('  config:\n    danger_zones:\n'
+                                '      - {shape: rect, x: 1, y: 1}'), 5,
+                          "world.config.danger_zones[0]: missing 'size_x'")
+        # and the good ones pass through
+        s = fmt.parse(world('  base_config: thesis_transport.yaml\n  config:\n'
+                            '    free_will_deg: 45\n    radio_loss: 0.1\n  danger_zones:\n'
+                            '    - {shape: circle, x: 5, y: 5, radius: 1}'), 'ok.yaml')
+        self.assertEqual(s['world']['config'], {'free_will_deg': 45, 'radio_loss': 0.1})
+        self.assertEqual(s['world']['danger_zones'],
+                         [{'shape': 'circle', 'x': 5, 'y': 5, 'radius': 1}])
+
 
 def log_of(positions, statuses=(), objects=None, metrics=None):
     return checks.RunLog(positions, statuses, objects, metrics)
@@ -226,6 +276,105 @@ class Checks(unittest.TestCase):
         self.assertIn('centroid (2.00, 1.00)', measured)
         self.assertTrue(self.run_check('  - centroid_near: {at_tick: 5, x: 8, y: 8, min_m: 5}\n',
                                        log)[0])
+
+    def test_robot_near_and_swarm_of_at_a_tick_or_a_state(self):
+        # robot 4 leads to (5, 5): at DONE (tick 6) it is 0.1 m from it with robots 0 and 1 in
+        # its swarm (hop by hop within 1 m), robot 2 far away; robot 3 has not arrived at tick 2.
+        log = log_of({2: {0: (1.0, 1.0, 0), 1: (1.5, 1.0, 0), 2: (9.0, 9.0, 0), 4: (2.0, 2.0, 0)},
+                      6: {0: (4.0, 5.0, 0), 1: (3.2, 5.0, 0), 2: (9.0, 9.0, 0),
+                          4: (4.9, 5.0, 0)}},
+                     [(7, 'QUEUED', 0), (7, 'TRANSPORT', 1), (7, 'DONE', 6)])
+        near = '  - robot_near: {robot: 4, x: 5, y: 5, max_m: %s, mission: 7, state: DONE}\n'
+        ok, measured = self.run_check(near % 0.11, log)
+        self.assertTrue(ok, measured)
+        self.assertIn('robot 4 at (4.90, 5.00) at tick 6 (mission 7 DONE), 0.100 m away',
+                      measured)
+        self.assertFalse(self.run_check(near % 0.09, log)[0])
+        self.assertFalse(self.run_check(
+            '  - robot_near: {robot: 4, x: 5, y: 5, max_m: 1, at_tick: 2}\n', log)[0])
+        ok, measured = self.run_check(
+            '  - robot_near: {robot: 4, x: 5, y: 5, mission: 7, state: UNLOADING}\n', log)
+        self.assertFalse(ok)
+        self.assertIn('never reported UNLOADING', measured)
+        self.assertFalse(self.run_check(
+            '  - robot_near: {robot: 9, x: 5, y: 5, at_tick: 6}\n', log)[0])  # no robot 9
+        of = '  - swarm_of: {robot: 4, min_fraction: %s, mission: 7, state: DONE}\n'
+        ok, measured = self.run_check(of % 0.66, log)
+        self.assertTrue(ok, measured)
+        self.assertIn("2 of the 3 other robots in robot 4's swarm at tick 6", measured)
+        self.assertFalse(self.run_check(of % 0.8, log)[0])
+        ok, measured = self.run_check(
+            '  - swarm_of: {robot: 4, min_fraction: 0.3, at_tick: 2}\n', log)
+        self.assertFalse(ok)
+        self.assertIn('0 of the 3 other robots', measured)  # 1.1 m from robot 1
+        self.assertTrue(self.run_check(
+            '  - swarm_of: {robot: 2, max_fraction: 0.0, at_tick: 6}\n', log)[0])
+
+    def test_stands_and_drives_over_ticks(self):
+        # robots 0, 1 frozen over ticks 10..12 (robot 1 pushed 0.0005 m); robot 2 drives 0.2 m
+        # and back (a path of 0.4 m, no displacement); robot 3 creeps 0.01 m.
+        log = log_of({10: {0: (1.0, 1.0, 0), 1: (2.0, 1.0, 0), 2: (5.0, 5.0, 0), 3: (8, 8, 0)},
+                      11: {0: (1.0, 1.0, 0), 1: (2.0005, 1.0, 0), 2: (5.2, 5.0, 0),
+                           3: (8.005, 8, 0)},
+                      12: {0: (1.0, 1.0, 0), 1: (2.0005, 1.0, 0), 2: (5.0, 5.0, 0),
+                           3: (8.01, 8, 0)}})
+        stands = '  - stands: {robots: [%d, %d], from_tick: 10, to_tick: 12, tolerance_m: %s}\n'
+        self.assertTrue(self.run_check(stands % (0, 2, 0.001), log)[0])
+        ok, measured = self.run_check(stands % (0, 2, 0.0001), log)
+        self.assertFalse(ok)
+        self.assertIn('robots [0, 2) over ticks 10..12: the most driven 0.0005 m (robot 1)',
+                      measured)
+        ok, measured = self.run_check(stands % (0, 3, 0.001), log)  # a path, not a displacement
+        self.assertFalse(ok)
+        self.assertIn('0.4000 m (robot 2)', measured)
+        drives = '  - drives: {robots: [2, 4], from_tick: 10, to_tick: 12, min_m: 0.05%s}\n'
+        ok, measured = self.run_check(drives % '', log)
+        self.assertFalse(ok)  # robot 3 drove 0.01 m only
+        self.assertIn('the least driven 0.0100 m (robot 3)', measured)
+        self.assertTrue(self.run_check(drives % ', any: true', log)[0])
+        self.assertFalse(self.run_check(
+            '  - drives: {robots: [0, 2], from_tick: 10, to_tick: 12, min_m: 0.05, any: true}\n',
+            log)[0])
+        ok, measured = self.run_check(
+            '  - drives: {robots: [2, 4], from_tick: 10, to_tick: 13, min_m: 0.05}\n', log)
+        self.assertFalse(ok)
+        self.assertIn('no positions over ticks 10..13', measured)
+        for bad, words in (('{robots: [3, 2], from_tick: 1, to_tick: 5}', '.robots: must be'),
+                           ('{robots: [0, 2], from_tick: 5, to_tick: 5}',
+                            'from_tick 5 must be < to_tick 5')):
+            with self.assertRaises(fmt.ScenarioError) as cm:
+                fmt.parse(MINIMAL + '  - stands: %s\n' % bad, 'bad.yaml')
+            self.assertIn('bad.yaml:13: expect[1].stands', str(cm.exception))
+            self.assertIn(words, str(cm.exception))
+
+    def test_robot_count_at_a_tick(self):
+        log = log_of({3: {0: (1, 1, 0), 1: (2, 2, 0), 2: (3, 3, 0), 5: (4, 4, 0)},
+                      4: {0: (1, 1, 0), 1: (2, 2, 0), 2: (3, 3, 0)}})
+        ok, measured = self.run_check('  - robot_count: {at_tick: 3, min: 4, max: 4}\n', log)
+        self.assertTrue(ok, measured)
+        self.assertEqual(measured, '4 robot(s) at tick 3: 0-2, 5')
+        ok, measured = self.run_check('  - robot_count: {at_tick: 4, min: 4}\n', log)
+        self.assertFalse(ok)
+        self.assertEqual(measured, '3 robot(s) at tick 4: 0-2')
+        self.assertFalse(self.run_check('  - robot_count: {at_tick: 3, max: 3}\n', log)[0])
+        self.assertFalse(self.run_check('  - robot_count: {at_tick: 7}\n', log)[0])
+
+    def test_a_tick_is_named_once_for_robot_near_and_swarm_of(self):
+        for bad, words in (('{robot: 4, x: 5, y: 5}', 'needs either at_tick or mission and'),
+                           ('{robot: 4, x: 5, y: 5, at_tick: 3, mission: 7, state: DONE}',
+                            'needs either at_tick or mission and'),
+                           ('{robot: 4, x: 5, y: 5, mission: 7}', 'needs either at_tick'),
+                           ('{robot: 4, x: 5, y: 5, at_tick: 3, min_m: 2, max_m: 1}',
+                            'min_m 2 > max_m 1')):
+            with self.assertRaises(fmt.ScenarioError) as cm:
+                fmt.parse(MINIMAL + '  - robot_near: %s\n' % bad, 'bad.yaml')
+            self.assertIn('bad.yaml:13: expect[1].robot_near', str(cm.exception))
+            self.assertIn(words, str(cm.exception))
+        with self.assertRaises(fmt.ScenarioError) as cm:
+            fmt.parse(MINIMAL + '  - swarm_of: {robot: 4, min_fraction: 1.5, at_tick: 3}\n',
+                      'bad.yaml')
+        self.assertIn('expect[1].swarm_of.min_fraction: must be a finite number in [0.0, 1.0]',
+                      str(cm.exception))
 
     def test_moved_and_in_arena_with_an_inset(self):
         log = log_of({0: {0: (1.0, 1.0, 0), 1: (2.0, 2.0, 0)},

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -85,6 +86,27 @@ TEST(EventScheduleTest, HandsOutEachEventOnceAtItsTick) {
   EXPECT_FALSE(schedule.empty());
   EXPECT_EQ(schedule.Due(100).size(), 1u);  // a late tick takes what is overdue
   EXPECT_TRUE(schedule.empty());
+}
+
+TEST(EventScheduleTest, RobotsAtFollowsTheSpawnsAndKillsDueByThatTick) {
+  std::string error;
+  const std::vector<TimedEvent> events = Read(
+      "events:\n"
+      "  - {tick: 30, kind: kill, robot: 6}\n"
+      "  - {tick: 10, kind: spawn, robot: 6, x: 1, y: 1}\n"
+      "  - {tick: 10, kind: freeze, from: 0, to: 3}\n"
+      "  - {tick: 20, kind: kill, robot: 0}\n"
+      "  - {tick: 40, kind: spawn, robot: 6, x: 2, y: 2}\n",
+      &error);
+  ASSERT_EQ(error, "");
+  const std::set<std::uint16_t> start = {0, 1, 2};
+  EXPECT_EQ(RobotsAt(start, events, 0), start);
+  EXPECT_EQ(RobotsAt(start, events, 9), start);
+  EXPECT_EQ(RobotsAt(start, events, 10), (std::set<std::uint16_t>{0, 1, 2, 6}));  // due at 10
+  EXPECT_EQ(RobotsAt(start, events, 25), (std::set<std::uint16_t>{1, 2, 6}));
+  EXPECT_EQ(RobotsAt(start, events, 30), (std::set<std::uint16_t>{1, 2}));
+  EXPECT_EQ(RobotsAt(start, events, 99), (std::set<std::uint16_t>{1, 2, 6}));
+  EXPECT_EQ(RobotsAt(start, {}, 99), start);
 }
 
 }  // namespace

@@ -179,6 +179,7 @@ class MissionAgent {
     std::uint64_t first_since = 0;  // tick it became first leader by promotion (0: none)
     bool promoted = false;     // it leads as first leader because the first leader was lost
     bool announced = false;    // ... and said so
+    std::size_t lost_told = 0; // first-leader: lost robots it has named in a report so far
     std::vector<Vec2> route;   // transport: the object's waypoints, the target last
     std::size_t leg = 0;       // ... the one it heads for now
   };

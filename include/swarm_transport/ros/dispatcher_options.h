@@ -11,6 +11,7 @@
 
 #include "swarm_transport/core/mission.h"
 #include "swarm_transport/core/mission_book.h"
+#include "swarm_transport/ros/event_schedule.h"
 #include "swarm_transport/ros/params.h"
 
 namespace swarm_transport {
@@ -20,6 +21,10 @@ struct DispatcherOptions {
   double loaded_delay_s = 2.0;    // ~loaded_delay_s (else /swarm): LOADED after LOADING; < 0: never
   double unloaded_delay_s = 2.0;  // ~unloaded_delay_s (else /swarm): UNLOADED after UNLOADING
   std::string missions_file;      // ~missions_file: YAML with `missions:`; "" = none
+  // ~events_file: the simulator's timed events (a scenario's; "" = none). In lock-step a file
+  // mission is checked against the robots of its start tick as the spawns and kills make them.
+  std::string events_file;
+  std::vector<TimedEvent> events;  // ... read from it
   double start_delay_s = 1.0;     // ~start_delay_s: after the first /flock/positions, >= 0
   int max_live_missions = 64;     // ~max_live_missions (else /swarm's): more are rejected
   // ~silent_abort_ticks: a running mission whose first leader said nothing (phase or progress

@@ -7,6 +7,7 @@
 #include <xmlrpcpp/XmlRpcValue.h>
 
 #include <cstdint>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,12 @@ struct TimedEvent {
 bool EventsFromXmlRpc(XmlRpc::XmlRpcValue& file, std::vector<TimedEvent>* events,
                       std::string* error);
 bool ReadEventsFile(const std::string& path, std::vector<TimedEvent>* events, std::string* error);
+
+// The physical robots in the world at `tick` as the events make them: `robots` (those of the
+// run's first tick), then every spawn and kill due at or before `tick` in tick order (file order
+// within a tick) - the robots a lock-step mission that starts at `tick` may name.
+std::set<std::uint16_t> RobotsAt(std::set<std::uint16_t> robots,
+                                 const std::vector<TimedEvent>& events, std::uint64_t tick);
 
 // The events not yet due, by tick (file order within a tick).
 class EventSchedule {

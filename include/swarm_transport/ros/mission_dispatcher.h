@@ -53,6 +53,10 @@ class MissionDispatcher {
   // then; 0: when it arrives).
   core::MissionBook::Verdict Submit(core::MissionSpec spec, const std::string& source,
                                     bool auto_id, bool publish, std::uint64_t start_tick = 0);
+  // ... checking the robots it names against `robots` (the others: those listed now).
+  core::MissionBook::Verdict Submit(core::MissionSpec spec, const std::string& source,
+                                    bool auto_id, bool publish, std::uint64_t start_tick,
+                                    const std::set<std::uint16_t>& robots);
   // Real time: submits the file missions of this at_tick (0: those of start_delay_s).
   void SubmitFileMissions(std::uint64_t at_tick);
   // Lock-step: submits the file missions stamped with their start tick (after the first
