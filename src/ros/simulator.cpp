@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <set>
 #include <type_traits>
 
@@ -82,6 +83,8 @@ bool Simulator::Initialize() {
     return false;
   }
   lockstep_ = params_.clock == core::Clock::kLockstep;
+  radio_follows_range_ = !private_nh_.hasParam("radio_range_m");
+  tuning_ = std::make_unique<TuningRelay>(params_.swarm);
   radio_rng_ = std::make_unique<core::Rng>(params_.swarm.seed, sim::kRadioLossStream);
   radio_ = std::make_unique<sim::Radio>(RadioParamsOf(params_), radio_rng_.get());
   spawn_rng_ = std::make_unique<core::Rng>(params_.swarm.seed, kSpawnStream);
@@ -181,6 +184,8 @@ void Simulator::Connect() {
     event_signal_pub_ = nh_.advertise<Mission_Event>(names::kMissionEvent, kMissionQueue);
   }
   if (lockstep_) session_->Connect();
+  tuning_pub_ = nh_.advertise<Flocking_Tuning>(names::kTuning, 1, true);
+  tuning_server_ = std::make_unique<FlockingTuningServer>(private_nh_, tuning_.get());
 }
 
 void Simulator::AddRobot(std::uint16_t id) {
@@ -221,6 +226,8 @@ void Simulator::Shutdown() {
   reset_srv_.shutdown();
   positions_pub_.shutdown();
   clock_pub_.shutdown();
+  tuning_server_.reset();
+  tuning_pub_.shutdown();
   if (visuals_) visuals_->Shutdown();
 }
 
@@ -330,7 +337,26 @@ void Simulator::PublishClock() {
   clock_pub_.publish(msg);
 }
 
+void Simulator::BeginTuningRound() {
+  const std::optional<Flocking_Tuning> tuned = tuning_->BeginRound(tick_);
+  if (!tuned) return;
+  const double range_m = tuned->local_range_m;
+  if (radio_follows_range_) {
+    params_.radio_range_m = range_m;
+    radio_->set_range_m(range_m);
+  }
+  visuals_->SetLocalRange(range_m);
+  tuning_pub_.publish(*tuned);
+  ROS_INFO("simulator: flocking tuning %u from tick %llu: free_will_deg %g, cohesion %g, "
+           "local_range_m %g, speed_m_per_tick %g, radio range %g m",
+           tuned->generation, static_cast<unsigned long long>(tuned->tick),
+           tuned->free_will_deg, tuned->cohesion, tuned->local_range_m,
+           tuned->speed_m_per_tick, params_.radio_range_m);
+}
+
 void Simulator::PublishRadio() {
+  // Not in the final round after the last lock-step tick: nobody acts on it.
+  if (!finished_) BeginTuningRound();
   if (lockstep_) {
     // The orders due by this tick enter its relay and the simulator's books together (the
     // mission channel, markers); the rest wait for their start tick.
@@ -364,6 +390,7 @@ void Simulator::PublishRadio() {
     radio_->Hear(i, &round);
     Neighbors msg = RadioRoundMessage(tick_, sim_time, robot->second, round, truth, relayed);
     if (lockstep_) session_->FillRound(&msg);
+    tuning_->Fill(&msg);
     link->Deliver(robot->first, direct_, std::move(msg));
     if (lockstep_) session_->Asked(robot->first);
   }

@@ -35,6 +35,7 @@
 #include "swarm_transport/ros/diagnostics.h"
 #include "swarm_transport/ros/direct_link.h"
 #include "swarm_transport/ros/event_schedule.h"
+#include "swarm_transport/ros/flocking_tuning.h"
 #include "swarm_transport/ros/lockstep_session.h"
 #include "swarm_transport/ros/mission_relay.h"
 #include "swarm_transport/ros/robot_links.h"
@@ -102,6 +103,9 @@ class Simulator : public RobotOutlet {
 
   // One radio round: Neighbors to every receiving robot, then /flock/positions.
   void PublishRadio();
+  // At the start of a round: a flocking tuning accepted since the last one goes out with this
+  // round (and on /flock/tuning); the radio's range and the markers follow its local range.
+  void BeginTuningRound();
   // Lock-step: robot `id`'s answer, for the session (ignored after the last tick).
   void OnAnswer(std::uint16_t id, const Tick_Answer& answer);
   // Latched /flock/robots: the robots that exist (robots check missions against it).
@@ -166,6 +170,11 @@ class Simulator : public RobotOutlet {
   ros::CallbackQueue cmd_queue_;
   std::unique_ptr<RobotLinks> links_;
   RelayedPositions relayed_;  // virtual copies and statists
+  // Live tuning of the flocking parameters (dynamic_reconfigure on the private handle).
+  std::unique_ptr<TuningRelay> tuning_;
+  std::unique_ptr<FlockingTuningServer> tuning_server_;
+  ros::Publisher tuning_pub_;
+  bool radio_follows_range_ = true;  // ~radio_range_m unset: the radio's range is the local range
   sim::LiveMissions missions_;
 
   ros::Publisher positions_pub_;

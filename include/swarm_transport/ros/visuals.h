@@ -50,6 +50,8 @@ class Visuals {
   void Publish(const World2D& world, const LiveMissions& missions, ros::Time stamp,
                std::uint64_t tick);
   void Shutdown();
+  // The swarms' colours and the range circles follow a live tuning of the local range.
+  void SetLocalRange(double local_range_m) { params_.local_range_m = local_range_m; }
 
  private:
   void PublishMarkers(const World2D& world, const LiveMissions& missions, ros::Time stamp,
