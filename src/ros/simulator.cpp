@@ -149,6 +149,7 @@ void Simulator::Connect() {
   visuals.rate_hz = params_.markers_rate_hz;
   visuals.tf = params_.tf;
   visuals.range_circles = params_.range_circles;
+  visuals.trail_ticks = params_.trail_ticks;
   visuals.local_range_m = params_.swarm.flocking.local_range_m;
   visuals.danger_zones = params_.swarm.danger_zones;
   visuals_ = std::make_unique<sim::Visuals>(nh_, std::move(visuals));
@@ -157,6 +158,7 @@ void Simulator::Connect() {
   spawn_srv_ = nh_.advertiseService(names::kSpawn, &Simulator::OnSpawn, this);
   kill_srv_ = nh_.advertiseService(names::kKill, &Simulator::OnKill, this);
   reset_srv_ = nh_.advertiseService(names::kReset, &Simulator::OnReset, this);
+  hold_srv_ = private_nh_.advertiseService("hold", &Simulator::OnHold, this);
   // /flock/position also carries every robot's own position each tick; we only keep virtual
   // copies and statists, but the queue must hold a whole tick of the swarm.
   position_sub_ = nh_.subscribe(names::kPosition, kPositionQueue, &Simulator::OnPosition, this,
@@ -224,6 +226,7 @@ void Simulator::Shutdown() {
   spawn_srv_.shutdown();
   kill_srv_.shutdown();
   reset_srv_.shutdown();
+  hold_srv_.shutdown();
   positions_pub_.shutdown();
   clock_pub_.shutdown();
   tuning_server_.reset();
@@ -251,6 +254,7 @@ void Simulator::RunRealtime() {
     if (now >= next_radio) {
       ApplyDueEvents();
       PublishRadio();
+      visuals_->Record(*world_);
       ++tick_;
       next_radio += tick;
       if (next_radio < now) next_radio = now + tick;  // fell behind: skip, do not burst
@@ -275,7 +279,12 @@ void Simulator::RunLockstep() {
   session_->WaitForStart(positions_pub_, robots_pub_);
   const ros::WallTime started = ros::WallTime::now();
   const std::uint64_t max_ticks = static_cast<std::uint64_t>(params_.lockstep_max_ticks);
+  ros::WallTime started_pacing = started;
   while (Running() && (max_ticks == 0 || tick_ < max_ticks)) {
+    // Pacing counts from the start without the time held.
+    started_pacing += HoldIfAsked();
+    if (!Running()) break;
+    tick_begun_ = true;
     session_->BeginTick(tick_);
     ApplyDueEvents();
     PublishClock();
@@ -286,11 +295,13 @@ void Simulator::RunLockstep() {
     ApplyAnswers();
     world_->Step(params_.swarm.tick_period_s);
     ++tick_;
+    tick_begun_ = false;
+    visuals_->Record(*world_);
     if (params_.real_time_factor > 0.0) {
       // Paced: tick k ends no earlier than k * tick_period / factor wall seconds after the
       // start (a late tick is not made up for by rushing the next ones).
       const ros::WallTime due =
-          started + ros::WallDuration(static_cast<double>(tick_) * params_.swarm.tick_period_s /
+          started_pacing + ros::WallDuration(static_cast<double>(tick_) * params_.swarm.tick_period_s /
                                       params_.real_time_factor);
       while (Running() && ros::WallTime::now() < due) {
         SpinOnce(std::min(kIdleS, std::max(0.0, (due - ros::WallTime::now()).toSec())));
@@ -313,6 +324,46 @@ void Simulator::RunLockstep() {
   PublishRadio();
   PublishPoses();
   Idle();
+}
+
+ros::WallDuration Simulator::HoldIfAsked() {
+  const ros::WallTime since = ros::WallTime::now();
+  if (hold_at_ == 0 || tick_ < hold_at_) return ros::WallDuration(0.0);
+  holding_ = true;
+  ROS_INFO("simulator: holding before tick %llu (~hold with tick 0 goes on)",
+           static_cast<unsigned long long>(tick_));
+  while (Running() && hold_at_ != 0 && tick_ >= hold_at_) {
+    SpinOnce(kIdleS);
+    PublishVisualsIfDue();
+  }
+  holding_ = false;
+  ROS_INFO("simulator: going on at tick %llu", static_cast<unsigned long long>(tick_));
+  return ros::WallTime::now() - since;
+}
+
+bool Simulator::OnHold(Hold::Request& req, Hold::Response& res) {
+  res.current_tick = tick_;
+  res.code = Hold::Response::ERROR;
+  if (!lockstep_) {
+    res.message = "~hold is for the lock-step clock only";
+  } else if (finished_) {
+    res.message = "the run is over (last tick done)";
+  } else if (req.tick == 0) {
+    hold_at_ = 0;
+    res.code = Hold::Response::OK;
+    res.message = "going on";
+  } else if (req.tick < tick_ || (req.tick == tick_ && tick_begun_ && !holding_)) {
+    res.message = "tick " + std::to_string(req.tick) + " has begun already (now at tick " +
+                  std::to_string(tick_) + "): ask for a later one";
+  } else {
+    hold_at_ = req.tick;
+    res.code = Hold::Response::OK;
+    res.holding = holding_ && tick_ == req.tick;
+    res.message = (res.holding ? "holding before tick " : "will hold before tick ") +
+                  std::to_string(req.tick);
+  }
+  if (res.code != Hold::Response::OK) ROS_WARN("simulator: ~hold refused: %s", res.message.c_str());
+  return true;
 }
 
 void Simulator::Idle() {

@@ -18,6 +18,7 @@
 
 #include "swarm_transport/Delete_Object.h"
 #include "swarm_transport/Delete_Robot.h"
+#include "swarm_transport/Hold.h"
 #include "swarm_transport/Kill.h"
 #include "swarm_transport/New_Robot.h"
 #include "swarm_transport/Mission_Objects.h"
@@ -128,6 +129,11 @@ class Simulator : public RobotOutlet {
   bool OnSpawn(Spawn::Request& req, Spawn::Response& res);
   bool OnKill(Kill::Request& req, Kill::Response& res);
   bool OnReset(std_srvs::Empty::Request& req, std_srvs::Empty::Response& res);
+  // ~hold (lock-step): stand before a stated tick until released.
+  bool OnHold(Hold::Request& req, Hold::Response& res);
+  // Lock-step, before tick tick_ begins: stands while a hold asks for it (markers, tf and
+  // services go on); returns the wall time it stood.
+  ros::WallDuration HoldIfAsked();
   bool OnTeleportAbsolute(std::uint16_t id, TeleportAbsolute::Request& req,
                           TeleportAbsolute::Response& res);
   bool OnTeleportRelative(std::uint16_t id, TeleportRelative::Request& req,
@@ -192,6 +198,10 @@ class Simulator : public RobotOutlet {
   ros::ServiceServer spawn_srv_;
   ros::ServiceServer kill_srv_;
   ros::ServiceServer reset_srv_;
+  ros::ServiceServer hold_srv_;
+  std::uint64_t hold_at_ = 0;  // lock-step: hold before this tick (0: none)
+  bool holding_ = false;
+  bool tick_begun_ = false;    // lock-step: tick tick_ is under way
   ros::Subscriber position_sub_;
   ros::Subscriber robot_new_sub_;
   ros::Subscriber robot_delete_sub_;
