@@ -37,6 +37,10 @@ def parse_args(argv):
                    help='with --screenshot: the tick of the picture, counted from the first tick '
                    'of TRANSPORT (default 20; --no-mission: from the start); lock-step holds the '
                    'run at that tick for the picture, real time takes it at that radio round')
+    p.add_argument('--trails', type=int, default=0,
+                   help='rviz: a line through each robot\'s last K positions (default 0: off)')
+    p.add_argument('--range-circles', action='store_true',
+                   help='rviz: each robot\'s local range, in its swarm\'s colour')
     p.add_argument('--config', default='', help='extra YAML merged over config/swarm.yaml')
     p.add_argument('--no-mission', action='store_true',
                    help='no transport mission: let the swarm flock for --ticks / --seconds')
@@ -57,6 +61,8 @@ def parse_args(argv):
         p.error('need 1 <= --leaders <= --group <= --robots')
     if a.screenshot and not a.rviz:
         p.error('--screenshot needs --rviz')
+    if not 0 <= a.trails <= 10000:
+        p.error('--trails must be in [0, 10000]')
     if a.screenshot_tick < 0:
         p.error('--screenshot-tick must be >= 0')
     if a.rate is None:
@@ -89,6 +95,10 @@ def main(argv):
                        'rviz': 'true' if a.rviz else 'false'}
         if not a.realtime:
             launch_args['real_time_factor'] = a.rate
+        if a.trails:
+            launch_args['trail_ticks'] = a.trails
+        if a.range_circles:
+            launch_args['range_circles'] = 'true'
         if a.rviz:
             display, virtual = start_display(ros)
             st_ros.log('[demo] rviz on display %s%s' % (display, ' (virtual)' if virtual else ''))
