@@ -498,11 +498,13 @@ void Simulator::PublishVisualsIfDue() {
       s->message += ", " + std::to_string(robots - live) + " not answering";
     }
     if (finished_) s->message += " (last tick done)";
+    if (holding_) s->message += " (held: ~hold)";
     s->Add("tick", tick_);
     s->Add("sim_time_s", SimTime());
     s->Add("robots", static_cast<std::uint64_t>(robots));
     s->Add("answering", static_cast<std::uint64_t>(live));
     s->Add("missions", static_cast<std::uint64_t>(missions_.size()));
+    s->Add("flocking_tuning", static_cast<std::uint64_t>(tuning_->generation()));
   });
 }
 
