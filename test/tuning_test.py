@@ -129,6 +129,26 @@ class Tuning(unittest.TestCase):
             self.assertAlmostEqual(s.free_will_deg, g('free_will_deg'))
             self.assertAlmostEqual(s.speed_m_per_tick, start['speed_m_per_tick'])
 
+        # Range and speed together (a speed beyond the old range, within the new one): one
+        # change, the next generation, again the same tick everywhere.
+        wide = {'local_range_m': g('wide_local_range_m'),
+                'speed_m_per_tick': g('wide_speed_m_per_tick')}
+        answer = client.update_configuration(wide)
+        self.assertAlmostEqual(answer['local_range_m'], wide['local_range_m'])
+        self.assertTrue(st.wait_for(lambda: len(self.tunings) >= 2, self.timeout),
+                        'the second change never went out')
+        with self.lock:
+            second = self.tunings[1]
+        self.assertEqual(second.generation, 2)
+        self.assertGreater(second.tick, tuning.tick)
+        self.settle()
+        for s in self.states():
+            self.assertEqual((s.robot_id, s.tuning_generation, s.tuning_tick),
+                             (s.robot_id, 2, second.tick))
+            self.assertAlmostEqual(s.local_range_m, wide['local_range_m'])
+            self.assertAlmostEqual(s.speed_m_per_tick, wide['speed_m_per_tick'])
+            self.assertAlmostEqual(s.free_will_deg, g('free_will_deg'))
+
 
 if __name__ == '__main__':
     rospy.init_node('tuning_test')
