@@ -41,18 +41,20 @@ void FlockingTuningServer::OnReconfigure(FlockingConfig& config, std::uint32_t /
   const core::FlockingTuning before = relay_->newest();
   const std::string why = relay_->Propose(wanted);
   if (!why.empty()) {
-    ROS_ERROR("simulator: refused the flocking tuning (dynamic_reconfigure): %s; nothing changed "
-              "(free_will_deg %g, cohesion %g, local_range_m %g, speed_m_per_tick %g)",
-              why.c_str(), before.free_will_deg, before.cohesion, before.local_range_m,
-              before.speed_m_per_tick);
+    ROS_ERROR(
+        "simulator: refused the flocking tuning (dynamic_reconfigure): %s; nothing changed "
+        "(free_will_deg %g, cohesion %g, local_range_m %g, speed_m_per_tick %g)",
+        why.c_str(), before.free_will_deg, before.cohesion, before.local_range_m,
+        before.speed_m_per_tick);
     // The server stores, publishes and answers what the callback leaves in `config`.
     config = ToFlockingConfig(before);
     return;
   }
   if (wanted == before) return;
-  ROS_INFO("simulator: flocking tuning accepted: free_will_deg %g, cohesion %g, local_range_m %g, "
-           "speed_m_per_tick %g; every robot uses it from the next tick",
-           wanted.free_will_deg, wanted.cohesion, wanted.local_range_m, wanted.speed_m_per_tick);
+  ROS_INFO(
+      "simulator: flocking tuning accepted: free_will_deg %g, cohesion %g, local_range_m %g, "
+      "speed_m_per_tick %g; every robot uses it from the next tick",
+      wanted.free_will_deg, wanted.cohesion, wanted.local_range_m, wanted.speed_m_per_tick);
 }
 
 }  // namespace swarm_transport

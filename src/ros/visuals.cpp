@@ -26,15 +26,14 @@ constexpr float kObjectAlpha = 0.6f;
 constexpr float kRangeAlpha = 0.08f;
 constexpr float kTrailAlpha = 0.6f;
 constexpr double kTargetDiameterM = 0.3;
-constexpr double kLeaderRingM = 0.4;   // diameter of a leader's white ring
-constexpr double kLineM = 0.03;        // width of lines: arena, trails, target outlines
-constexpr double kArrowWidth = 0.35;   // an arrow's shaft width, of its length
-constexpr double kArrowZ = 0.08;       // arrows above the flat shapes
-constexpr double kLeaderZ = 0.04;      // leaders' rings above objects, below arrows
+constexpr double kLeaderRingM = 0.4;  // diameter of a leader's white ring
+constexpr double kLineM = 0.03;       // width of lines: arena, trails, target outlines
+constexpr double kArrowWidth = 0.35;  // an arrow's shaft width, of its length
+constexpr double kArrowZ = 0.08;      // arrows above the flat shapes
+constexpr double kLeaderZ = 0.04;     // leaders' rings above objects, below arrows
 constexpr double kTextHeightM = 0.4;  // the status line above the arena
 // 1 / golden ratio: consecutive ids get well separated hues.
 constexpr double kHueStep = 0.618033988749895;
-
 
 // HSV (all in [0, 1]) plus alpha to a colour.
 std_msgs::ColorRGBA Hsv(double h, double s, double v, float alpha) {
@@ -79,8 +78,7 @@ std_msgs::ColorRGBA SwarmColour(std::size_t k, float alpha) {
   };
   constexpr std::size_t kColours = sizeof(kPalette) / sizeof(kPalette[0]);
   if (k < kColours) return Rgba(kPalette[k][0], kPalette[k][1], kPalette[k][2], alpha);
-  return Hsv(std::fmod(0.55 + static_cast<double>(k - kColours) * kHueStep, 1.0), 0.6, 0.95,
-             alpha);
+  return Hsv(std::fmod(0.55 + static_cast<double>(k - kColours) * kHueStep, 1.0), 0.6, 0.95, alpha);
 }
 
 geometry_msgs::Quaternion YawQuaternion(double yaw_rad) {
@@ -162,9 +160,9 @@ visualization_msgs::MarkerArray BuildMarkers(const World2D& world, const LiveMis
 
   // The arena's border.
   Marker arena = MakeMarker("arena", 0, Marker::LINE_STRIP, stamp);
-  for (const auto& corner : {std::make_pair(0.0, 0.0), std::make_pair(size, 0.0),
-                             std::make_pair(size, size), std::make_pair(0.0, size),
-                             std::make_pair(0.0, 0.0)}) {
+  for (const auto& corner :
+       {std::make_pair(0.0, 0.0), std::make_pair(size, 0.0), std::make_pair(size, size),
+        std::make_pair(0.0, size), std::make_pair(0.0, 0.0)}) {
     arena.points.push_back(point(corner.first, corner.second));
   }
   arena.scale.x = kLineM;
@@ -254,9 +252,9 @@ visualization_msgs::MarkerArray BuildMarkers(const World2D& world, const LiveMis
       const double hx = 0.5 * mission.object_size.x;
       const double hy = 0.5 * mission.object_size.y;
       const core::Vec2 t = mission.target;
-      for (const auto& c : {std::make_pair(-hx, -hy), std::make_pair(hx, -hy),
-                            std::make_pair(hx, hy), std::make_pair(-hx, hy),
-                            std::make_pair(-hx, -hy)}) {
+      for (const auto& c :
+           {std::make_pair(-hx, -hy), std::make_pair(hx, -hy), std::make_pair(hx, hy),
+            std::make_pair(-hx, hy), std::make_pair(-hx, -hy)}) {
         outline.points.push_back(point(t.x + c.first, t.y + c.second));
       }
       outline.scale.x = kLineM;

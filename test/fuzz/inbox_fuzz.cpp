@@ -57,10 +57,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         // Any value, NaN and infinities included.
         const auto any = [&in]() -> double {
           switch (in.ConsumeIntegralInRange<int>(0, 3)) {
-            case 0: return std::numeric_limits<double>::quiet_NaN();
-            case 1: return in.ConsumeBool() ? std::numeric_limits<double>::infinity()
-                                            : -std::numeric_limits<double>::infinity();
-            default: return fuzz::AnyFloat(&in);
+            case 0:
+              return std::numeric_limits<double>::quiet_NaN();
+            case 1:
+              return in.ConsumeBool() ? std::numeric_limits<double>::infinity()
+                                      : -std::numeric_limits<double>::infinity();
+            default:
+              return fuzz::AnyFloat(&in);
           }
         };
         core::FlockingTuning t;

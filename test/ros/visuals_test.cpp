@@ -27,7 +27,7 @@ TEST(VisualsTest, RobotsAreColouredBySwarmAndTheStatusLineNamesTickSwarmsAndPhas
   m.object_position = {1.3, 1.0};
   m.object_size = {1.0, 1.0};
   m.target = {5.0, 5.0};
-  m.phase = 3;  // TRANSPORT
+  m.phase = 3;                      // TRANSPORT
   missions[9].target = {2.0, 9.0};  // a leader-only order, no phase reported yet
   VisualsParams params;
   params.local_range_m = 1.0;
