@@ -17,6 +17,7 @@ ST_APT_PACKAGES=(
   libgeometry-msgs-dev libros-rosgraph-msgs-dev python3-rosgraph-msgs libeigen3-dev googletest libgtest-dev
   libyaml-cpp-dev python3-numpy python3-matplotlib libdiagnostic-msgs-dev python3-diagnostic-msgs
   iproute2 python3-rosbag python3-nose
+  libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
 )
 # scripts/fuzz's compiler (scripts/test installs them before it leaves the network).
 ST_APT_FUZZ_PACKAGES=(clang-14 libclang-rt-14-dev)

@@ -26,9 +26,21 @@ def parse_args(argv):
     p.add_argument('--seconds', type=float, default=30.0,
                    help='real time: seconds to run (default 30); lock-step: wall time limit')
     p.add_argument('--rviz', action='store_true',
-                   help='show the swarm in rviz (runs the real-time clock, so it can be watched)')
+                   help='show the swarm in rviz (config/swarm.rviz); lock-step paced at --rate '
+                   'so that it can be watched (--realtime: the wall clock instead)')
+    p.add_argument('--rate', type=float, default=None,
+                   help='lock-step: real_time_factor, simulated s per wall s (default 1.0 with '
+                   '--rviz, else 0: as fast as possible)')
     p.add_argument('--screenshot', default='',
-                   help='with --rviz: save a PNG of the screen (mid-transport, or at the end)')
+                   help='with --rviz: save a PNG of the screen at --screenshot-tick')
+    p.add_argument('--screenshot-tick', type=int, default=20,
+                   help='with --screenshot: the tick of the picture, counted from the first tick '
+                   'of TRANSPORT (default 20; --no-mission: from the start); lock-step holds the '
+                   'run at that tick for the picture, real time takes it at that radio round')
+    p.add_argument('--trails', type=int, default=0,
+                   help='rviz: a line through each robot\'s last K positions (default 0: off)')
+    p.add_argument('--range-circles', action='store_true',
+                   help='rviz: each robot\'s local range, in its swarm\'s colour')
     p.add_argument('--config', default='', help='extra YAML merged over config/swarm.yaml')
     p.add_argument('--no-mission', action='store_true',
                    help='no transport mission: let the swarm flock for --ticks / --seconds')
@@ -49,33 +61,49 @@ def parse_args(argv):
         p.error('need 1 <= --leaders <= --group <= --robots')
     if a.screenshot and not a.rviz:
         p.error('--screenshot needs --rviz')
-    if a.rviz:
-        a.realtime = True  # lock-step would finish before rviz drew a frame
+    if not 0 <= a.trails <= 10000:
+        p.error('--trails must be in [0, 10000]')
+    if a.screenshot_tick < 0:
+        p.error('--screenshot-tick must be >= 0')
+    if a.rate is None:
+        a.rate = 1.0 if a.rviz else 0.0  # paced: rviz draws every tick, people can follow
+    if not (a.rate >= 0.0 and math.isfinite(a.rate)):
+        p.error('--rate must be a number >= 0')
     return a
 
 
 def start_display(ros):
-    """A virtual display when none is given, so rviz can run headless (and be screenshot)."""
+    """A virtual display when none is given, so rviz can run headless (and be screenshot);
+    returns it and whether it is virtual."""
     if os.environ.get('DISPLAY'):
-        return os.environ['DISPLAY']
+        return os.environ['DISPLAY'], False
     display = ':%d' % (90 + ros.port % 100)
     ros.start(['Xvfb', display, '-screen', '0', '1280x1024x24'], 'xvfb')
     time.sleep(1.0)
     ros.env['DISPLAY'] = display
     ros.env['LIBGL_ALWAYS_SOFTWARE'] = '1'
     os.environ['DISPLAY'] = display
-    return display
+    return display, True
 
 
 def main(argv):
     a = parse_args(argv)
     with st_ros.PrivateRos() as ros:
         st_ros.log('[demo] private ROS master on port %d, logs in %s' % (ros.port, ros.log_dir))
-        if a.rviz:
-            st_ros.log('[demo] rviz on display %s' % start_display(ros))
         launch_args = {'robots': a.robots, 'seed': a.seed, 'observers': 1,
                        'lockstep': 'false' if a.realtime else 'true',
                        'rviz': 'true' if a.rviz else 'false'}
+        if not a.realtime:
+            launch_args['real_time_factor'] = a.rate
+        if a.trails:
+            launch_args['trail_ticks'] = a.trails
+        if a.range_circles:
+            launch_args['range_circles'] = 'true'
+        if a.rviz:
+            display, virtual = start_display(ros)
+            st_ros.log('[demo] rviz on display %s%s' % (display, ' (virtual)' if virtual else ''))
+            if virtual:
+                launch_args['rviz_args'] = '--fullscreen'  # nobody sees its panels: all view
         if a.config:
             launch_args['extra_config'] = os.path.abspath(a.config)
         if not a.realtime and a.no_mission:
@@ -108,7 +136,8 @@ def main(argv):
             ok = _run_mission(a, ros, state, lambda: rospy.Subscriber(
                 '/flock/positions', Robot_Positions, on_positions, queue_size=50))
             if a.rviz and a.screenshot and not state.get('shot'):
-                _screenshot(ros, a.screenshot)
+                st_ros.log('[demo] no screenshot at TRANSPORT + %d: the mission ended first'
+                           % a.screenshot_tick)
             rospy.signal_shutdown('demo done')
             _report(a, state, local_range, time.time() - started)
             return 0 if ok else 1
@@ -122,6 +151,13 @@ def main(argv):
                 ok = False
                 break
             last = state['last']
+            if a.rviz and a.screenshot and not state.get('shot'):
+                if a.realtime or a.screenshot_tick < a.ticks:
+                    _screenshot_at(ros, a, state, a.screenshot_tick, 'the start')
+                else:
+                    st_ros.log('[demo] no screenshot: --screenshot-tick is beyond --ticks')
+                    state['shot'] = True
+                continue
             if last is not None:
                 if not a.realtime and last.tick >= a.ticks:
                     break
@@ -131,8 +167,6 @@ def main(argv):
         else:
             st_ros.log('[demo] time limit reached')
             ok = state['last'] is not None
-        if a.rviz and a.screenshot:
-            _screenshot(ros, a.screenshot)
         rospy.signal_shutdown('demo done')
         wall = time.time() - started
         _report(a, state, local_range, wall)
@@ -187,10 +221,9 @@ def _run_mission(a, ros, state, observe):
     while time.time() < deadline:
         if phases and phases[-1][0] in (5, 6, 7):
             break
-        if (a.screenshot and not state.get('shot') and phases and phases[-1][0] == 3 and
-                time.time() - phases[-1][2] > 8.0):
-            _screenshot(ros, a.screenshot)  # the object on its way, leaders in front
-            state['shot'] = True
+        if a.rviz and a.screenshot and not state.get('shot') and phases and phases[-1][0] == 3:
+            # The object on its way, leaders in front: a stated tick of TRANSPORT.
+            _screenshot_at(ros, a, state, phases[-1][1] + a.screenshot_tick, 'TRANSPORT')
         if not ros.alive('roslaunch'):
             st_ros.log('[demo] FAILED: roslaunch ended early: see %s' % ros.log_dir)
             return False
@@ -215,11 +248,65 @@ def _wait_param():
     return False
 
 
-def _screenshot(ros, path):
+def _screenshot_at(ros, a, state, tick, since):
+    """Takes the screenshot at simulated tick `tick` (`since`: what it counts from, for the
+    log). Lock-step: holds the run before that tick (the simulator's ~hold), waits until rviz got
+    the markers of that tick, takes it and lets the run go on. Real time: takes it once the
+    radio round `tick` went out (markers follow at their wall-clock rate)."""
+    import rospy
+    from visualization_msgs.msg import MarkerArray
+    state['shot'] = True
+    if a.realtime:
+        while state['last'] is None or state['last'].tick < tick:
+            if not ros.alive('roslaunch'):
+                return
+            time.sleep(0.02)
+        time.sleep(0.3)
+        _screenshot(ros, a.screenshot, 'radio round %d (%s + %d, real time: about)'
+                    % (state['last'].tick, since, a.screenshot_tick))
+        return
+    from swarm_transport.srv import Hold
+    hold = rospy.ServiceProxy('/simulator/hold', Hold)
+    hold.wait_for_service(60)
+    answer = hold(tick)
+    if answer.code != 0:
+        st_ros.log('[demo] cannot hold at tick %d (%s): holding at the next one' % (
+            tick, answer.message))
+        tick = answer.current_tick + 1
+        answer = hold(tick)
+        if answer.code != 0:
+            st_ros.log('[demo] no screenshot: %s' % answer.message)
+            return
+    shown = {'tick': None}
+    label = 'tick %d ' % tick
+
+    def on_markers(msg):
+        for m in msg.markers:
+            if m.ns == 'status' and m.text.startswith(label):
+                shown['tick'] = tick
+    sub = rospy.Subscriber('/flock/markers', MarkerArray, on_markers, queue_size=5)
+    deadline = time.time() + 120
+    while time.time() < deadline and ros.alive('roslaunch'):
+        if hold(tick).holding and shown['tick'] == tick:
+            break
+        time.sleep(0.1)
+    else:
+        st_ros.log('[demo] no screenshot: the run never held at tick %d' % tick)
+        sub.unregister()
+        hold(0)
+        return
+    time.sleep(2.0)  # rviz draws the markers of that tick (30 frames a second, software GL)
+    _screenshot(ros, a.screenshot, 'tick %d (%s + %d, held)' % (tick, since,
+                                                                 a.screenshot_tick))
+    sub.unregister()
+    hold(0)
+
+
+def _screenshot(ros, path, when):
     xwd = os.path.join(ros.log_dir, 'screen.xwd')
     subprocess.call(['xwd', '-root', '-silent', '-out', xwd], env=ros.env)
     subprocess.call(['convert', xwd, path], env=ros.env)
-    st_ros.log('[demo] screenshot: %s' % path)
+    st_ros.log('[demo] screenshot at %s: %s' % (when, path))
 
 
 def _report_transport(a, state, phases):

@@ -109,6 +109,13 @@ void RobotBrain::OnStatus(std::uint16_t mission_id, MissionPhase phase) {
   if (phase <= MissionPhase::kRejected) agent_.OnStatus(mission_id, phase);
 }
 
+std::string RobotBrain::OnTuning(const FlockingTuning& tuning) {
+  const std::string why = params_.Retune(tuning);
+  if (!why.empty()) return "flocking tuning: " + why;
+  agent_.Retune(params_.flocking.local_range_m, params_.flocking.speed_m_per_tick);
+  return "";
+}
+
 BrainTick RobotBrain::Tick(Perception in, std::uint64_t tick, bool publish) {
   BrainTick out;
   in.self_id = id_;

@@ -2,9 +2,30 @@
 
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 namespace swarm_transport {
 namespace core {
+
+FlockingTuning FlockingTuning::Of(const FlockingParams& flocking) {
+  FlockingTuning t;
+  t.free_will_deg = flocking.free_will_deg;
+  t.cohesion = flocking.cohesion;
+  t.local_range_m = flocking.local_range_m;
+  t.speed_m_per_tick = flocking.speed_m_per_tick;
+  return t;
+}
+
+std::string SwarmConfig::Retune(const FlockingTuning& tuning) {
+  SwarmConfig tuned = *this;
+  tuned.flocking.free_will_deg = tuning.free_will_deg;
+  tuned.flocking.cohesion = tuning.cohesion;
+  tuned.flocking.local_range_m = tuning.local_range_m;
+  tuned.flocking.speed_m_per_tick = tuning.speed_m_per_tick;
+  std::string why = tuned.Validate();
+  if (why.empty()) *this = std::move(tuned);
+  return why;
+}
 
 std::string SwarmConfig::Validate() const {
   std::string e = flocking.Validate();

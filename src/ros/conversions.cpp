@@ -222,4 +222,25 @@ core::Sender SenderOf(const std::string& node_name) {
   return sender;
 }
 
+core::FlockingTuning ToFlockingTuning(const Flocking_Tuning& msg) {
+  core::FlockingTuning t;
+  t.free_will_deg = msg.free_will_deg;
+  t.cohesion = msg.cohesion;
+  t.local_range_m = msg.local_range_m;
+  t.speed_m_per_tick = msg.speed_m_per_tick;
+  return t;
+}
+
+Flocking_Tuning ToTuningMsg(const core::FlockingTuning& tuning, std::uint32_t generation,
+                            std::uint64_t tick) {
+  Flocking_Tuning msg;
+  msg.generation = generation;
+  msg.tick = tick;
+  msg.free_will_deg = tuning.free_will_deg;
+  msg.cohesion = tuning.cohesion;
+  msg.local_range_m = tuning.local_range_m;
+  msg.speed_m_per_tick = tuning.speed_m_per_tick;
+  return msg;
+}
+
 }  // namespace swarm_transport

@@ -90,6 +90,28 @@ void MissionRelay::Clear() {
   sorted_ = false;
 }
 
+TuningRelay::TuningRelay(const core::SwarmConfig& config) : config_(config) {}
+
+std::string TuningRelay::Propose(const core::FlockingTuning& tuning) {
+  if (tuning == newest()) return "";
+  const std::string why = config_.Retune(tuning);
+  if (why.empty()) pending_ = true;
+  return why;
+}
+
+std::optional<Flocking_Tuning> TuningRelay::BeginRound(std::uint64_t tick) {
+  if (!pending_) return std::nullopt;
+  pending_ = false;
+  if (current_ && ToFlockingTuning(*current_) == newest()) return std::nullopt;  // changed back
+  current_ = ToTuningMsg(newest(), generation() + 1, tick);
+  return current_;
+}
+
+void TuningRelay::Fill(Neighbors* round) const {
+  round->tuning.clear();
+  if (current_) round->tuning.push_back(*current_);
+}
+
 std::string RelayedPositions::Take(const Robot_Position& msg) {
   if (Ignored(msg)) return "";
   if (!IsFinite(msg)) return "a non-finite value";

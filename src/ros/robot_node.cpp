@@ -167,6 +167,7 @@ void RobotNode::OnNeighbors(const Neighbors::ConstPtr& msg) {
     return;
   }
   perception_ = msg;
+  ApplyTuning(*msg);
   if (options_.clock == core::Clock::kLockstep) ApplyRelayed(*msg);
   if (stats_) RecordRound(*msg);
   if (options_.clock == core::Clock::kLockstep) Tick();
@@ -188,6 +189,22 @@ void RobotNode::ApplyRelayed(const Neighbors& msg) {
   ApplyAll(msg.continues, this, &RobotNode::OnContinue);
   ApplyAll(msg.mission_events, this, &RobotNode::OnMissionEvent);
   for (const Mission_Status& m : msg.statuses) OnMissionStatus(m, relay);
+}
+
+void RobotNode::ApplyTuning(const Neighbors& msg) {
+  if (msg.tuning.empty()) return;
+  const Flocking_Tuning& t = msg.tuning.front();
+  if (t.generation == tuning_generation_ || t.generation == refused_generation_) return;
+  const std::string why = brain_->OnTuning(ToFlockingTuning(t));
+  if (!why.empty()) {
+    refused_generation_ = t.generation;
+    Rejected("Flocking_Tuning", "Flocking_Tuning " + std::to_string(t.generation) + ": " + why);
+    return;
+  }
+  tuning_generation_ = t.generation;
+  tuning_tick_ = msg.tick;
+  ROS_DEBUG("robot %u: flocking tuning %u from tick %llu", id_, t.generation,
+            static_cast<unsigned long long>(msg.tick));
 }
 
 void RobotNode::OnTimer(const ros::WallTimerEvent& /*event*/) { TimerTick(); }
@@ -317,6 +334,13 @@ Robot_State::Response RobotNode::State() const {
   state.heading_deg = move.heading.degrees();
   state.distance_m = move.distance_m;
   state.fleeing = move.fleeing;
+  state.tuning_generation = tuning_generation_;
+  state.tuning_tick = tuning_tick_;
+  const core::FlockingTuning tuning = brain.tuning();
+  state.free_will_deg = tuning.free_will_deg;
+  state.cohesion = tuning.cohesion;
+  state.local_range_m = tuning.local_range_m;
+  state.speed_m_per_tick = tuning.speed_m_per_tick;
   return state;
 }
 
@@ -347,7 +371,9 @@ bool RobotNode::OnDescribe(std_srvs::Trigger::Request& /*req*/,
   }
   os << "] heard=" << s.heard << " desired=" << s.desired_heading_deg
      << " heading=" << s.heading_deg << " distance=" << s.distance_m
-     << " fleeing=" << (s.fleeing ? 1 : 0);
+     << " fleeing=" << (s.fleeing ? 1 : 0) << " free_will=" << s.free_will_deg
+     << " cohesion=" << s.cohesion << " range=" << s.local_range_m
+     << " speed=" << s.speed_m_per_tick << " tuning=" << s.tuning_generation;
   res.success = true;
   res.message = os.str();
   return true;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <set>
 #include <type_traits>
 
@@ -82,6 +83,8 @@ bool Simulator::Initialize() {
     return false;
   }
   lockstep_ = params_.clock == core::Clock::kLockstep;
+  radio_follows_range_ = !private_nh_.hasParam("radio_range_m");
+  tuning_ = std::make_unique<TuningRelay>(params_.swarm);
   radio_rng_ = std::make_unique<core::Rng>(params_.swarm.seed, sim::kRadioLossStream);
   radio_ = std::make_unique<sim::Radio>(RadioParamsOf(params_), radio_rng_.get());
   spawn_rng_ = std::make_unique<core::Rng>(params_.swarm.seed, kSpawnStream);
@@ -146,6 +149,7 @@ void Simulator::Connect() {
   visuals.rate_hz = params_.markers_rate_hz;
   visuals.tf = params_.tf;
   visuals.range_circles = params_.range_circles;
+  visuals.trail_ticks = params_.trail_ticks;
   visuals.local_range_m = params_.swarm.flocking.local_range_m;
   visuals.danger_zones = params_.swarm.danger_zones;
   visuals_ = std::make_unique<sim::Visuals>(nh_, std::move(visuals));
@@ -154,6 +158,7 @@ void Simulator::Connect() {
   spawn_srv_ = nh_.advertiseService(names::kSpawn, &Simulator::OnSpawn, this);
   kill_srv_ = nh_.advertiseService(names::kKill, &Simulator::OnKill, this);
   reset_srv_ = nh_.advertiseService(names::kReset, &Simulator::OnReset, this);
+  hold_srv_ = private_nh_.advertiseService("hold", &Simulator::OnHold, this);
   // /flock/position also carries every robot's own position each tick; we only keep virtual
   // copies and statists, but the queue must hold a whole tick of the swarm.
   position_sub_ = nh_.subscribe(names::kPosition, kPositionQueue, &Simulator::OnPosition, this,
@@ -181,6 +186,8 @@ void Simulator::Connect() {
     event_signal_pub_ = nh_.advertise<Mission_Event>(names::kMissionEvent, kMissionQueue);
   }
   if (lockstep_) session_->Connect();
+  tuning_pub_ = nh_.advertise<Flocking_Tuning>(names::kTuning, 1, true);
+  tuning_server_ = std::make_unique<FlockingTuningServer>(private_nh_, tuning_.get());
 }
 
 void Simulator::AddRobot(std::uint16_t id) {
@@ -219,8 +226,11 @@ void Simulator::Shutdown() {
   spawn_srv_.shutdown();
   kill_srv_.shutdown();
   reset_srv_.shutdown();
+  hold_srv_.shutdown();
   positions_pub_.shutdown();
   clock_pub_.shutdown();
+  tuning_server_.reset();
+  tuning_pub_.shutdown();
   if (visuals_) visuals_->Shutdown();
 }
 
@@ -244,6 +254,7 @@ void Simulator::RunRealtime() {
     if (now >= next_radio) {
       ApplyDueEvents();
       PublishRadio();
+      visuals_->Record(*world_);
       ++tick_;
       next_radio += tick;
       if (next_radio < now) next_radio = now + tick;  // fell behind: skip, do not burst
@@ -268,7 +279,12 @@ void Simulator::RunLockstep() {
   session_->WaitForStart(positions_pub_, robots_pub_);
   const ros::WallTime started = ros::WallTime::now();
   const std::uint64_t max_ticks = static_cast<std::uint64_t>(params_.lockstep_max_ticks);
+  ros::WallTime started_pacing = started;
   while (Running() && (max_ticks == 0 || tick_ < max_ticks)) {
+    // Pacing counts from the start without the time held.
+    started_pacing += HoldIfAsked();
+    if (!Running()) break;
+    tick_begun_ = true;
     session_->BeginTick(tick_);
     ApplyDueEvents();
     PublishClock();
@@ -279,11 +295,13 @@ void Simulator::RunLockstep() {
     ApplyAnswers();
     world_->Step(params_.swarm.tick_period_s);
     ++tick_;
+    tick_begun_ = false;
+    visuals_->Record(*world_);
     if (params_.real_time_factor > 0.0) {
       // Paced: tick k ends no earlier than k * tick_period / factor wall seconds after the
       // start (a late tick is not made up for by rushing the next ones).
       const ros::WallTime due =
-          started + ros::WallDuration(static_cast<double>(tick_) * params_.swarm.tick_period_s /
+          started_pacing + ros::WallDuration(static_cast<double>(tick_) * params_.swarm.tick_period_s /
                                       params_.real_time_factor);
       while (Running() && ros::WallTime::now() < due) {
         SpinOnce(std::min(kIdleS, std::max(0.0, (due - ros::WallTime::now()).toSec())));
@@ -308,6 +326,46 @@ void Simulator::RunLockstep() {
   Idle();
 }
 
+ros::WallDuration Simulator::HoldIfAsked() {
+  const ros::WallTime since = ros::WallTime::now();
+  if (hold_at_ == 0 || tick_ < hold_at_) return ros::WallDuration(0.0);
+  holding_ = true;
+  ROS_INFO("simulator: holding before tick %llu (~hold with tick 0 goes on)",
+           static_cast<unsigned long long>(tick_));
+  while (Running() && hold_at_ != 0 && tick_ >= hold_at_) {
+    SpinOnce(kIdleS);
+    PublishVisualsIfDue();
+  }
+  holding_ = false;
+  ROS_INFO("simulator: going on at tick %llu", static_cast<unsigned long long>(tick_));
+  return ros::WallTime::now() - since;
+}
+
+bool Simulator::OnHold(Hold::Request& req, Hold::Response& res) {
+  res.current_tick = tick_;
+  res.code = Hold::Response::ERROR;
+  if (!lockstep_) {
+    res.message = "~hold is for the lock-step clock only";
+  } else if (finished_) {
+    res.message = "the run is over (last tick done)";
+  } else if (req.tick == 0) {
+    hold_at_ = 0;
+    res.code = Hold::Response::OK;
+    res.message = "going on";
+  } else if (req.tick < tick_ || (req.tick == tick_ && tick_begun_ && !holding_)) {
+    res.message = "tick " + std::to_string(req.tick) + " has begun already (now at tick " +
+                  std::to_string(tick_) + "): ask for a later one";
+  } else {
+    hold_at_ = req.tick;
+    res.code = Hold::Response::OK;
+    res.holding = holding_ && tick_ == req.tick;
+    res.message = (res.holding ? "holding before tick " : "will hold before tick ") +
+                  std::to_string(req.tick);
+  }
+  if (res.code != Hold::Response::OK) ROS_WARN("simulator: ~hold refused: %s", res.message.c_str());
+  return true;
+}
+
 void Simulator::Idle() {
   while (Running()) {
     SpinOnce(kIdleS);  // directly linked robots' ~describe services stay up
@@ -330,7 +388,26 @@ void Simulator::PublishClock() {
   clock_pub_.publish(msg);
 }
 
+void Simulator::BeginTuningRound() {
+  const std::optional<Flocking_Tuning> tuned = tuning_->BeginRound(tick_);
+  if (!tuned) return;
+  const double range_m = tuned->local_range_m;
+  if (radio_follows_range_) {
+    params_.radio_range_m = range_m;
+    radio_->set_range_m(range_m);
+  }
+  visuals_->SetLocalRange(range_m);
+  tuning_pub_.publish(*tuned);
+  ROS_INFO("simulator: flocking tuning %u from tick %llu: free_will_deg %g, cohesion %g, "
+           "local_range_m %g, speed_m_per_tick %g, radio range %g m",
+           tuned->generation, static_cast<unsigned long long>(tuned->tick),
+           tuned->free_will_deg, tuned->cohesion, tuned->local_range_m,
+           tuned->speed_m_per_tick, params_.radio_range_m);
+}
+
 void Simulator::PublishRadio() {
+  // Not in the final round after the last lock-step tick: nobody acts on it.
+  if (!finished_) BeginTuningRound();
   if (lockstep_) {
     // The orders due by this tick enter its relay and the simulator's books together (the
     // mission channel, markers); the rest wait for their start tick.
@@ -364,6 +441,7 @@ void Simulator::PublishRadio() {
     radio_->Hear(i, &round);
     Neighbors msg = RadioRoundMessage(tick_, sim_time, robot->second, round, truth, relayed);
     if (lockstep_) session_->FillRound(&msg);
+    tuning_->Fill(&msg);
     link->Deliver(robot->first, direct_, std::move(msg));
     if (lockstep_) session_->Asked(robot->first);
   }
@@ -420,11 +498,13 @@ void Simulator::PublishVisualsIfDue() {
       s->message += ", " + std::to_string(robots - live) + " not answering";
     }
     if (finished_) s->message += " (last tick done)";
+    if (holding_) s->message += " (held: ~hold)";
     s->Add("tick", tick_);
     s->Add("sim_time_s", SimTime());
     s->Add("robots", static_cast<std::uint64_t>(robots));
     s->Add("answering", static_cast<std::uint64_t>(live));
     s->Add("missions", static_cast<std::uint64_t>(missions_.size()));
+    s->Add("flocking_tuning", static_cast<std::uint64_t>(tuning_->generation()));
   });
 }
 

@@ -7,6 +7,7 @@ namespace swarm_transport {
 namespace {
 
 constexpr int kMaxRobots = 65536;
+constexpr int kMaxTrailTicks = 10000;
 
 }  // namespace
 
@@ -40,6 +41,8 @@ std::string SimulatorParams::Validate() const {
     os << "~markers_rate_hz must be >= 0 (0: off) but is " << markers_rate_hz;
   } else if (!std::isfinite(radio_range_m) || !(radio_range_m > 0.0)) {
     os << "~radio_range_m must be > 0 but is " << radio_range_m;
+  } else if (trail_ticks < 0 || trail_ticks > kMaxTrailTicks) {
+    os << "~trail_ticks must be in [0, " << kMaxTrailTicks << "] (0: off) but is " << trail_ticks;
   }
   return os.str();
 }
@@ -76,6 +79,7 @@ bool ReadSimulatorParams(const ros::NodeHandle& nh, const ros::NodeHandle& p, bo
       !ReadPrivate(p, "markers_rate_hz", &params->markers_rate_hz, error) ||
       !ReadPrivate(p, "tf", &params->tf, error) ||
       !ReadPrivate(p, "range_circles", &params->range_circles, error) ||
+      !ReadPrivate(p, "trail_ticks", &params->trail_ticks, error) ||
       !ReadPrivate(p, "radio_range_m", &params->radio_range_m, error) ||
       !ReadPrivate(p, "pose_topics", &params->pose_topics, error)) {
     return false;

@@ -4,7 +4,9 @@
 #include <std_msgs/ColorRGBA.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <sstream>
 #include <utility>
 
@@ -22,11 +24,16 @@ constexpr double kFlatM = 0.02;
 constexpr float kZoneAlpha = 0.35f;
 constexpr float kObjectAlpha = 0.6f;
 constexpr float kRangeAlpha = 0.08f;
-constexpr double kTargetDiameterM = 0.1;
+constexpr float kTrailAlpha = 0.6f;
+constexpr double kTargetDiameterM = 0.3;
+constexpr double kLeaderRingM = 0.4;  // diameter of a leader's white ring
+constexpr double kLineM = 0.03;       // width of lines: arena, trails, target outlines
+constexpr double kArrowWidth = 0.35;  // an arrow's shaft width, of its length
+constexpr double kArrowZ = 0.08;      // arrows above the flat shapes
+constexpr double kLeaderZ = 0.04;     // leaders' rings above objects, below arrows
 constexpr double kTextHeightM = 0.4;  // the status line above the arena
 // 1 / golden ratio: consecutive ids get well separated hues.
 constexpr double kHueStep = 0.618033988749895;
-
 
 // HSV (all in [0, 1]) plus alpha to a colour.
 std_msgs::ColorRGBA Hsv(double h, double s, double v, float alpha) {
@@ -55,13 +62,23 @@ std_msgs::ColorRGBA Rgba(float r, float g, float b, float a) {
   return c;
 }
 
-std_msgs::ColorRGBA RobotColour(std::uint16_t id, float alpha) {
-  return Hsv(std::fmod(id * kHueStep, 1.0), 0.8, 0.95, alpha);
-}
-
-// Swarm k's colour: well separated hues for the first swarms (numbered by their lowest robot).
+// Swarm k's colour (swarms numbered by their lowest robot): first a palette of bright colours
+// unlike the object's orange, the danger zones' red, the targets' green and the leaders' white;
+// then well separated hues.
 std_msgs::ColorRGBA SwarmColour(std::size_t k, float alpha) {
-  return Hsv(std::fmod(0.08 + static_cast<double>(k) * kHueStep, 1.0), 0.85, 0.95, alpha);
+  static constexpr float kPalette[][3] = {
+      {0.10f, 0.75f, 1.00f},  // sky blue
+      {1.00f, 0.35f, 0.85f},  // magenta
+      {1.00f, 0.92f, 0.20f},  // yellow
+      {0.55f, 0.45f, 1.00f},  // violet
+      {0.30f, 1.00f, 0.95f},  // cyan
+      {1.00f, 0.65f, 0.75f},  // pink
+      {0.75f, 0.90f, 0.35f},  // lime
+      {0.35f, 0.50f, 0.95f},  // blue
+  };
+  constexpr std::size_t kColours = sizeof(kPalette) / sizeof(kPalette[0]);
+  if (k < kColours) return Rgba(kPalette[k][0], kPalette[k][1], kPalette[k][2], alpha);
+  return Hsv(std::fmod(0.55 + static_cast<double>(k - kColours) * kHueStep, 1.0), 0.6, 0.95, alpha);
 }
 
 geometry_msgs::Quaternion YawQuaternion(double yaw_rad) {
@@ -113,40 +130,84 @@ void Visuals::Shutdown() {
   tf_broadcaster_.reset();
 }
 
+void Visuals::Record(const World2D& world) {
+  if (params_.trail_ticks <= 0) return;
+  const std::size_t keep = static_cast<std::size_t>(params_.trail_ticks) + 1;
+  for (auto it = trails_.begin(); it != trails_.end();) {
+    it = world.Find(it->first) == nullptr ? trails_.erase(it) : std::next(it);  // gone robots
+  }
+  for (const auto& entry : world.robots()) {
+    std::deque<core::Vec2>& trail = trails_[entry.first];
+    trail.push_back(entry.second.pose.position);
+    while (trail.size() > keep) trail.pop_front();
+  }
+}
+
 visualization_msgs::MarkerArray BuildMarkers(const World2D& world, const LiveMissions& missions,
                                              const VisualsParams& params, ros::Time stamp,
-                                             std::uint64_t tick) {
+                                             std::uint64_t tick, const Trails& trails) {
   using visualization_msgs::Marker;
   const double r = world.params().robot_radius_m;
+  const double size = world.params().world_size_m;
   visualization_msgs::MarkerArray array;
   auto add = [&array](const Marker& m) { array.markers.push_back(m); };
+  auto point = [](double x, double y) {
+    geometry_msgs::Point p;
+    p.x = x;
+    p.y = y;
+    return p;
+  };
+
+  // The arena's border.
+  Marker arena = MakeMarker("arena", 0, Marker::LINE_STRIP, stamp);
+  for (const auto& corner :
+       {std::make_pair(0.0, 0.0), std::make_pair(size, 0.0), std::make_pair(size, size),
+        std::make_pair(0.0, size), std::make_pair(0.0, 0.0)}) {
+    arena.points.push_back(point(corner.first, corner.second));
+  }
+  arena.scale.x = kLineM;
+  arena.color = Rgba(0.75f, 0.75f, 0.75f, 1.0f);
+  add(arena);
 
   // One colour per swarm (robots linked hop by hop within the local range).
   std::vector<core::Vec2> positions;
   positions.reserve(world.size());
   for (const auto& entry : world.robots()) positions.push_back(entry.second.pose.position);
   const core::SwarmComponents swarms(positions, params.local_range_m);
+  const double length = std::max(3.0 * r, kArrowMinM);
   std::size_t index = 0;
   for (const auto& entry : world.robots()) {
     const core::Pose2& pose = entry.second.pose;
     const double yaw = pose.heading.radians();
-    // An arrow of 3 r through the robot's centre, pointing where it heads.
+    const std_msgs::ColorRGBA colour = SwarmColour(swarms.ComponentOf(index++), 1.0f);
+    // An arrow centred on the robot, pointing where it heads.
     Marker arrow = MakeMarker("robots", entry.first, Marker::ARROW, stamp);
-    arrow.pose.position.x = pose.position.x - r * std::cos(yaw);
-    arrow.pose.position.y = pose.position.y - r * std::sin(yaw);
+    arrow.pose.position.x = pose.position.x - 0.5 * length * std::cos(yaw);
+    arrow.pose.position.y = pose.position.y - 0.5 * length * std::sin(yaw);
+    arrow.pose.position.z = kArrowZ;
     arrow.pose.orientation = YawQuaternion(yaw);
-    arrow.scale.x = 3.0 * r;
-    arrow.scale.y = r;
-    arrow.scale.z = r;
-    arrow.color = SwarmColour(swarms.ComponentOf(index++), 1.0f);
+    arrow.scale.x = length;
+    arrow.scale.y = kArrowWidth * length;
+    arrow.scale.z = kArrowWidth * length;
+    arrow.color = colour;
     add(arrow);
+    const auto trail = trails.find(entry.first);
+    if (trail != trails.end() && trail->second.size() >= 2) {
+      Marker line = MakeMarker("trails", entry.first, Marker::LINE_STRIP, stamp);
+      for (const core::Vec2& p : trail->second) line.points.push_back(point(p.x, p.y));
+      line.scale.x = kLineM;
+      line.color = colour;
+      line.color.a = kTrailAlpha;
+      add(line);
+    }
     if (params.range_circles) {
       Marker circle = MakeMarker("ranges", entry.first, Marker::CYLINDER, stamp);
       circle.pose.position.x = pose.position.x;
       circle.pose.position.y = pose.position.y;
       circle.scale.x = circle.scale.y = 2.0 * params.local_range_m;
       circle.scale.z = 0.5 * kFlatM;
-      circle.color = RobotColour(entry.first, kRangeAlpha);
+      circle.color = colour;
+      circle.color.a = kRangeAlpha;
       add(circle);
     }
   }
@@ -173,9 +234,11 @@ visualization_msgs::MarkerArray BuildMarkers(const World2D& world, const LiveMis
     }
   }
 
+  const std_msgs::ColorRGBA green = Rgba(0.2f, 0.85f, 0.3f, 0.9f);
   for (const auto& entry : missions) {
     const LiveMission& mission = entry.second;
-    if (mission.object_size.x > 0.0 && mission.object_size.y > 0.0) {
+    const bool has_object = mission.object_size.x > 0.0 && mission.object_size.y > 0.0;
+    if (has_object) {
       Marker object = MakeMarker("objects", entry.first, Marker::CUBE, stamp);
       object.pose.position.x = mission.object_position.x;
       object.pose.position.y = mission.object_position.y;
@@ -184,23 +247,46 @@ visualization_msgs::MarkerArray BuildMarkers(const World2D& world, const LiveMis
       object.scale.z = 2.0 * kFlatM;
       object.color = Rgba(0.85f, 0.55f, 0.15f, kObjectAlpha);
       add(object);
+      // Where it goes: its outline at the target.
+      Marker outline = MakeMarker("target_outlines", entry.first, Marker::LINE_STRIP, stamp);
+      const double hx = 0.5 * mission.object_size.x;
+      const double hy = 0.5 * mission.object_size.y;
+      const core::Vec2 t = mission.target;
+      for (const auto& c :
+           {std::make_pair(-hx, -hy), std::make_pair(hx, -hy), std::make_pair(hx, hy),
+            std::make_pair(-hx, hy), std::make_pair(-hx, -hy)}) {
+        outline.points.push_back(point(t.x + c.first, t.y + c.second));
+      }
+      outline.scale.x = kLineM;
+      outline.color = green;
+      add(outline);
+      // And the way there: a line from the object's centre to the target.
+      Marker way = MakeMarker("target_lines", entry.first, Marker::LINE_LIST, stamp);
+      way.points.push_back(point(mission.object_position.x, mission.object_position.y));
+      way.points.push_back(point(t.x, t.y));
+      way.scale.x = 0.5 * kLineM;
+      way.color = green;
+      way.color.a = 0.5f;
+      add(way);
     }
-    Marker target = MakeMarker("targets", entry.first, Marker::SPHERE, stamp);
+    Marker target = MakeMarker("targets", entry.first, Marker::CYLINDER, stamp);
     target.pose.position.x = mission.target.x;
     target.pose.position.y = mission.target.y;
-    target.scale.x = target.scale.y = target.scale.z = kTargetDiameterM;
-    target.color = Rgba(0.1f, 0.8f, 0.2f, 0.8f);
+    target.scale.x = target.scale.y = kTargetDiameterM;
+    target.scale.z = kFlatM;
+    target.color = green;
     add(target);
-    // Leaders: a white disc under the robot's arrow.
+    // Leaders: a white ring under the robot's arrow.
     for (std::uint16_t id : mission.leaders) {
       const Robot* robot = world.Find(id);
       if (robot == nullptr) continue;
       Marker halo = MakeMarker("leaders", id, Marker::CYLINDER, stamp);
       halo.pose.position.x = robot->pose.position.x;
       halo.pose.position.y = robot->pose.position.y;
-      halo.scale.x = halo.scale.y = 4.0 * r;
+      halo.pose.position.z = kLeaderZ;
+      halo.scale.x = halo.scale.y = kLeaderRingM;
       halo.scale.z = kFlatM;
-      halo.color = Rgba(1.0f, 1.0f, 1.0f, 0.8f);
+      halo.color = Rgba(1.0f, 1.0f, 1.0f, 0.85f);
       add(halo);
     }
   }
@@ -216,7 +302,6 @@ visualization_msgs::MarkerArray BuildMarkers(const World2D& world, const LiveMis
                  : "ordered");
   }
   Marker label = MakeMarker("status", 0, Marker::TEXT_VIEW_FACING, stamp);
-  const double size = world.params().world_size_m;
   label.pose.position.x = 0.5 * size;
   label.pose.position.y = size + kTextHeightM;
   label.scale.z = kTextHeightM;
@@ -229,7 +314,8 @@ visualization_msgs::MarkerArray BuildMarkers(const World2D& world, const LiveMis
 void Visuals::PublishMarkers(const World2D& world, const LiveMissions& missions, ros::Time stamp,
                              std::uint64_t tick) {
   using visualization_msgs::Marker;
-  visualization_msgs::MarkerArray array = BuildMarkers(world, missions, params_, stamp, tick);
+  visualization_msgs::MarkerArray array =
+      BuildMarkers(world, missions, params_, stamp, tick, trails_);
   std::set<std::pair<std::string, int>> shown;
   for (const Marker& m : array.markers) shown.emplace(m.ns, m.id);
 

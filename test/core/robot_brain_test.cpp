@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -231,6 +232,59 @@ TEST(RobotBrainTest, VirtualLeaderCopiesWeighInAlignmentOnly) {
   LeaderParams bad;
   bad.virtual_copies = 0;
   EXPECT_NE(bad.Validate(), "");
+}
+
+// Live tuning (issue 13): a valid change is used from the next tick on; a bad one is refused
+// with the key named and changes nothing.
+TEST(RobotBrainTest, AFlockingTuningAppliesFromTheNextTickAndABadOneChangesNothing) {
+  RobotBrain brain(4, Params());
+  const Perception alone = Sees(5.0, 5.0, 30.0, {});
+  // Free will 90: a lone robot's wish strays from its heading (seed 3, 20 draws).
+  double strayed = 0.0;
+  for (std::uint64_t tick = 0; tick < 20; ++tick) {
+    const BrainTick t = brain.Tick(alone, tick, true);
+    strayed = std::max(strayed, std::abs(Angle::SignedDifference(t.move.desired_heading,
+                                                                 Angle(30.0))));
+    EXPECT_NEAR(t.move.distance_m, 0.1, 1e-12);
+  }
+  EXPECT_GT(strayed, 10.0);
+
+  FlockingTuning calm = brain.tuning();
+  EXPECT_DOUBLE_EQ(calm.free_will_deg, 90.0);
+  calm.free_will_deg = 0.0;
+  calm.cohesion = 0.0;
+  calm.speed_m_per_tick = 0.05;
+  calm.local_range_m = 2.0;
+  ASSERT_EQ(brain.OnTuning(calm), "");
+  EXPECT_TRUE(brain.tuning() == calm);
+  for (std::uint64_t tick = 20; tick < 40; ++tick) {
+    const BrainTick t = brain.Tick(alone, tick, true);
+    EXPECT_NEAR(t.move.desired_heading.degrees(), 30.0, 1e-9) << tick;
+    EXPECT_NEAR(t.move.distance_m, 0.05, 1e-12) << tick;
+  }
+
+  struct Case {
+    void (*spoil)(FlockingTuning*);
+    std::string names;
+  };
+  const Case cases[] = {
+      {[](FlockingTuning* t) { t->free_will_deg = 400.0; }, "free_will_deg must be in [0, 360]"},
+      {[](FlockingTuning* t) { t->free_will_deg = -1.0; }, "free_will_deg"},
+      {[](FlockingTuning* t) { t->cohesion = std::nan(""); }, "cohesion must be in [-1, 1]"},
+      {[](FlockingTuning* t) { t->cohesion = 1.5; }, "cohesion"},
+      {[](FlockingTuning* t) { t->local_range_m = 0.0; }, "local_range_m"},
+      // Speed and range are checked together: a step must stay within the range.
+      {[](FlockingTuning* t) { t->speed_m_per_tick = 2.5; }, "speed_m_per_tick"},
+      {[](FlockingTuning* t) { t->local_range_m = 0.04; }, "speed_m_per_tick"},
+  };
+  for (const Case& c : cases) {
+    FlockingTuning bad = calm;
+    c.spoil(&bad);
+    const std::string why = brain.OnTuning(bad);
+    EXPECT_NE(why.find(c.names), std::string::npos) << "'" << why << "' should name " << c.names;
+    EXPECT_TRUE(brain.tuning() == calm) << c.names;
+  }
+  EXPECT_NEAR(brain.Tick(alone, 40, true).move.desired_heading.degrees(), 30.0, 1e-9);
 }
 
 }  // namespace

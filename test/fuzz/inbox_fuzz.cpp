@@ -1,8 +1,10 @@
 // A robot's inbox in any order with any values: freeze / continue ranges, orders, object updates
-// and deletes, signals, statuses, ticks. No crash, no sanitizer report, and a finite command on
-// finite positions; a rejected message leaves the robot's state as it was (checked for
-// freeze / continue: an inverted range changes nothing).
+// and deletes, signals, statuses, live flocking tunings, ticks. No crash, no sanitizer report,
+// and a finite command on finite positions; a rejected message leaves the robot's state as it
+// was (checked for freeze / continue: an inverted range changes nothing; for a tuning: the
+// flocking parameters in use stay, an accepted one is used as given).
 #include <cmath>
+#include <limits>
 
 #include "fuzz_common.h"
 #include "swarm_transport/core/robot_brain.h"
@@ -18,7 +20,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::set<std::uint16_t> known = fuzz::KnownRobots(8);
   std::uint64_t tick = 0;
   while (in.remaining_bytes() > 0) {
-    switch (in.ConsumeIntegralInRange<int>(0, 7)) {
+    switch (in.ConsumeIntegralInRange<int>(0, 8)) {
       case 0:
       case 1: {
         const std::uint16_t from = in.ConsumeIntegralInRange<std::uint16_t>(0, 10);
@@ -51,6 +53,29 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         brain.OnStatus(in.ConsumeIntegralInRange<std::uint16_t>(0, 5),
                        static_cast<core::MissionPhase>(in.ConsumeIntegral<std::uint8_t>()));
         break;
+      case 7: {
+        // Any value, NaN and infinities included.
+        const auto any = [&in]() -> double {
+          switch (in.ConsumeIntegralInRange<int>(0, 3)) {
+            case 0:
+              return std::numeric_limits<double>::quiet_NaN();
+            case 1:
+              return in.ConsumeBool() ? std::numeric_limits<double>::infinity()
+                                      : -std::numeric_limits<double>::infinity();
+            default:
+              return fuzz::AnyFloat(&in);
+          }
+        };
+        core::FlockingTuning t;
+        t.free_will_deg = any();
+        t.cohesion = any();
+        t.local_range_m = any();
+        t.speed_m_per_tick = any();
+        const core::FlockingTuning before = brain.tuning();
+        const std::string why = brain.OnTuning(t);
+        fuzz::Require(why.empty() ? brain.tuning() == t : brain.tuning() == before);
+        break;
+      }
       default: {
         core::Perception p;
         p.self.position = {in.ConsumeFloatingPointInRange<double>(0.05, 11.0),

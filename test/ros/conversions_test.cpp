@@ -136,5 +136,17 @@ TEST(ConversionsTest, SenderOfTellsTheDispatcherRelaysRobotsAndOthers) {
   }
 }
 
+TEST(ConversionsTest, FlockingTuningRoundTripKeepsEveryValue) {
+  core::FlockingTuning t;
+  t.free_will_deg = 45.5;
+  t.cohesion = -0.25;
+  t.local_range_m = 1.75;
+  t.speed_m_per_tick = 0.125;
+  const Flocking_Tuning msg = ToTuningMsg(t, 3, 42);
+  EXPECT_EQ(msg.generation, 3u);
+  EXPECT_EQ(msg.tick, 42u);
+  EXPECT_TRUE(ToFlockingTuning(msg) == t);
+}
+
 }  // namespace
 }  // namespace swarm_transport

@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <string>
 
 namespace swarm_transport {
 namespace {
@@ -161,6 +163,67 @@ TEST(RelayedPositionsTest, KeepsCopiesAndStatistsAndRejectsBadOnes) {
   EXPECT_EQ(relayed.size(), 2u);
   relayed.Erase(4, 1);
   EXPECT_EQ(relayed.size(), 1u);
+}
+
+// Live tuning (issue 13): an accepted change goes out with the next round, in every round from
+// then on, numbered; a bad one is refused with the key named and changes nothing.
+TEST(TuningRelayTest, AnAcceptedChangeGoesOutWithTheNextRoundAndABadOneChangesNothing) {
+  core::SwarmConfig config;
+  config.flocking.free_will_deg = 90.0;
+  config.flocking.cohesion = 0.05;
+  TuningRelay relay(config);
+  Neighbors round;
+  relay.Fill(&round);
+  EXPECT_TRUE(round.tuning.empty());  // nothing before the first change
+  // The values in use change nothing (dynamic_reconfigure's first call).
+  EXPECT_EQ(relay.Propose(core::FlockingTuning::Of(config.flocking)), "");
+  EXPECT_FALSE(relay.BeginRound(3).has_value());
+
+  core::FlockingTuning calm = core::FlockingTuning::Of(config.flocking);
+  calm.free_will_deg = 45.0;
+  EXPECT_EQ(relay.Propose(calm), "");
+  relay.Fill(&round);
+  EXPECT_TRUE(round.tuning.empty()) << "not before its round";
+  const std::optional<Flocking_Tuning> first = relay.BeginRound(7);
+  ASSERT_TRUE(first.has_value());
+  EXPECT_EQ(first->generation, 1u);
+  EXPECT_EQ(first->tick, 7u);
+  EXPECT_DOUBLE_EQ(first->free_will_deg, 45.0);
+  EXPECT_DOUBLE_EQ(first->cohesion, 0.05);
+  EXPECT_FALSE(relay.BeginRound(8).has_value()) << "returned once";
+  for (std::uint64_t tick : {8u, 100u}) {
+    relay.Fill(&round);  // every later round carries it (a robot that joins later too)
+    ASSERT_EQ(round.tuning.size(), 1u) << tick;
+    EXPECT_EQ(round.tuning[0].tick, 7u);
+  }
+
+  core::FlockingTuning bad = calm;
+  bad.free_will_deg = 400.0;
+  EXPECT_NE(relay.Propose(bad).find("free_will_deg must be in [0, 360] but is 400"),
+            std::string::npos);
+  bad = calm;
+  bad.speed_m_per_tick = 1.5;  // beyond the local range of 1 m
+  EXPECT_NE(relay.Propose(bad).find("speed_m_per_tick"), std::string::npos);
+  bad = calm;
+  bad.cohesion = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NE(relay.Propose(bad).find("cohesion"), std::string::npos);
+  EXPECT_TRUE(relay.newest() == calm);
+  EXPECT_FALSE(relay.BeginRound(9).has_value());
+  EXPECT_EQ(relay.generation(), 1u);
+
+  // Two changes before a round: the last counts; one changed back is no new generation.
+  core::FlockingTuning wide = calm;
+  wide.local_range_m = 2.0;
+  wide.speed_m_per_tick = 0.2;
+  EXPECT_EQ(relay.Propose(wide), "");
+  EXPECT_EQ(relay.Propose(calm), "");
+  EXPECT_FALSE(relay.BeginRound(10).has_value());
+  EXPECT_EQ(relay.Propose(wide), "");
+  const std::optional<Flocking_Tuning> second = relay.BeginRound(11);
+  ASSERT_TRUE(second.has_value());
+  EXPECT_EQ(second->generation, 2u);
+  EXPECT_DOUBLE_EQ(second->local_range_m, 2.0);
+  EXPECT_DOUBLE_EQ(relay.config().flocking.speed_m_per_tick, 0.2);
 }
 
 }  // namespace

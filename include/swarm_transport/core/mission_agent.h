@@ -131,6 +131,11 @@ class MissionAgent {
                std::string* why);
   // A status published by a mission's first leader (how other members learn the phase).
   void OnStatus(std::uint16_t mission_id, MissionPhase phase);
+  // The swarm's local range and speed changed (a valid flocking tuning, issue 13).
+  void Retune(double local_range_m, double speed_m_per_tick) {
+    params_.local_range_m = local_range_m;
+    params_.speed_m_per_tick = speed_m_per_tick;
+  }
 
   // Missions this robot holds (not yet deleted).
   std::set<std::uint16_t> LiveIds() const;

@@ -59,6 +59,9 @@ class RobotBrain {
   // A status published by a mission's first leader (how members learn its phase); a value
   // beyond kRejected is ignored.
   void OnStatus(std::uint16_t mission_id, MissionPhase phase);
+  // New flocking parameters (dynamic_reconfigure, issue 13), used from the next Tick on: empty
+  // when taken, else why not (nothing changed).
+  std::string OnTuning(const FlockingTuning& tuning);
 
   // One tick on `in` (its own pose, what it hears; zones and group are the brain's to set).
   // `publish`: whether its mission messages can go out now (a first leader whose subscribers
@@ -71,6 +74,8 @@ class RobotBrain {
   const MissionPlan& last_plan() const { return last_plan_; }
   const MoveDecision& last_move() const { return last_move_; }
   std::size_t last_heard() const { return last_heard_; }
+  // The flocking parameters it uses now (its configuration's until a tuning came).
+  FlockingTuning tuning() const { return FlockingTuning::Of(params_.flocking); }
 
  private:
   bool InRange(std::uint16_t from, std::uint16_t to) const { return from <= id_ && id_ < to; }

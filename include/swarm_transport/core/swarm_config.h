@@ -16,6 +16,22 @@
 namespace swarm_transport {
 namespace core {
 
+// The flocking parameters a running swarm may change (dynamic_reconfigure, issue 13): free will,
+// cohesion, local range and speed, as in FlockingParams.
+struct FlockingTuning {
+  double free_will_deg = 90.0;
+  double cohesion = 0.0;
+  double local_range_m = 1.0;
+  double speed_m_per_tick = 0.1;
+
+  static FlockingTuning Of(const FlockingParams& flocking);
+  bool operator==(const FlockingTuning& o) const {
+    return free_will_deg == o.free_will_deg && cohesion == o.cohesion &&
+           local_range_m == o.local_range_m && speed_m_per_tick == o.speed_m_per_tick;
+  }
+  bool operator!=(const FlockingTuning& o) const { return !(*this == o); }
+};
+
 // Everything in the shared /swarm namespace (config/*.yaml): behaviour, clock, zones.
 struct SwarmConfig {
   FlockingParams flocking;
@@ -44,6 +60,9 @@ struct SwarmConfig {
 
   // Empty when valid, else one sentence naming the bad key.
   std::string Validate() const;
+  // Takes `tuning` over when the whole configuration stays valid (empty string); else nothing
+  // changes and the sentence names the bad key.
+  std::string Retune(const FlockingTuning& tuning);
 };
 
 }  // namespace core

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "swarm_transport/Flocking_Tuning.h"
 #include "swarm_transport/Neighbors.h"
 #include "swarm_transport/New_Mission.h"
 #include "swarm_transport/Pose.h"
@@ -18,6 +19,7 @@
 #include "swarm_transport/core/mission_agent.h"
 #include "swarm_transport/core/mission.h"
 #include "swarm_transport/core/mission_book.h"
+#include "swarm_transport/core/swarm_config.h"
 #include "swarm_transport/sim/radio.h"
 
 namespace swarm_transport {
@@ -62,6 +64,11 @@ Tick_Answer ToAnswerMessages(const core::MissionOutbox& outbox,
 
 // A first leader's (or the dispatcher's) Mission_Status -> the report the dispatcher books.
 core::MissionReport ToMissionReport(const Mission_Status& msg);
+
+// Flocking_Tuning <-> the core's live flocking parameters (generation and tick are the relay's).
+core::FlockingTuning ToFlockingTuning(const Flocking_Tuning& msg);
+Flocking_Tuning ToTuningMsg(const core::FlockingTuning& tuning, std::uint32_t generation,
+                            std::uint64_t tick);
 
 // New_Mission -> core mission; all_finite records whether every float of the message is finite
 // (ValidateMission rejects the mission otherwise).

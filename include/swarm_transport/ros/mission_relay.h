@@ -6,11 +6,13 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "swarm_transport/Delete_Object.h"
+#include "swarm_transport/Flocking_Tuning.h"
 #include "swarm_transport/Mission_Event.h"
 #include "swarm_transport/Mission_Status.h"
 #include "swarm_transport/Neighbors.h"
@@ -20,6 +22,7 @@
 #include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/Tick_Answer.h"
 #include "swarm_transport/Update_Object.h"
+#include "swarm_transport/core/swarm_config.h"
 #include "swarm_transport/sim/radio.h"
 
 namespace swarm_transport {
@@ -77,6 +80,31 @@ class MissionRelay {
   List<Mission_Status> statuses_;
   bool sorted_ = true;
   Neighbors round_;  // the sorted lists, copied into every round
+};
+
+// Live tuning of the flocking parameters (issue 13): a change accepted between two rounds goes
+// out with the next round, inside every robot's round from then on (a robot that joins later
+// gets it too), so that in lock-step every robot uses it from the same tick. Validated with the
+// robots' own check against the whole configuration.
+class TuningRelay {
+ public:
+  explicit TuningRelay(const core::SwarmConfig& config);
+  // Empty when accepted (it goes out with the next round; a later proposal before that round
+  // replaces it; the values already in use change nothing), else why not: nothing changed.
+  std::string Propose(const core::FlockingTuning& tuning);
+  // Round `tick` begins: an accepted change becomes current and is returned (once).
+  std::optional<Flocking_Tuning> BeginRound(std::uint64_t tick);
+  // The current tuning into a robot's round (nothing before the first change).
+  void Fill(Neighbors* round) const;
+  // The newest accepted values (pending or current), and the configuration with them.
+  core::FlockingTuning newest() const { return core::FlockingTuning::Of(config_.flocking); }
+  const core::SwarmConfig& config() const { return config_; }
+  std::uint32_t generation() const { return current_ ? current_->generation : 0; }
+
+ private:
+  core::SwarmConfig config_;  // with the newest accepted tuning
+  bool pending_ = false;
+  std::optional<Flocking_Tuning> current_;
 };
 
 // The positions relayed besides the world's robots (announced on /flock/position): leaders'

@@ -27,6 +27,7 @@ constexpr char kRobotDelete[] = "/flock/robot/delete";
 constexpr char kMarkers[] = "/flock/markers";
 constexpr char kStats[] = "/flock/stats";  // the recorder's Swarm_Stats
 constexpr char kObjects[] = "/flock/objects";  // Mission_Objects, per tick, on demand
+constexpr char kTuning[] = "/flock/tuning";    // latched: the live flocking tuning (issue 13)
 
 // Per robot, relative to the robot's namespace.
 constexpr char kCmdVel[] = "cmd_vel";

@@ -115,6 +115,9 @@ class RobotNode {
   void OnRobots(const Robot_Positions::ConstPtr& msg);
   // Lock-step: applies the mission messages the simulator relayed with this perception.
   void ApplyRelayed(const Neighbors& msg);
+  // A round's flocking tuning (issue 13): a generation it does not have yet is used from this
+  // tick on (lock-step: every robot at the same tick; real time: on receipt).
+  void ApplyTuning(const Neighbors& msg);
   // Broadcast comm: remembers the latest position of every other robot and copy.
   void OnPosition(const Robot_Position::ConstPtr& msg);
   // Diagnostics: a round's arrival (and, local comm, its updates' delivery).
@@ -197,6 +200,9 @@ class RobotNode {
   bool said_unlisted_ = false;   // it said once that it is not
   Neighbors::ConstPtr perception_;
   std::uint64_t ticks_ = 0;
+  std::uint32_t tuning_generation_ = 0;  // the live tuning it took (0: its configuration's)
+  std::uint64_t tuning_tick_ = 0;        // ... at the round of this tick
+  std::uint32_t refused_generation_ = 0;  // the last one it refused (said once)
   // Broadcast comm: what each (robot_id, sub_id) last sent, and when (wall s, radio round).
   struct Heard {
     Robot_Position::ConstPtr position;

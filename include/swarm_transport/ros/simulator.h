@@ -18,6 +18,7 @@
 
 #include "swarm_transport/Delete_Object.h"
 #include "swarm_transport/Delete_Robot.h"
+#include "swarm_transport/Hold.h"
 #include "swarm_transport/Kill.h"
 #include "swarm_transport/New_Robot.h"
 #include "swarm_transport/Mission_Objects.h"
@@ -35,6 +36,7 @@
 #include "swarm_transport/ros/diagnostics.h"
 #include "swarm_transport/ros/direct_link.h"
 #include "swarm_transport/ros/event_schedule.h"
+#include "swarm_transport/ros/flocking_tuning.h"
 #include "swarm_transport/ros/lockstep_session.h"
 #include "swarm_transport/ros/mission_relay.h"
 #include "swarm_transport/ros/robot_links.h"
@@ -102,6 +104,9 @@ class Simulator : public RobotOutlet {
 
   // One radio round: Neighbors to every receiving robot, then /flock/positions.
   void PublishRadio();
+  // At the start of a round: a flocking tuning accepted since the last one goes out with this
+  // round (and on /flock/tuning); the radio's range and the markers follow its local range.
+  void BeginTuningRound();
   // Lock-step: robot `id`'s answer, for the session (ignored after the last tick).
   void OnAnswer(std::uint16_t id, const Tick_Answer& answer);
   // Latched /flock/robots: the robots that exist (robots check missions against it).
@@ -124,6 +129,11 @@ class Simulator : public RobotOutlet {
   bool OnSpawn(Spawn::Request& req, Spawn::Response& res);
   bool OnKill(Kill::Request& req, Kill::Response& res);
   bool OnReset(std_srvs::Empty::Request& req, std_srvs::Empty::Response& res);
+  // ~hold (lock-step): stand before a stated tick until released.
+  bool OnHold(Hold::Request& req, Hold::Response& res);
+  // Lock-step, before tick tick_ begins: stands while a hold asks for it (markers, tf and
+  // services go on); returns the wall time it stood.
+  ros::WallDuration HoldIfAsked();
   bool OnTeleportAbsolute(std::uint16_t id, TeleportAbsolute::Request& req,
                           TeleportAbsolute::Response& res);
   bool OnTeleportRelative(std::uint16_t id, TeleportRelative::Request& req,
@@ -166,6 +176,11 @@ class Simulator : public RobotOutlet {
   ros::CallbackQueue cmd_queue_;
   std::unique_ptr<RobotLinks> links_;
   RelayedPositions relayed_;  // virtual copies and statists
+  // Live tuning of the flocking parameters (dynamic_reconfigure on the private handle).
+  std::unique_ptr<TuningRelay> tuning_;
+  std::unique_ptr<FlockingTuningServer> tuning_server_;
+  ros::Publisher tuning_pub_;
+  bool radio_follows_range_ = true;  // ~radio_range_m unset: the radio's range is the local range
   sim::LiveMissions missions_;
 
   ros::Publisher positions_pub_;
@@ -183,6 +198,10 @@ class Simulator : public RobotOutlet {
   ros::ServiceServer spawn_srv_;
   ros::ServiceServer kill_srv_;
   ros::ServiceServer reset_srv_;
+  ros::ServiceServer hold_srv_;
+  std::uint64_t hold_at_ = 0;  // lock-step: hold before this tick (0: none)
+  bool holding_ = false;
+  bool tick_begun_ = false;    // lock-step: tick tick_ is under way
   ros::Subscriber position_sub_;
   ros::Subscriber robot_new_sub_;
   ros::Subscriber robot_delete_sub_;

@@ -43,6 +43,7 @@ struct SimulatorParams {
   double markers_rate_hz = 10.0;     // ~markers_rate_hz: markers and tf, wall clock (0: off)
   bool tf = true;                    // ~tf: broadcast world -> robot_<id>/base_link
   bool range_circles = false;        // ~range_circles: draw each robot's local range
+  int trail_ticks = 0;               // ~trail_ticks: a line through each robot's last positions
   double radio_range_m = 1.0;        // ~radio_range_m: default /swarm/local_range_m
   // ~pose_topics: advertise robot_<id>/pose for every robot. Default true, false when robots
   // are linked directly (a robot_host that runs the simulator): a publication per robot costs

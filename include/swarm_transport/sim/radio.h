@@ -65,6 +65,8 @@ class Radio {
   // of the robot it stands on (-1: none).
   const std::vector<std::uint16_t>& ids() const { return ids_; }
   const std::vector<long>& extra_owner() const { return extra_owner_; }
+  // A new range from the next Begin() on (a live tuning of the local range, issue 13).
+  void set_range_m(double range_m) { params_.range_m = range_m; }
 
  private:
   long IndexOf(std::uint16_t id) const;
