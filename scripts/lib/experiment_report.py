@@ -231,7 +231,7 @@ def plot(preset, summary, out):
         groups[-1][1].append(v)
     for group, members in groups:
         name = 'metrics_%s.png' % _slug(group) if group else 'metrics.png'
-        paths.append(_plot_bars(plt, preset, summary, members, PANELS[kind],
+        paths.append(_plot_bars(plt, preset, summary, members, preset.get('table') or PANELS[kind],
                                 os.path.join(out, name), group))
     return paths
 
