@@ -360,6 +360,44 @@ SelectionPlan PlanOptimal(const std::vector<PlannerRobot>& robots,
   return plan;
 }
 
+std::string PickRobotsByCount(MissionSpec* spec, const std::map<std::uint16_t, PlannerRobot>& idle,
+                              const SelectionParams& p) {
+  std::ostringstream os;
+  const std::size_t count = spec->robot_count;
+  if (count == 0 || !spec->robot_ids.empty() || spec->range_from < spec->range_to) {
+    os << "robot_count picks robots only for a mission with robot_count > 0 and no range or ids";
+  } else if (spec->LeaderOnly()) {
+    os << "robot_count needs an object (a leader-only mission names its leader)";
+  } else if (!spec->all_finite) {
+    os << "a field is not a finite number (NaN or inf)";
+  } else if (count > idle.size()) {
+    os << "robot_count " << count << " but only " << idle.size() << " robots are idle";
+  }
+  if (os.tellp() > 0) return os.str();
+  const Vec2 centre = spec->object_centre;
+  std::vector<Vec2> slots = SlotsIn(spec->ObjectAt(centre), count);
+  if (slots.size() < count) return "the object has no room for " + std::to_string(count) + " slots";
+  std::stable_sort(slots.begin(), slots.end(),
+                   [&](Vec2 a, Vec2 b) { return Distance(a, centre) < Distance(b, centre); });
+  slots.resize(count);
+  std::vector<std::uint16_t> ids;
+  std::vector<PlannerRobot> robots;
+  for (const auto& kv : idle) {
+    ids.push_back(kv.first);
+    robots.push_back(kv.second);
+  }
+  std::vector<PlannerTarget> targets;
+  for (const Vec2& s : slots) targets.push_back({s, 0.0});
+  const SelectionPlan plan = PlanSelection(robots, targets, p);
+  std::vector<std::uint16_t> picked;
+  for (std::size_t r = 0; r < ids.size(); ++r) {
+    if (plan.target_of[r] >= 0) picked.push_back(ids[r]);
+  }
+  spec->robot_ids = picked;  // ascending: `idle` is ordered by id
+  spec->robot_count = 0;
+  return "";
+}
+
 std::vector<Vec2> SlotsIn(const Shape& object, std::size_t count) {
   std::vector<Vec2> slots;
   if (object.empty() || count == 0) return slots;

@@ -298,6 +298,52 @@ TEST(AssignmentValidateTest, BadInputIsNamed) {
   EXPECT_NE(ValidateCostMatrix(m).find("3 entries"), std::string::npos);
 }
 
+MissionSpec CountOnly(std::uint16_t count) {
+  MissionSpec m;
+  m.id = 3;
+  m.robot_count = count;
+  m.leader_number = 1;
+  m.object_centre = {7.0, 7.0};
+  m.object_size = {2.0, 2.0};
+  m.target = {3.0, 3.0};
+  return m;
+}
+
+TEST(PickRobotsByCountTest, TheRobotsNearestTheObjectsSlotsAreTaken) {
+  // Two slots nearest the centre of the 2 x 2 object (SlotsIn(2): 2 x 1 cells, at (6.5, 7)
+  // and (7.5, 7)); robots 1 and 4 stand next to them, 0 and 9 far away.
+  std::map<std::uint16_t, PlannerRobot> idle{
+      {0, Robot(1, 1, 0)}, {1, Robot(5.5, 7, 0)}, {4, Robot(8.5, 7, 180)}, {9, Robot(10, 1, 90)}};
+  MissionSpec spec = CountOnly(2);
+  EXPECT_NE(ValidateMission(spec, MissionContext()).find("needs the mission dispatcher"),
+            std::string::npos);
+  ASSERT_EQ(PickRobotsByCount(&spec, idle, Round()), "");
+  EXPECT_EQ(spec.robot_ids, (std::vector<std::uint16_t>{1, 4}));
+  EXPECT_EQ(spec.robot_count, 0);
+  EXPECT_EQ(spec.Leaders(), (std::vector<std::uint16_t>{1}));
+  EXPECT_EQ(ValidateMission(spec, MissionContext()), "");  // a usual order now
+}
+
+TEST(PickRobotsByCountTest, BadCountsAreRefusedAndChangeNothing) {
+  std::map<std::uint16_t, PlannerRobot> idle{{0, Robot(1, 1, 0)}, {1, Robot(2, 2, 0)}};
+  MissionSpec spec = CountOnly(3);
+  const MissionSpec before = spec;
+  EXPECT_EQ(PickRobotsByCount(&spec, idle, Round()), "robot_count 3 but only 2 robots are idle");
+  EXPECT_TRUE(spec.robot_ids.empty());
+  EXPECT_EQ(spec.robot_count, before.robot_count);
+  spec = CountOnly(1);
+  spec.range_to = 2;  // a range besides the count
+  EXPECT_NE(PickRobotsByCount(&spec, idle, Round()), "");
+  EXPECT_NE(ValidateMission(spec, MissionContext()).find("besides a robot range"),
+            std::string::npos);
+  spec = CountOnly(1);
+  spec.object_size = {0.0, 0.0};  // leader-only
+  EXPECT_NE(PickRobotsByCount(&spec, idle, Round()).find("needs an object"), std::string::npos);
+  EXPECT_TRUE(spec.robot_ids.empty());
+  spec = CountOnly(0);
+  EXPECT_NE(PickRobotsByCount(&spec, idle, Round()), "");
+}
+
 TEST(SlotsInTest, SlotsSpreadOverTheObjectOnePerRobotAtLeast) {
   const Shape object = Shape::FromRect({7, 7}, {2, 2});
   const std::vector<Vec2> slots = SlotsIn(object, 20);

@@ -6,11 +6,14 @@
 #define SWARM_TRANSPORT_CORE_ASSIGNMENT_H_
 
 #include <cstddef>
+#include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "swarm_transport/core/angle.h"
 #include "swarm_transport/core/geometry.h"
+#include "swarm_transport/core/mission.h"
 
 namespace swarm_transport {
 namespace core {
@@ -123,6 +126,15 @@ SelectionPlan PlanOptimal(const std::vector<PlannerRobot>& robots,
 // the grid made finer until at least `count` do; all of them, row by row from the bottom.
 // Empty when the object is empty or count is 0.
 std::vector<Vec2> SlotsIn(const Shape& object, std::size_t count);
+
+// (ext) A count-only transport mission (robot_count > 0, no range, no ids): its robots are the
+// ones the selection matrix (PlanSelection) gives the robot_count slots of its object nearest
+// the object's centre (of SlotsIn's), out of `idle` (the candidates: robots on no live mission,
+// with their poses). On success it fills spec->robot_ids (ascending; its leaders are, as for
+// every mission, the lowest leader_number of them) and sets robot_count to 0; else it returns
+// why and changes nothing.
+std::string PickRobotsByCount(MissionSpec* spec, const std::map<std::uint16_t, PlannerRobot>& idle,
+                              const SelectionParams& p);
 
 }  // namespace core
 }  // namespace swarm_transport
