@@ -150,13 +150,17 @@ Matching GreedyMinimum(const CostMatrix& m) {
   std::vector<bool> row_used(m.rows, false), col_used(m.cols, false);
   const std::size_t picks = std::min(m.rows, m.cols);
   for (std::size_t k = 0; k < picks; ++k) {
+    // The first free pair stands until a smaller cost is found (so that a matrix of
+    // infinities still gives one robot per target).
+    bool found = false;
     double best = kInf;
     std::size_t br = 0, bc = 0;
     for (std::size_t r = 0; r < m.rows; ++r) {
       if (row_used[r]) continue;
       for (std::size_t c = 0; c < m.cols; ++c) {
         if (col_used[c]) continue;
-        if (m.at(r, c) < best) {
+        if (!found || m.at(r, c) < best) {
+          found = true;
           best = m.at(r, c);
           br = r;
           bc = c;
@@ -370,8 +374,19 @@ std::string PickRobotsByCount(MissionSpec* spec, const std::map<std::uint16_t, P
     os << "robot_count needs an object (a leader-only mission names its leader)";
   } else if (!spec->all_finite) {
     os << "a field is not a finite number (NaN or inf)";
-  } else if (count > idle.size()) {
-    os << "robot_count " << count << " but only " << idle.size() << " robots are idle";
+  }
+  if (os.tellp() > 0) return os.str();
+  // Candidates at a finite place only (a position message may carry anything).
+  std::map<std::uint16_t, PlannerRobot> usable;
+  for (const auto& kv : idle) {
+    const PlannerRobot& r = kv.second;
+    if (std::isfinite(r.position.x) && std::isfinite(r.position.y) &&
+        std::isfinite(r.heading.degrees())) {
+      usable.emplace(kv.first, r);
+    }
+  }
+  if (count > usable.size()) {
+    os << "robot_count " << count << " but only " << usable.size() << " robots are idle";
   }
   if (os.tellp() > 0) return os.str();
   const Vec2 centre = spec->object_centre;
@@ -382,7 +397,7 @@ std::string PickRobotsByCount(MissionSpec* spec, const std::map<std::uint16_t, P
   slots.resize(count);
   std::vector<std::uint16_t> ids;
   std::vector<PlannerRobot> robots;
-  for (const auto& kv : idle) {
+  for (const auto& kv : usable) {
     ids.push_back(kv.first);
     robots.push_back(kv.second);
   }
@@ -393,7 +408,7 @@ std::string PickRobotsByCount(MissionSpec* spec, const std::map<std::uint16_t, P
   for (std::size_t r = 0; r < ids.size(); ++r) {
     if (plan.target_of[r] >= 0) picked.push_back(ids[r]);
   }
-  spec->robot_ids = picked;  // ascending: `idle` is ordered by id
+  spec->robot_ids = picked;  // ascending: `usable` is ordered by id
   spec->robot_count = 0;
   return "";
 }

@@ -270,6 +270,14 @@ TEST(OptimalAssignmentTest, PlanOptimalIsNeverWorseThanTheSelectionOnTheMatrix) 
   }
 }
 
+TEST(SelectionMatrixTest, GreedyGivesOneTargetEachEvenOnInfiniteCosts) {
+  CostMatrix x(3, 3, std::numeric_limits<double>::infinity());
+  x.at(2, 1) = 5.0;
+  const Matching g = GreedyMinimum(x);
+  EXPECT_EQ(g.target_of[2], 1);
+  ExpectOneToOne(g, x);
+}
+
 TEST(OptimalAssignmentTest, EmptyMatricesAssignNothing) {
   EXPECT_TRUE(Hungarian(CostMatrix(0, 3)).target_of.empty());
   EXPECT_EQ(Bottleneck(CostMatrix(2, 0)).target_of, (std::vector<int>{-1, -1}));
@@ -342,7 +350,15 @@ TEST(PickRobotsByCountTest, BadCountsAreRefusedAndChangeNothing) {
   EXPECT_TRUE(spec.robot_ids.empty());
   spec = CountOnly(0);
   EXPECT_NE(PickRobotsByCount(&spec, idle, Round()), "");
+  // A candidate heard at no finite place is no candidate.
+  idle[1] = Robot(std::nan(""), 2, 0);
+  spec = CountOnly(2);
+  EXPECT_EQ(PickRobotsByCount(&spec, idle, Round()), "robot_count 2 but only 1 robots are idle");
+  spec = CountOnly(1);
+  ASSERT_EQ(PickRobotsByCount(&spec, idle, Round()), "");
+  EXPECT_EQ(spec.robot_ids, (std::vector<std::uint16_t>{0}));
 }
+
 
 TEST(SlotsInTest, SlotsSpreadOverTheObjectOnePerRobotAtLeast) {
   const Shape object = Shape::FromRect({7, 7}, {2, 2});
