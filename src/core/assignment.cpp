@@ -434,8 +434,12 @@ std::vector<Vec2> SlotsIn(const Shape& object, std::size_t count) {
   const double w = x1 - x0, h = y1 - y0;
   if (!(w > 0.0) || !(h > 0.0)) return slots;
   for (std::size_t cells = count; cells <= count * kMaxSlotGridFactor; ++cells) {
-    const std::size_t cols = std::max<std::size_t>(
-        1, static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(cells) * w / h))));
+    // Cells as square as the box allows, at most `cells` columns (a needle of an object must
+    // not ask for billions of cells).
+    double wide = std::ceil(std::sqrt(static_cast<double>(cells) * w / h));
+    if (!(wide >= 1.0)) wide = 1.0;
+    wide = std::min(wide, static_cast<double>(cells));
+    const std::size_t cols = static_cast<std::size_t>(wide);
     const std::size_t rows = std::max<std::size_t>(1, (cells + cols - 1) / cols);
     slots.clear();
     for (std::size_t r = 0; r < rows; ++r) {

@@ -379,6 +379,14 @@ TEST(SlotsInTest, SlotsSpreadOverTheObjectOnePerRobotAtLeast) {
   EXPECT_TRUE(SlotsIn(Shape(), 5).empty());
 }
 
+TEST(SlotsInTest, ANeedleOfAnObjectGetsNoMoreCellsThanItsRobots) {
+  // 10 m x 1 um: the square cells would be 3 x 1.7 million; at most 3 columns, one row.
+  const std::vector<Vec2> slots = SlotsIn(Shape::FromRect({5, 5}, {10, 1e-6}), 3);
+  ASSERT_EQ(slots.size(), 3u);
+  EXPECT_NEAR(slots[0].x, 5.0 - 10.0 / 3.0, 1e-9);
+  EXPECT_EQ(SlotsIn(Shape::FromRect({5, 5}, {1e-6, 10}), 3).size(), 3u);  // one column
+}
+
 TEST(SlotsInTest, AnLShapeGetsItsSlotsInside) {
   const Shape l({Primitive::MakeRect({1, 0.5}, {2, 1}), Primitive::MakeRect({0.5, 1.5}, {1, 1})});
   const std::vector<Vec2> slots = SlotsIn(l, 9);
