@@ -39,7 +39,8 @@ struct Matching {
 };
 
 // The paper's selection [R3, fig. 7]: the global minimum of the matrix, then its row and column
-// are removed, until rows or columns run out. Ties go to the lowest row, then column.
+// are removed, until rows or columns run out. Ties go to the lowest row, then column (and when
+// every free cost is infinite, the first free pair).
 Matching GreedyMinimum(const CostMatrix& m);
 // Least total cost (Hungarian method with potentials, O(n^2 m)).
 Matching Hungarian(const CostMatrix& m);
@@ -102,7 +103,8 @@ CostMatrix SelectionMatrix(const std::vector<PlannerRobot>& robots,
 //    onto its own course - perpendicular to m's path when it has no target - plus corridor_m at
 //    speed V). T1 > T2: b is gone. Else T3 = T1 + the distance along the path to b / V; T3 > T2:
 //    b is gone. Else m waits T4 = T2 - T3. (The paper writes T4 = T3 - T2, which under its own
-//    condition T3 <= T2 is never positive; the wait it describes is its magnitude.)
+//    condition T3 <= T2 is never positive; the wait it describes is its magnitude.) Several
+//    robots on the path: nearest first, each wait delaying m's arrival at the next.
 //  - Crossings [R3, figs. 11-12]: where two assigned robots' straight paths cross, each one's
 //    time to the crossing (turn + distance / V); when they differ by at most meet_tolerance the
 //    robot whose goal is farther (ties: the higher index) waits crossing_wait.
