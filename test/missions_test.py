@@ -76,6 +76,30 @@ class Missions(unittest.TestCase):
                 self.assertFalse(state.has_active,
                                  'robot %d works on mission %d' % (rid, state.active_mission))
 
+    def test_a_count_only_mission_gets_its_robots_picked_and_completes(self):
+        """New_Mission.robot_count (ext, SPEC 9.10): no range, no ids; the dispatcher picks the
+        robots by the selection matrix and sends the order with their ids."""
+        g = lambda k: rospy.get_param('~count/' + k)  # noqa: E731
+        robots, count = g('robots'), g('count')
+        self.start(robots=robots, seed=g('seed'))
+        too_many = st.mission(52, 0, 0, 1, (7.0, 7.0, 2.0, 2.0), (3.0, 3.0))
+        too_many.robot_count = robots + 1
+        answer = self.submit(too_many)
+        self.assertNotEqual(answer.code, 0, 'a count above the swarm was accepted')
+        self.assertIn('idle', answer.message)
+        both = st.mission(53, 0, 2, 1, (7.0, 7.0, 2.0, 2.0), (3.0, 3.0))
+        both.robot_count = 2
+        self.assertNotEqual(self.submit(both).code, 0, 'a count besides a range was accepted')
+        m = st.mission(51, 0, 0, g('leaders'), (7.0, 7.0, 2.0, 2.0), (3.0, 3.0))
+        m.robot_count = count
+        answer = self.submit(m)
+        self.assertEqual(answer.code, 0, answer.message)
+        self.assertTrue(st.wait_for(lambda: self.status.final(51), self.timeout),
+                        'count-only mission did not finish: %s' % self.status.states(51))
+        done = self.status.first(51, 5)
+        self.assertIsNotNone(done, 'mission ended %s' % self.status.states(51))
+        self.assertEqual(done.robots_assigned, count)
+
 
 if __name__ == '__main__':
     rospy.init_node('missions_test')

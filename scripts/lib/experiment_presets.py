@@ -23,12 +23,13 @@ METRICS = {
     'leader': ['path_fraction_attached', 'leader_swarm_at_arrival', 'leader_waits',
                'leader_ticks', 'aborted'],
     'transport': ['transport_ticks', 'slip_per_robot_m', 'distance_per_robot_m', 'leader_waits',
-                  'object_error_m', 'gathering_ticks', 'leader_contact', 'aborted'],
+                  'object_error_m', 'gathering_ticks', 'leader_contact', 'aborted',
+                  'gathering_swerves', 'mission_ticks'],
 }
 TOP_KEYS = {'description', 'kind', 'order', 'section', 'figures', 'runs', 'seed_base',
             'base_config', 'config', 'robots', 'placement', 'cluster', 'max_ticks',
             'trim_each_end', 'x_label', 'group_label', 'thesis', 'note', 'expect', 'mission',
-            'settings', 'jobs', 'name', 'thesis_measured'}
+            'settings', 'jobs', 'name', 'thesis_measured', 'table'}
 # thesis_measured: the thesis's own figures per setting where its raw data survives
 # ({source: text, metrics: [metric, ...], rows: [{setting: name, label: text, <metric>: value}]}).
 MEASURED_KEYS = {'source', 'metrics', 'rows'}
@@ -81,6 +82,12 @@ def validate(preset, name):
         fail('kind must be one of %s' % (KINDS,))
     if not isinstance(p['runs'], int) or p['runs'] < 1:
         fail('runs must be an integer >= 1')
+    if 'table' in p:
+        # The metrics of the preset's table on the results page (default: its kind's).
+        if (not isinstance(p['table'], list) or not p['table'] or
+                any(m not in METRICS[p['kind']] for m in p['table'])):
+            fail('table must be a non-empty list of %s metrics (%s)'
+                 % (p['kind'], ', '.join(METRICS[p['kind']])))
     p.setdefault('seed_base', 1)
     p.setdefault('order', 1000)
     p.setdefault('section', '')

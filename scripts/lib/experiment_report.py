@@ -29,6 +29,8 @@ TITLES = {
     'gathering_ticks': 'gathering ticks',
     'leader_contact': 'leader contact (%)',
     'aborted': 'aborted (%)',
+    'gathering_swerves': 'swerves while gathering',
+    'mission_ticks': 'mission ticks',
 }
 PERCENT = {'path_fraction_attached', 'leader_contact', 'aborted'}   # stored as fractions, shown in %
 PANELS = {   # the metrics drawn as bars, in the thesis's order of diagrams
@@ -85,8 +87,13 @@ def views_with_data(preset, summary):
     return [v for v in presets.settings(preset) if v['name'] in have]
 
 
+def table_metrics(preset):
+    """The metrics of a preset's table: its own `table`, else its kind's."""
+    return preset.get('table') or TABLE[preset['kind']]
+
+
 def text_table(preset, summary):
-    cols = TABLE[preset['kind']]
+    cols = table_metrics(preset)
     views = views_with_data(preset, summary)
     head = ['setting', 'runs'] + [TITLES[c] for c in cols]
     body = []
@@ -106,7 +113,7 @@ def text_table(preset, summary):
 
 
 def markdown_table(preset, summary):
-    cols = TABLE[preset['kind']]
+    cols = table_metrics(preset)
     views = views_with_data(preset, summary)
     lines = ['| setting | runs | ' + ' | '.join(TITLES[c] for c in cols) + ' |',
              '|---|---:|' + '---:|' * len(cols)]
@@ -242,7 +249,7 @@ def plot(preset, summary, out):
         groups[-1][1].append(v)
     for group, members in groups:
         name = 'metrics_%s.png' % _slug(group) if group else 'metrics.png'
-        paths.append(_plot_bars(plt, preset, summary, members, PANELS[kind],
+        paths.append(_plot_bars(plt, preset, summary, members, preset.get('table') or PANELS[kind],
                                 os.path.join(out, name), group))
     return paths
 

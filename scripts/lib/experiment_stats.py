@@ -145,6 +145,11 @@ def _mission(kind, run_dir, info):
             start, stop = number(row.get('gathering_tick')), number(row.get('loading_tick'))
             metrics['gathering_ticks'] = (stop - start if start is not None and
                                           stop is not None else None)
+            queued, done_tick = number(row.get('queued_tick')), number(row.get('done_tick'))
+            metrics['mission_ticks'] = (done_tick - queued if queued is not None and
+                                        done_tick is not None else None)
+            # Counted by the batch engine only (result.json); launched runs leave it empty.
+            metrics['gathering_swerves'] = number(info.get('gathering_swerves'))
     if kind == 'leader':
         track = read_csv(os.path.join(run_dir, 'leader_track.csv'))
         points = [(number(r['path_fraction']), number(r['leader_swarm'])) for r in track]

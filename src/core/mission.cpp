@@ -82,6 +82,12 @@ std::string ValidateMission(const MissionSpec& m, const MissionContext& ctx) {
   const std::vector<std::uint16_t> assigned = m.Assigned();
   if (!m.all_finite) {
     os << "a field is not a finite number (NaN or inf)";
+  } else if (m.robot_count > 0 && (!m.robot_ids.empty() || m.range_from < m.range_to)) {
+    os << "robot_count " << m.robot_count
+       << " is given besides a robot range or robot_ids (give one of them)";
+  } else if (m.robot_count > 0) {
+    os << "robot_count " << m.robot_count
+       << " needs the mission dispatcher to pick the robots (no range or robot_ids given)";
   } else if (m.robot_ids.empty() && m.range_from >= m.range_to) {
     os << "robot range [" << m.range_from << ", " << m.range_to
        << ") is empty or inverted (from must be < to)";

@@ -4,8 +4,20 @@
 #include <cmath>
 #include <sstream>
 
+#include "swarm_transport/core/assignment.h"
+
 namespace swarm_transport {
 namespace core {
+namespace {
+
+// Every member plans on what it hears as /flock/position carries it (float32), its own pose
+// included, so that all members compute the same plan.
+PlannerRobot AsHeard(Vec2 position, Angle heading) {
+  return {{static_cast<float>(position.x), static_cast<float>(position.y)},
+          Angle(static_cast<float>(heading.degrees()))};
+}
+
+}  // namespace
 
 MissionAgent::MissionAgent(std::uint16_t self_id, const MissionAgentParams& params)
     : self_id_(self_id), params_(params) {}
@@ -205,6 +217,41 @@ bool MissionAgent::Heartbeats(Live* live, const std::vector<Neighbour>& heard,
   }
   for (std::uint16_t id : live->lost) live->last_seen.erase(id);
   return live->lost.size() != lost_before;
+}
+
+std::optional<Vec2> MissionAgent::PlanSlot(const Live& live, const Pose2& self,
+                                           const std::vector<Neighbour>& heard) const {
+  std::map<std::uint16_t, PlannerRobot> known;
+  known.emplace(self_id_, AsHeard(self.position, self.heading));
+  for (const Neighbour& n : heard) {
+    if (n.type == 0 && live.spec.Assigns(n.id)) known.emplace(n.id, AsHeard(n.position, n.heading));
+  }
+  for (const auto& kv : live.last_seen) known.emplace(kv.first, AsHeard(kv.second, Angle(0.0)));
+  std::vector<PlannerRobot> robots;
+  int self_index = -1;
+  for (std::uint16_t id : Left(live)) {
+    const auto it = known.find(id);
+    if (it == known.end()) continue;
+    if (id == self_id_) self_index = static_cast<int>(robots.size());
+    robots.push_back(it->second);
+  }
+  if (self_index < 0) return std::nullopt;
+  const std::vector<Vec2> slots = SlotsIn(live.spec.ObjectAt(live.centre), robots.size());
+  if (slots.empty()) return std::nullopt;
+  std::vector<PlannerTarget> targets;
+  for (const Vec2& s : slots) targets.push_back({s, 0.0});
+  SelectionParams sp;
+  sp.speed_m = params_.speed_m_per_tick;
+  sp.turn_deg = params_.transport.planner_turn_deg_per_tick;
+  sp.corridor_m = params_.corridor_m;
+  const GatherPlanner planner = params_.transport.gather_planner;
+  const SelectionPlan plan =
+      planner == GatherPlanner::kSelectionMatrix
+          ? PlanSelection(robots, targets, sp)
+          : PlanOptimal(robots, targets, sp, planner == GatherPlanner::kBottleneck);
+  const int slot = plan.target_of[static_cast<std::size_t>(self_index)];
+  if (slot < 0) return std::nullopt;
+  return slots[static_cast<std::size_t>(slot)];
 }
 
 void MissionAgent::Drop(std::uint16_t mission_id) {
@@ -473,6 +520,16 @@ MissionPlan MissionAgent::Tick(const Pose2& self, const std::vector<Neighbour>& 
       carry.target = live.route.empty() ? spec.target : live.route[live.leg];
       carry.goal_tolerance_m = params_.goal_tolerance_m;
       carry.formation_offset = live.place;
+      if (params_.transport.gather_planner != GatherPlanner::kNearest && !carry.transport) {
+        // Planned at its first gathering tick, then every replan_period ticks (on the same
+        // ticks for every member).
+        const std::uint64_t period =
+            static_cast<std::uint64_t>(params_.transport.replan_period_ticks);
+        if (!live.slot || (tick % period == 0 && !carry.loading)) {
+          live.slot = PlanSlot(live, self, heard);
+        }
+        carry.slot = live.slot;
+      }
       carry.leaders = leaders;
       std::sort(carry.leaders.begin(), carry.leaders.end());
       for (std::uint16_t id : plan.group.ids) {

@@ -17,6 +17,7 @@ MissionAgentParams MissionParams(const SwarmConfig& p) {
   m.world_size_m = p.flocking.world_size_m;
   m.speed_m_per_tick = p.flocking.speed_m_per_tick;
   m.static_zones = p.danger_zones;
+  m.corridor_m = p.flocking.MinSeparation();
   m.min_robots = p.mission_min_robots;
   m.lost_after_ticks = static_cast<std::uint64_t>(
       std::max(1.0, std::ceil(p.lost_after_s / p.tick_period_s - 1e-9)));

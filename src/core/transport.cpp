@@ -124,6 +124,32 @@ MoveDecision FormationCarry(const Perception& in, const FlockingParams& p,
   return AvoidCollisions(moved, reach, heading, duration_s);
 }
 
+// Gathering by a plan: straight for its own slot; around robots in the way (inside the object
+// only onto moves that stay inside, so that it does not wall itself out); on it, it stands (a
+// leader facing its course).
+MoveDecision ToSlot(const Perception& in, const FlockingParams& p, const TransportParams& tp,
+                    const Carry& carry, double duration_s) {
+  const Vec2 position = in.self.position;
+  const Angle course = Bearing(carry.centre, carry.target);
+  const bool face = carry.leader && tp.leaders_face_course;
+  if (face && carry.loading) return Stand(course, course);
+  const double gap = Distance(position, *carry.slot);
+  const Angle toward = Bearing(position, *carry.slot);
+  if (gap <= kInPlaceM) return face ? Stand(course, course) : Stand(toward, in.self.heading);
+  FlockingParams reach = p;
+  reach.speed_m_per_tick = std::min(gap, p.speed_m_per_tick);
+  if (IsMoveValid(in, reach, toward, reach.speed_m_per_tick, duration_s)) {
+    return Drive(toward, toward, reach.speed_m_per_tick, MoveOutcome::kStraight);
+  }
+  const MoveDecision d = AvoidCollisions(in, reach, toward, duration_s);
+  const bool inside = carry.object.Contains(position);
+  if (inside && d.distance_m > 0.0 &&
+      !carry.object.Contains(position + UnitVector(d.heading) * d.distance_m)) {
+    return face ? Stand(course, course) : Stand(toward, in.self.heading);
+  }
+  return d;
+}
+
 }  // namespace
 
 bool ParseGatherMode(const std::string& name, GatherMode* out) {
@@ -137,7 +163,37 @@ bool ParseGatherMode(const std::string& name, GatherMode* out) {
   return true;
 }
 
+bool ParseGatherPlanner(const std::string& name, GatherPlanner* out) {
+  for (const GatherPlanner planner : {GatherPlanner::kNearest, GatherPlanner::kSelectionMatrix,
+                                      GatherPlanner::kOptimal, GatherPlanner::kBottleneck}) {
+    if (name == GatherPlannerName(planner)) {
+      *out = planner;
+      return true;
+    }
+  }
+  return false;
+}
+
+const char* GatherPlannerName(GatherPlanner planner) {
+  switch (planner) {
+    case GatherPlanner::kSelectionMatrix:
+      return "selection_matrix";
+    case GatherPlanner::kOptimal:
+      return "optimal";
+    case GatherPlanner::kBottleneck:
+      return "bottleneck";
+    default:
+      return "nearest";
+  }
+}
+
 std::string TransportParams::Validate() const {
+  if (replan_period_ticks < 1) {
+    return Problem("replan_period", ">= 1 (ticks)", replan_period_ticks);
+  }
+  if (!(planner_turn_deg_per_tick > 0.0) || !std::isfinite(planner_turn_deg_per_tick)) {
+    return Problem("planner_turn_deg_per_tick", "finite and > 0", planner_turn_deg_per_tick);
+  }
   if (!(lookahead >= 1.0) || !std::isfinite(lookahead)) {
     return Problem("transport lookahead", "finite and >= 1", lookahead);
   }
@@ -173,7 +229,8 @@ MoveDecision CarryStep(const Perception& in, const FlockingParams& p, const Tran
   const bool passive_inside_transport = carry.transport && !carry.Arrived() &&
                                         carry.mode == TransportMode::kSwarm && !carry.leader &&
                                         carry.object.Contains(position);
-  const bool filling = !carry.transport && tp.gathering == GatherMode::kFill;
+  const bool to_slot = !carry.transport && carry.slot.has_value();
+  const bool filling = !carry.transport && !to_slot && tp.gathering == GatherMode::kFill;
   if (!passive_inside_transport && !filling) {
     // The branches below use no free will: draw the sample the others draw.
     rng.Uniform(-p.free_will_deg / 2.0, p.free_will_deg / 2.0);
@@ -182,6 +239,7 @@ MoveDecision CarryStep(const Perception& in, const FlockingParams& p, const Tran
   if (carry.transport && carry.mode == TransportMode::kFormation) {
     return FormationCarry(in, p, tp, carry, duration_s);
   }
+  if (to_slot) return ToSlot(in, p, tp, carry, duration_s);
   const bool unbound_leader = carry.transport && carry.leader && !tp.leaders_bound;
   const bool near_leader =
       carry.transport && carry.leader && carry.object.DistanceTo(position) <= tp.leader_reach_m;

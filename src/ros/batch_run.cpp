@@ -263,6 +263,9 @@ class Run {
   std::optional<core::SwarmSample> last_sample_;
   bool recorder_row_ = false;
   std::size_t logged_warnings_ = 0;
+  // Collisions avoided while gathering: moves of mission robots before their transport (not
+  // frozen for loading) that swerved or slowed for a robot in the way (result.json).
+  std::uint64_t gathering_swerves_ = 0;
 };
 
 bool Run::SetUp(const XmlRpc::XmlRpcValue& base_config, std::string* error) {
@@ -431,6 +434,12 @@ void Run::RobotTick(Robot* robot, const Neighbors& round, Tick_Answer* said,
   }
   // RobotNode::Tick: its outlets are always connected here.
   core::BrainTick step = brain.Tick(ToPerception(robot->id, round), round.tick, true);
+  const std::optional<core::Carry>& carry = brain.last_plan().carry;
+  if (carry && !carry->transport && !carry->loading && !brain.frozen() &&
+      (step.move.outcome == core::MoveOutcome::kSwerved ||
+       step.move.outcome == core::MoveOutcome::kSlowed)) {
+    ++gathering_swerves_;
+  }
   core::MissionOutbox& outbox = step.outbox;
   std::vector<core::StatusReport> progress;
   robot->statuses.Sequence(true, &outbox.statuses, &progress);
@@ -563,6 +572,7 @@ void Run::AddResult(double setup_s, double ticking_s, double finish_s, JsonObjec
     }
     o.Add("phases", phases + "]");
     o.Add("end_tick", std::to_string(metrics_->newest_tick()));
+    o.Add("gathering_swerves", std::to_string(gathering_swerves_));
     JsonObject last;
     if (last_status_) {
       const Mission_Status& s = *last_status_;

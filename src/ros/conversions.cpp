@@ -80,6 +80,7 @@ core::MissionSpec ToMissionSpec(const New_Mission& msg) {
   spec.object_size = {msg.object_size_x, msg.object_size_y};
   spec.target = {msg.target_x, msg.target_y};
   spec.transport_mode = msg.transport_mode;
+  spec.robot_count = msg.robot_count;
   spec.all_finite = std::isfinite(msg.object_position_x) && std::isfinite(msg.object_position_y) &&
                     std::isfinite(msg.object_size_x) && std::isfinite(msg.object_size_y) &&
                     std::isfinite(msg.target_x) && std::isfinite(msg.target_y);
@@ -101,6 +102,7 @@ New_Mission ToNewMission(const core::MissionSpec& spec) {
   msg.target_x = static_cast<float>(spec.target.x);
   msg.target_y = static_cast<float>(spec.target.y);
   msg.transport_mode = spec.transport_mode;
+  msg.robot_count = spec.robot_count;
   return msg;
 }
 

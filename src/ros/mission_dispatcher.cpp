@@ -127,6 +127,23 @@ std::set<std::uint16_t> MissionDispatcher::KnownRobots() const {
   return known;
 }
 
+std::map<std::uint16_t, core::PlannerRobot> MissionDispatcher::IdleRobots() const {
+  std::set<std::uint16_t> busy;
+  for (const auto& kv : book_->entries()) {
+    if (kv.second.Live() && kv.second.has_spec) {
+      for (std::uint16_t id : kv.second.spec.Assigned()) busy.insert(id);
+    }
+  }
+  std::map<std::uint16_t, core::PlannerRobot> idle;
+  if (positions_) {
+    for (const Robot_Position& r : positions_->robots) {
+      if (r.type != Robot_Position::TYPE_PHYSICAL || busy.count(r.robot_id) > 0) continue;
+      idle[r.robot_id] = {{r.pos_x, r.pos_y}, core::Angle(r.angle)};
+    }
+  }
+  return idle;
+}
+
 void MissionDispatcher::PublishStatus(const core::MissionSpec& spec, MissionPhase phase,
                                       const std::string& reason, std::uint64_t tick) {
   Mission_Status msg;
@@ -155,6 +172,28 @@ core::MissionBook::Verdict MissionDispatcher::Submit(core::MissionSpec spec,
                                                      const std::string& source, bool auto_id,
                                                      bool publish, std::uint64_t start_tick,
                                                      const std::set<std::uint16_t>& robots) {
+  if (spec.robot_count > 0 && spec.robot_ids.empty() && spec.range_from >= spec.range_to) {
+    // A count-only order: the robots are picked by the selection matrix (SPEC 9.10); the order
+    // goes out with their ids. Nothing is picked from a swarm the dispatcher has not heard yet.
+    core::SelectionParams planner;
+    planner.speed_m = config_.flocking.speed_m_per_tick;
+    planner.turn_deg = config_.transport.planner_turn_deg_per_tick;
+    planner.corridor_m = config_.flocking.MinSeparation();
+    const std::string why = core::PickRobotsByCount(&spec, IdleRobots(), planner);
+    if (!why.empty()) {
+      core::MissionBook::Verdict refused;
+      refused.id = spec.id;
+      refused.reason = why;
+      refused.message = "mission " + std::to_string(spec.id) + " rejected: " + why;
+      refused.spec = spec;
+      ROS_WARN("%s: rejected mission %u from %s: %s", kNode, refused.id, source.c_str(),
+               why.c_str());
+      PublishStatus(refused.spec, MissionPhase::kRejected, why);
+      return refused;
+    }
+    ROS_INFO("%s: mission %u from %s: robot_count picked robots %s", kNode, spec.id, source.c_str(),
+             core::DescribeMission(spec).c_str());
+  }
   const core::MissionBook::Verdict verdict =
       book_->Submit(std::move(spec), source, auto_id, !publish, robots,
                     ros::Time::now().toSec());

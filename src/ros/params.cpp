@@ -178,6 +178,11 @@ bool ConfigFromXmlRpc(XmlRpc::XmlRpcValue& dict, SwarmConfig* config, std::strin
             ReadInt(dict, "mission_min_robots", &c.mission_min_robots, error) &&
             ReadChoice(dict, "gathering", "hold or fill", &c.transport.gathering, error,
                        core::ParseGatherMode) &&
+            ReadChoice(dict, "gather_planner", "nearest, selection_matrix, optimal or bottleneck",
+                       &c.transport.gather_planner, error, core::ParseGatherPlanner) &&
+            ReadInt(dict, "replan_period", &c.transport.replan_period_ticks, error) &&
+            ReadDouble(dict, "planner_turn_deg_per_tick", &c.transport.planner_turn_deg_per_tick,
+                       error) &&
             ReadBool(dict, "leaders_bound", &c.transport.leaders_bound, error) &&
             ReadDouble(dict, "approach_radius_m", &c.transport.approach_radius_m, error) &&
             ReadDouble(dict, "leader_reach_m", &c.transport.leader_reach_m, error) &&

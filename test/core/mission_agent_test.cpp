@@ -179,6 +179,50 @@ TEST(MissionAgentTest, GatheringEndsWhenEveryoneIsInsideAndTheGroupIsOneChain) {
   EXPECT_EQ(Phases(out), (std::vector<std::string>{"GATHERING", "LOADING"}));
 }
 
+TEST(MissionAgentTest, PlannedGatheringGivesEveryMemberItsOwnSlotAndReplans) {
+  // Three robots west of the object (7, 7) in a row; each computes the same plan from what it
+  // hears, so the three slots differ, and every slot lies under the object.
+  MissionAgentParams params;
+  params.transport.gather_planner = GatherPlanner::kSelectionMatrix;
+  params.transport.replan_period_ticks = 5;
+  const std::vector<Vec2> where{{4.0, 7.0}, {4.0, 7.5}, {4.0, 6.5}};
+  std::set<std::pair<double, double>> slots;
+  for (std::uint16_t id = 0; id < 3; ++id) {
+    MissionAgent agent(id, params);
+    std::string why;
+    ASSERT_TRUE(agent.OnNewMission(Thesis(), &why)) << why;
+    std::vector<Neighbour> heard;
+    for (std::uint16_t other = 0; other < 3; ++other) {
+      if (other != id) heard.push_back(At(other, where[other].x, where[other].y));
+    }
+    MissionOutbox out;
+    const MissionPlan plan = agent.Tick(Pose2{where[id], Angle(0.0)}, heard, 1, &out);
+    ASSERT_TRUE(plan.carry && plan.carry->slot) << "robot " << id;
+    EXPECT_TRUE(plan.carry->object.Contains(*plan.carry->slot));
+    slots.insert({plan.carry->slot->x, plan.carry->slot->y});
+    // Between re-plans the slot stays; at a multiple of replan_period it is planned anew on
+    // the positions heard then (robot 0 alone near the east rim takes an east slot).
+    const Vec2 first = *plan.carry->slot;
+    const MissionPlan same = agent.Tick(Pose2{{7.9, 7.0}, Angle(0.0)}, {}, 2, &out);
+    EXPECT_DOUBLE_EQ(same.carry->slot->x, first.x);
+    if (id == 0) {
+      const MissionPlan again = agent.Tick(Pose2{{7.9, 7.0}, Angle(0.0)}, heard, 5, &out);
+      EXPECT_GT(again.carry->slot->x, 7.0);
+    }
+  }
+  EXPECT_EQ(slots.size(), 3u);
+}
+
+TEST(MissionAgentTest, NearestGatheringHasNoSlot) {
+  MissionAgent agent(1, MissionAgentParams());
+  std::string why;
+  ASSERT_TRUE(agent.OnNewMission(Thesis(), &why)) << why;
+  MissionOutbox out;
+  const MissionPlan plan = agent.Tick(PoseAt(1.0, 1.0), {}, 0, &out);
+  ASSERT_TRUE(plan.carry.has_value());
+  EXPECT_FALSE(plan.carry->slot.has_value());
+}
+
 TEST(MissionAgentTest, TheObjectCanJumpOntoTheCentroidAtTransportStart) {
   // The robots' centroid is (7.2, 7.1) when transport starts: by default the object keeps its
   // centre (7, 7) and moves with the centroid; with object_at_centroid it is the centroid.

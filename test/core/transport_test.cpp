@@ -143,6 +143,77 @@ TEST(CarryStepTest, GatheringHoldsInsideOnceBlockedOrFillsTheObject) {
   EXPECT_GT(CarryStep(s.in, Quiet(), fill, s.carry, rng, kTick).distance_m, 0.0);
 }
 
+TEST(CarryStepTest, GatheringToASlotDrivesForItSwervesAroundRobotsAndStandsOnIt) {
+  // Outside the object (7, 7), its slot at (6.2, 6.25): straight for the slot, not the centre.
+  Scene s = Carrying(5.0, 6.25, 90.0, {7.0, 7.0}, false);
+  s.carry.transport = false;
+  s.carry.slot = Vec2{6.2, 6.25};
+  Rng rng(1, 1);
+  MoveDecision d = CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick);
+  EXPECT_EQ(d.outcome, MoveOutcome::kStraight);
+  EXPECT_NEAR(d.heading.degrees(), 0.0, 1e-9);
+  EXPECT_NEAR(d.distance_m, 0.1, 1e-9);
+  // A robot in the way: it swerves (hold would stand inside; nearest drives for the centre).
+  s.in.others = {At(2, 5.15, 6.25)};
+  d = CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick);
+  EXPECT_EQ(d.outcome, MoveOutcome::kSwerved);
+  EXPECT_GT(d.distance_m, 0.0);
+  // The last bit: only as far as the slot; on it, it stands.
+  s.in.others.clear();
+  s.in.self.position = {6.15, 6.25};
+  d = CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick);
+  EXPECT_NEAR(d.distance_m, 0.05, 1e-9);
+  s.in.self.position = {6.2, 6.25};
+  EXPECT_EQ(CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick).outcome,
+            MoveOutcome::kStand);
+  // A leader on its slot faces its course (225 degrees to (3, 3)).
+  s.carry.leader = true;
+  d = CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick);
+  EXPECT_EQ(d.outcome, MoveOutcome::kStand);
+  EXPECT_NEAR(d.heading.degrees(), 225.0, 1e-9);
+}
+
+TEST(CarryStepTest, InsideTheObjectASlotRobotSwervesOnlyOntoMovesThatStayInside) {
+  // 0.02 inside the south rim of the object (7, 7), its slot east along the rim, a robot in
+  // the way east: it swerves north, into the object.
+  Scene s = Carrying(7.0, 6.02, 0.0, {7.0, 7.0}, false);
+  s.carry.transport = false;
+  s.carry.slot = Vec2{7.8, 6.02};
+  s.in.others = {At(2, 7.1, 6.02)};
+  Rng rng(1, 1);
+  MoveDecision d = CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick);
+  EXPECT_EQ(d.outcome, MoveOutcome::kSwerved);
+  EXPECT_TRUE(s.carry.object.Contains(Destination(s.in, d)));
+  // Robots 0.12 away every 30 degrees from east round to west wall off every move inside; the
+  // first free swerve leads out under the rim: it stands instead.
+  s.in.others.clear();
+  for (int k = 0; k <= 6; ++k) {
+    const double a = k * 30.0 * M_PI / 180.0;
+    s.in.others.push_back(At(static_cast<std::uint16_t>(2 + k), 7.0 + 0.12 * std::cos(a),
+                             6.02 + 0.12 * std::sin(a)));
+  }
+  d = CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick);
+  EXPECT_EQ(d.outcome, MoveOutcome::kStand);
+  EXPECT_DOUBLE_EQ(d.distance_m, 0.0);
+}
+
+TEST(TransportParamsTest, GatherPlannerNamesAndBadPlannerValues) {
+  GatherPlanner g = GatherPlanner::kNearest;
+  for (const char* name : {"nearest", "selection_matrix", "optimal", "bottleneck"}) {
+    ASSERT_TRUE(ParseGatherPlanner(name, &g)) << name;
+    EXPECT_STREQ(GatherPlannerName(g), name);
+  }
+  EXPECT_FALSE(ParseGatherPlanner("closest", &g));
+  EXPECT_EQ(g, GatherPlanner::kBottleneck);  // unchanged by a bad name
+  TransportParams p;
+  EXPECT_EQ(p.gather_planner, GatherPlanner::kNearest);  // the default keeps the thesis's way
+  p.replan_period_ticks = 0;
+  EXPECT_EQ(p.Validate(), "replan_period must be >= 1 (ticks) but is 0");
+  p = TransportParams();
+  p.planner_turn_deg_per_tick = 0.0;
+  EXPECT_EQ(p.Validate(), "planner_turn_deg_per_tick must be finite and > 0 but is 0");
+}
+
 TEST(CarryStepTest, EveryBranchDrawsOneSample) {
   Scene inside = Carrying(7.0, 7.0, 0.0, {7.0, 7.0}, false);
   Scene outside = Carrying(9.0, 9.0, 0.0, {7.0, 7.0}, true);

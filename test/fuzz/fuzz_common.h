@@ -43,6 +43,7 @@ inline New_Mission AnyOrder(FuzzedDataProvider* in) {
   m.target_y = AnyFloat(in);
   m.transport_mode = in->ConsumeIntegralInRange<std::uint8_t>(0, 3);
   m.start_tick = in->ConsumeIntegralInRange<std::uint64_t>(0, 5);
+  m.robot_count = in->ConsumeIntegralInRange<std::uint16_t>(0, 30);
   return m;
 }
 

@@ -3,9 +3,11 @@
 // then statuses of it). No crash, no sanitizer report; an accepted order is valid, and a
 // robot's command stays finite on finite positions.
 #include <cmath>
+#include <map>
 
 #include "fuzz_common.h"
 #include "swarm_transport/Mission_Status.h"
+#include "swarm_transport/core/assignment.h"
 #include "swarm_transport/core/mission_book.h"
 #include "swarm_transport/core/robot_brain.h"
 #include "swarm_transport/ros/conversions.h"
@@ -28,6 +30,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (int k = 0; k < orders && in.remaining_bytes() > 0; ++k) {
     const New_Mission msg = fuzz::AnyOrder(&in);
     const core::MissionSpec spec = ToMissionSpec(msg);
+    // The dispatcher's pick of a count-only order (robot_count): all or nothing.
+    std::map<std::uint16_t, core::PlannerRobot> idle;
+    const int candidates = in.ConsumeIntegralInRange<int>(0, 25);
+    for (int r = 0; r < candidates; ++r) {
+      idle[static_cast<std::uint16_t>(r)] = {{fuzz::AnyFloat(&in), fuzz::AnyFloat(&in)},
+                                             core::Angle(fuzz::AnyFloat(&in))};
+    }
+    core::MissionSpec picked = spec;
+    if (core::PickRobotsByCount(&picked, idle, core::SelectionParams()).empty()) {
+      fuzz::Require(picked.robot_ids.size() == spec.robot_count && picked.robot_count == 0);
+    } else {
+      fuzz::Require(picked.robot_ids == spec.robot_ids && picked.robot_count == spec.robot_count);
+    }
     // The dispatcher.
     const core::MissionBook::Verdict verdict =
         book.Submit(spec, "fuzz", in.ConsumeBool(), in.ConsumeBool(), known, 1.0 * k);

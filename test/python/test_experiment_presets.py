@@ -39,6 +39,8 @@ class Presets(unittest.TestCase):
             ({'settings': []}, 'settings must be a non-empty list'),
             ({'settings': [{'name': 'a'}, {'name': 'a'}]}, 'must be unique'),
             ({'settings': [{'name': 'a', 'speed': 3}]}, "unknown keys ['speed']"),
+            ({'table': ['no_such_metric']}, 'table must be a non-empty list'),
+            ({'table': []}, 'table must be a non-empty list'),
         ]
         for change, words in cases:
             p = copy.deepcopy(GOOD)

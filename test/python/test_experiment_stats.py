@@ -70,7 +70,8 @@ class Stats(unittest.TestCase):
             d = os.path.join(base, 't', 'raw', 't1', 'run_%d' % k)
             os.makedirs(d)
             with open(os.path.join(d, 'result.json'), 'w') as f:
-                json.dump({'status': 'ok', 'seed': k + 1, 'end': end, 'mission_id': 7}, f)
+                json.dump({'status': 'ok', 'seed': k + 1, 'end': end, 'mission_id': 7,
+                           'gathering_swerves': 12}, f)
             with open(os.path.join(d, 'missions.csv'), 'w') as f:
                 f.write(header)
                 if end == 'DONE':
@@ -83,6 +84,9 @@ class Stats(unittest.TestCase):
         self.assertAlmostEqual(summary[('t1', 'transport_ticks')]['mean'], 68.0)
         self.assertAlmostEqual(summary[('t1', 'gathering_ticks')]['mean'], 40.0)
         self.assertAlmostEqual(summary[('t1', 'leader_contact')]['mean'], 0.25)
+        self.assertAlmostEqual(summary[('t1', 'mission_ticks')]['mean'], 112.0)  # QUEUED->DONE
+        self.assertAlmostEqual(summary[('t1', 'gathering_swerves')]['mean'], 12.0)
+        self.assertEqual(summary[('t1', 'gathering_swerves')]['runs'], 1)  # the DONE run only
 
 
 if __name__ == '__main__':

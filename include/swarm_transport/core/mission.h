@@ -42,6 +42,9 @@ struct MissionSpec {
   Vec2 object_size;
   Vec2 target;
   std::uint8_t transport_mode = 0;
+  // (ext) > 0 with no range and no ids: the dispatcher picks this many robots
+  // (PickRobotsByCount) and sends the order with their ids and robot_count 0.
+  std::uint16_t robot_count = 0;
   // Finite-ness of every float of the original message (a NaN cannot live in a Vec2 check).
   bool all_finite = true;
 

@@ -51,6 +51,9 @@ struct MissionAgentParams {
   // each waypoint in turn and pass it within waypoint_reach_m.
   std::vector<Zone> static_zones;
   double waypoint_reach_m = 0.3;
+  // Planned gathering (transport.gather_planner): a robot within this distance of another's
+  // straight path blocks it (the flocking's minimum separation).
+  double corridor_m = 0.11;
 };
 
 // How far an object may move in `ticks` ticks when its robots drive at most `speed_m_per_tick`:
@@ -187,6 +190,7 @@ class MissionAgent {
     std::size_t lost_told = 0; // first-leader: lost robots it has named in a report so far
     std::vector<Vec2> route;   // transport: the object's waypoints, the target last
     std::size_t leg = 0;       // ... the one it heads for now
+    std::optional<Vec2> slot;  // planned gathering: its own slot under the object
   };
   // Of a live mission, with its lost robots: the robots left (ascending), its leaders now (the
   // first leader_number of them) and its first leader now (the lowest; 0 when none is left).
@@ -204,6 +208,10 @@ class MissionAgent {
     bool OneChain(double range) const;  // every robot linked to every other within range
   };
   void Drop(std::uint16_t mission_id);
+  // Planned gathering: this robot's slot by transport.gather_planner over the mission's robots
+  // left (itself, those heard, the others where last heard), as every member computes it.
+  std::optional<Vec2> PlanSlot(const Live& live, const Pose2& self,
+                               const std::vector<Neighbour>& heard) const;
   Group Locate(const Live& live, const Pose2& self, const std::vector<Neighbour>& heard) const;
   // A member of a transport mission: moves the object with its robots once transport began.
   void UpdateCentre(Live* live, const Pose2& self, Group* group) const;

@@ -5,6 +5,7 @@
 #define SWARM_TRANSPORT_CORE_TRANSPORT_H_
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,12 +21,27 @@ namespace core {
 enum class GatherMode { kHold, kFill };
 bool ParseGatherMode(const std::string& name, GatherMode* out);
 
+// (ext) Where each mission robot goes while gathering [SPEC 9.10, R3]: nearest (no plan: the
+// gathering mode, hold or fill, for everyone) or its own slot under the object, slots spread
+// over the object (SlotsIn) and given out by the paper's selection matrix, by the least total
+// time (Hungarian, "optimal") or by the least last arrival (bottleneck).
+enum class GatherPlanner { kNearest, kSelectionMatrix, kOptimal, kBottleneck };
+bool ParseGatherPlanner(const std::string& name, GatherPlanner* out);
+const char* GatherPlannerName(GatherPlanner planner);
+
 // New_Mission.transport_mode.
 enum class TransportMode : std::uint8_t { kSwarm = 0, kFormation = 1 };
 
 // Parameters of carrying; the defaults are the thesis's evaluated code (THESIS_CODE 2).
 struct TransportParams {
   GatherMode gathering = GatherMode::kHold;
+  // (ext) Slots under the object by a plan, or nearest (none: the default, the thesis's way).
+  GatherPlanner gather_planner = GatherPlanner::kNearest;
+  // (ext) A planned gathering re-plans every this many ticks (the paper's "every moment t").
+  int replan_period_ticks = 10;
+  // (ext) The planner's turn rate VA (degrees per tick): a robot here turns at once within its
+  // tick, so a turn of up to 180 degrees costs at most one tick.
+  double planner_turn_deg_per_tick = 180.0;
   // Leaders' destinations stay inside the object like everyone's (thesis code); false lets a
   // carrying leader head for the target wherever the object is (only robots stop it).
   bool leaders_bound = true;
@@ -88,13 +104,17 @@ struct Carry {
   Vec2 formation_offset;  // formation: its place relative to the centre, fixed at the start
   std::vector<std::uint16_t> peers;  // the mission's other robots, ascending
   std::vector<std::uint16_t> leaders;  // the mission's leaders, ascending
+  // Gathering by a plan (gather_planner not nearest): its own slot under the object.
+  std::optional<Vec2> slot;
 
   bool Arrived() const { return transport && Distance(centre, target) <= goal_tolerance_m; }
 };
 
 // One tick of a mission robot, in this order: arrived -> stand; formation -> drive to its place
 // in the body moving along object centre -> target; outside the object -> straight for its
-// centre (no noise, no alignment; leaders too unless unbound); gathering -> hold or fill;
+// centre (no noise, no alignment; leaders too unless unbound); gathering with a slot -> straight
+// for the slot, swerving around robots in the way (inside the object only onto moves that stay
+// inside), standing on it; gathering without -> hold or fill;
 // transport leader -> the bearing object centre -> target, destination inside the object,
 // slower on each blocked try, else turn to that bearing and hold; transport passive ->
 // alignment, free will and cohesion over its chain with the point lookahead steps ahead inside

@@ -20,6 +20,7 @@
 #include "swarm_transport/New_Mission.h"
 #include "swarm_transport/Robot_Positions.h"
 #include "swarm_transport/Submit_Mission.h"
+#include "swarm_transport/core/assignment.h"
 #include "swarm_transport/core/mission.h"
 #include "swarm_transport/core/mission_book.h"
 #include "swarm_transport/ros/diagnostics.h"
@@ -64,6 +65,9 @@ class MissionDispatcher {
   void ScheduleFileMissions(std::uint64_t tick);
   // The physical robots of the latest /flock/positions (a mission must name only those).
   std::set<std::uint16_t> KnownRobots() const;
+  // Of those, the robots on no live mission with their poses: the candidates of a count-only
+  // mission (New_Mission.robot_count).
+  std::map<std::uint16_t, core::PlannerRobot> IdleRobots() const;
   void PublishStatus(const core::MissionSpec& spec, core::MissionPhase phase,
                      const std::string& reason, std::uint64_t tick = 0);
   // Before a new order: waits (at most kListenerWaitS) until every registered subscriber of

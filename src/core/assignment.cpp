@@ -1,0 +1,458 @@
+#include "swarm_transport/core/assignment.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "swarm_transport/core/problem.h"
+
+namespace swarm_transport {
+namespace core {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// Shorter paths than this have no direction (the robot stands on its target).
+constexpr double kNoPathM = 1e-9;
+// Finer slot grids are tried up to this many times the robots' number of cells.
+constexpr std::size_t kMaxSlotGridFactor = 64;
+
+double Dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
+double Cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
+
+Matching Score(const CostMatrix& m, std::vector<int> target_of) {
+  Matching out;
+  out.target_of = std::move(target_of);
+  for (std::size_t r = 0; r < m.rows; ++r) {
+    if (out.target_of[r] < 0) continue;
+    const double c = m.at(r, static_cast<std::size_t>(out.target_of[r]));
+    out.total += c;
+    out.last = std::max(out.last, c);
+  }
+  return out;
+}
+
+CostMatrix Transposed(const CostMatrix& m) {
+  CostMatrix t(m.cols, m.rows);
+  for (std::size_t r = 0; r < m.rows; ++r) {
+    for (std::size_t c = 0; c < m.cols; ++c) t.at(c, r) = m.at(r, c);
+  }
+  return t;
+}
+
+// Hungarian method with potentials for rows <= cols: the column of each row.
+std::vector<int> HungarianWide(const CostMatrix& a) {
+  const std::size_t n = a.rows;
+  const std::size_t m = a.cols;
+  std::vector<double> u(n + 1, 0.0), v(m + 1, 0.0);
+  std::vector<std::size_t> p(m + 1, 0), way(m + 1, 0);
+  for (std::size_t i = 1; i <= n; ++i) {
+    p[0] = i;
+    std::size_t j0 = 0;
+    std::vector<double> minv(m + 1, kInf);
+    std::vector<bool> used(m + 1, false);
+    do {
+      used[j0] = true;
+      const std::size_t i0 = p[j0];
+      double delta = kInf;
+      std::size_t j1 = 0;
+      for (std::size_t j = 1; j <= m; ++j) {
+        if (used[j]) continue;
+        const double cur = a.at(i0 - 1, j - 1) - u[i0] - v[j];
+        if (cur < minv[j]) {
+          minv[j] = cur;
+          way[j] = j0;
+        }
+        if (minv[j] < delta) {
+          delta = minv[j];
+          j1 = j;
+        }
+      }
+      for (std::size_t j = 0; j <= m; ++j) {
+        if (used[j]) {
+          u[p[j]] += delta;
+          v[j] -= delta;
+        } else {
+          minv[j] -= delta;
+        }
+      }
+      j0 = j1;
+    } while (p[j0] != 0);
+    do {
+      const std::size_t j1 = way[j0];
+      p[j0] = p[j1];
+      j0 = j1;
+    } while (j0 != 0);
+  }
+  std::vector<int> col_of(n, -1);
+  for (std::size_t j = 1; j <= m; ++j) {
+    if (p[j] != 0) col_of[p[j] - 1] = static_cast<int>(j - 1);
+  }
+  return col_of;
+}
+
+std::vector<int> HungarianAny(const CostMatrix& m) {
+  if (m.rows <= m.cols) return HungarianWide(m);
+  const std::vector<int> row_of = HungarianWide(Transposed(m));
+  std::vector<int> col_of(m.rows, -1);
+  for (std::size_t c = 0; c < row_of.size(); ++c) {
+    if (row_of[c] >= 0) col_of[static_cast<std::size_t>(row_of[c])] = static_cast<int>(c);
+  }
+  return col_of;
+}
+
+// Kuhn's augmenting path from row r over the edges allowed by `ok`.
+bool Augment(const CostMatrix& m, double limit, std::size_t r, std::vector<bool>* seen,
+             std::vector<int>* row_of_col) {
+  for (std::size_t c = 0; c < m.cols; ++c) {
+    if (m.at(r, c) > limit || (*seen)[c]) continue;
+    (*seen)[c] = true;
+    const int owner = (*row_of_col)[c];
+    if (owner < 0 || Augment(m, limit, static_cast<std::size_t>(owner), seen, row_of_col)) {
+      (*row_of_col)[c] = static_cast<int>(r);
+      return true;
+    }
+  }
+  return false;
+}
+
+// Largest matching using only costs <= limit.
+std::size_t MatchingSize(const CostMatrix& m, double limit) {
+  std::vector<int> row_of_col(m.cols, -1);
+  std::size_t size = 0;
+  for (std::size_t r = 0; r < m.rows; ++r) {
+    std::vector<bool> seen(m.cols, false);
+    if (Augment(m, limit, r, &seen, &row_of_col)) ++size;
+  }
+  return size;
+}
+
+double TurnTime(Angle heading, Angle course, const SelectionParams& p) {
+  return std::fabs(Angle::SignedDifference(course, heading)) / p.turn_deg;
+}
+
+}  // namespace
+
+std::string ValidateCostMatrix(const CostMatrix& m) {
+  if (m.cost.size() != m.rows * m.cols) {
+    std::ostringstream os;
+    os << "cost matrix has " << m.cost.size() << " entries for " << m.rows << " x " << m.cols;
+    return os.str();
+  }
+  for (double c : m.cost) {
+    if (!std::isfinite(c)) return "cost matrix entries must be finite";
+  }
+  return "";
+}
+
+Matching GreedyMinimum(const CostMatrix& m) {
+  std::vector<int> target_of(m.rows, -1);
+  std::vector<bool> row_used(m.rows, false), col_used(m.cols, false);
+  const std::size_t picks = std::min(m.rows, m.cols);
+  for (std::size_t k = 0; k < picks; ++k) {
+    // The first free pair stands until a smaller cost is found (so that a matrix of
+    // infinities still gives one robot per target).
+    bool found = false;
+    double best = kInf;
+    std::size_t br = 0, bc = 0;
+    for (std::size_t r = 0; r < m.rows; ++r) {
+      if (row_used[r]) continue;
+      for (std::size_t c = 0; c < m.cols; ++c) {
+        if (col_used[c]) continue;
+        if (!found || m.at(r, c) < best) {
+          found = true;
+          best = m.at(r, c);
+          br = r;
+          bc = c;
+        }
+      }
+    }
+    row_used[br] = true;
+    col_used[bc] = true;
+    target_of[br] = static_cast<int>(bc);
+  }
+  return Score(m, target_of);
+}
+
+Matching Hungarian(const CostMatrix& m) {
+  if (m.rows == 0 || m.cols == 0) return Score(m, std::vector<int>(m.rows, -1));
+  return Score(m, HungarianAny(m));
+}
+
+Matching Bottleneck(const CostMatrix& m) {
+  if (m.rows == 0 || m.cols == 0) return Score(m, std::vector<int>(m.rows, -1));
+  std::vector<double> levels = m.cost;
+  std::sort(levels.begin(), levels.end());
+  levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
+  const std::size_t full = std::min(m.rows, m.cols);
+  std::size_t lo = 0, hi = levels.size() - 1;  // the largest level always allows a full matching
+  while (lo < hi) {
+    const std::size_t mid = (lo + hi) / 2;
+    if (MatchingSize(m, levels[mid]) == full) {
+      hi = mid;
+    } else {
+      lo = mid + 1;
+    }
+  }
+  const double limit = levels[lo];
+  // Least total among the matchings within the limit: every cost above it made prohibitive
+  // (more than any sum of allowed costs can reach).
+  double span = 0.0;
+  for (double c : m.cost) span = std::max(span, std::fabs(c));
+  const double prohibitive = (span + 1.0) * static_cast<double>(full + 1) * 4.0;
+  CostMatrix bounded = m;
+  for (double& c : bounded.cost) {
+    if (c > limit) c = prohibitive;
+  }
+  return Score(m, HungarianAny(bounded));
+}
+
+std::string SelectionParams::Validate() const {
+  if (!(speed_m > 0.0) || !std::isfinite(speed_m)) return Problem("planner speed", "> 0", speed_m);
+  if (!(turn_deg > 0.0) || !std::isfinite(turn_deg)) {
+    return Problem("planner turn rate", "> 0 (degrees per tick)", turn_deg);
+  }
+  if (!(corridor_m >= 0.0) || !std::isfinite(corridor_m)) {
+    return Problem("planner corridor_m", ">= 0", corridor_m);
+  }
+  if (!(meet_tolerance >= 0.0) || !std::isfinite(meet_tolerance)) {
+    return Problem("planner meet_tolerance", ">= 0", meet_tolerance);
+  }
+  if (!std::isfinite(crossing_wait))
+    return Problem("planner crossing_wait", "finite", crossing_wait);
+  if (max_rounds < 1) return Problem("planner max_rounds", ">= 1", max_rounds);
+  return "";
+}
+
+CostMatrix SelectionMatrix(const std::vector<PlannerRobot>& robots,
+                           const std::vector<PlannerTarget>& targets, const SelectionParams& p) {
+  CostMatrix x(robots.size(), targets.size());
+  for (std::size_t m = 0; m < robots.size(); ++m) {
+    for (std::size_t n = 0; n < targets.size(); ++n) {
+      const double s = Distance(robots[m].position, targets[n].position);
+      const double turn =
+          s > kNoPathM
+              ? TurnTime(robots[m].heading, Bearing(robots[m].position, targets[n].position), p)
+              : 0.0;
+      x.at(m, n) = (s + targets[n].extra_m) / p.speed_m + turn;
+    }
+  }
+  return x;
+}
+
+void Corrections(const std::vector<PlannerRobot>& robots, const std::vector<PlannerTarget>& targets,
+                 const CostMatrix& base, const SelectionParams& p, SelectionPlan* plan) {
+  const std::size_t count = robots.size();
+  plan->blocked.assign(count, 0.0);
+  plan->crossing.assign(count, 0.0);
+  const auto goal = [&](std::size_t m) {
+    return targets[static_cast<std::size_t>(plan->target_of[m])].position;
+  };
+  const auto assigned = [&](std::size_t m) { return plan->target_of[m] >= 0; };
+  // The turn a robot makes before it drives (its T1).
+  std::vector<double> turn(count, 0.0);
+  for (std::size_t m = 0; m < count; ++m) {
+    if (!assigned(m)) continue;
+    const double length = Distance(robots[m].position, goal(m));
+    if (length > kNoPathM) {
+      turn[m] = TurnTime(robots[m].heading, Bearing(robots[m].position, goal(m)), p);
+    }
+  }
+  // Robots on the straight path, nearest first: each waits until the one ahead cleared.
+  for (std::size_t m = 0; m < count; ++m) {
+    if (!assigned(m)) continue;
+    const Vec2 from = robots[m].position;
+    const double length = Distance(from, goal(m));
+    if (length <= kNoPathM) continue;
+    const Vec2 dir = (goal(m) - from) * (1.0 / length);
+    std::vector<std::pair<double, std::size_t>> ahead;
+    for (std::size_t b = 0; b < count; ++b) {
+      if (b == m) continue;
+      const Vec2 d = robots[b].position - from;
+      const double along = Dot(d, dir);
+      if (along <= 0.0 || along > length || std::fabs(Cross(dir, d)) >= p.corridor_m) continue;
+      ahead.emplace_back(along, b);
+    }
+    std::sort(ahead.begin(), ahead.end());
+    double delay = 0.0;
+    for (const auto& [along, b] : ahead) {
+      // The blocker's T2: its turn onto its own course (away across the path when it has
+      // none), then a corridor's width at speed V.
+      double clear_turn = 0.0;
+      if (assigned(b) && Distance(robots[b].position, goal(b)) > kNoPathM) {
+        clear_turn = turn[b];
+      } else if (!assigned(b)) {
+        const Angle path = Bearing(from, goal(m));
+        clear_turn = std::min(TurnTime(robots[b].heading, path + Angle(90.0), p),
+                              TurnTime(robots[b].heading, path + Angle(-90.0), p));
+      }
+      const double t2 = clear_turn + p.corridor_m / p.speed_m;
+      const double t1 = turn[m];
+      if (t1 > t2) continue;
+      const double t3 = t1 + along / p.speed_m + delay;
+      if (t3 > t2) continue;
+      delay += t2 - t3;
+    }
+    plan->blocked[m] = delay;
+  }
+  // Crossing paths: equal times at the crossing delay the robot whose goal is farther.
+  const double wait = p.crossing_wait > 0.0 ? p.crossing_wait : 2.0 * p.corridor_m / p.speed_m;
+  for (std::size_t a = 0; a < count; ++a) {
+    if (!assigned(a)) continue;
+    for (std::size_t b = a + 1; b < count; ++b) {
+      if (!assigned(b)) continue;
+      const Vec2 pa = robots[a].position, ra = goal(a) - pa;
+      const Vec2 pb = robots[b].position, rb = goal(b) - pb;
+      const double denom = Cross(ra, rb);
+      if (std::fabs(denom) < 1e-12) continue;  // parallel: the path rule covers robots ahead
+      const double s = Cross(pb - pa, rb) / denom;
+      const double t = Cross(pb - pa, ra) / denom;
+      if (s < 0.0 || s > 1.0 || t < 0.0 || t > 1.0) continue;
+      const double ta = turn[a] + s * Norm(ra) / p.speed_m + plan->blocked[a];
+      const double tb = turn[b] + t * Norm(rb) / p.speed_m + plan->blocked[b];
+      if (std::fabs(ta - tb) > p.meet_tolerance) continue;
+      const std::size_t later = Norm(ra) > Norm(rb) ? a : b;  // ties: the higher index, b
+      plan->crossing[later] += wait;
+    }
+  }
+  plan->time.assign(count, 0.0);
+  plan->total = 0.0;
+  plan->last = 0.0;
+  for (std::size_t m = 0; m < count; ++m) {
+    if (!assigned(m)) continue;
+    plan->time[m] = base.at(m, static_cast<std::size_t>(plan->target_of[m])) + plan->blocked[m] +
+                    plan->crossing[m];
+    plan->total += plan->time[m];
+    plan->last = std::max(plan->last, plan->time[m]);
+  }
+}
+
+SelectionPlan PlanSelection(const std::vector<PlannerRobot>& robots,
+                            const std::vector<PlannerTarget>& targets, const SelectionParams& p) {
+  SelectionPlan plan;
+  const CostMatrix base = SelectionMatrix(robots, targets, p);
+  CostMatrix corrected = base;
+  std::vector<int> previous;
+  for (int round = 1; round <= p.max_rounds; ++round) {
+    plan.target_of = GreedyMinimum(corrected).target_of;
+    plan.rounds = round;
+    Corrections(robots, targets, base, p, &plan);
+    if (plan.target_of == previous) {
+      plan.stable = true;
+      break;
+    }
+    // The chosen pairs' entries carry their waits in the next selection.
+    for (std::size_t m = 0; m < robots.size(); ++m) {
+      if (plan.target_of[m] < 0) continue;
+      const std::size_t n = static_cast<std::size_t>(plan.target_of[m]);
+      corrected.at(m, n) = base.at(m, n) + plan.blocked[m] + plan.crossing[m];
+    }
+    previous = plan.target_of;
+  }
+  return plan;
+}
+
+SelectionPlan PlanOptimal(const std::vector<PlannerRobot>& robots,
+                          const std::vector<PlannerTarget>& targets, const SelectionParams& p,
+                          bool bottleneck) {
+  SelectionPlan plan;
+  const CostMatrix base = SelectionMatrix(robots, targets, p);
+  plan.target_of = (bottleneck ? Bottleneck(base) : Hungarian(base)).target_of;
+  plan.rounds = 1;
+  plan.stable = true;
+  Corrections(robots, targets, base, p, &plan);
+  return plan;
+}
+
+std::string PickRobotsByCount(MissionSpec* spec, const std::map<std::uint16_t, PlannerRobot>& idle,
+                              const SelectionParams& p) {
+  std::ostringstream os;
+  const std::size_t count = spec->robot_count;
+  if (count == 0 || !spec->robot_ids.empty() || spec->range_from < spec->range_to) {
+    os << "robot_count picks robots only for a mission with robot_count > 0 and no range or ids";
+  } else if (spec->LeaderOnly()) {
+    os << "robot_count needs an object (a leader-only mission names its leader)";
+  } else if (!spec->all_finite) {
+    os << "a field is not a finite number (NaN or inf)";
+  }
+  if (os.tellp() > 0) return os.str();
+  // Candidates at a finite place only (a position message may carry anything).
+  std::map<std::uint16_t, PlannerRobot> usable;
+  for (const auto& kv : idle) {
+    const PlannerRobot& r = kv.second;
+    if (std::isfinite(r.position.x) && std::isfinite(r.position.y) &&
+        std::isfinite(r.heading.degrees())) {
+      usable.emplace(kv.first, r);
+    }
+  }
+  if (count > usable.size()) {
+    os << "robot_count " << count << " but only " << usable.size() << " robots are idle";
+  }
+  if (os.tellp() > 0) return os.str();
+  const Vec2 centre = spec->object_centre;
+  std::vector<Vec2> slots = SlotsIn(spec->ObjectAt(centre), count);
+  if (slots.size() < count) return "the object has no room for " + std::to_string(count) + " slots";
+  std::stable_sort(slots.begin(), slots.end(),
+                   [&](Vec2 a, Vec2 b) { return Distance(a, centre) < Distance(b, centre); });
+  slots.resize(count);
+  std::vector<std::uint16_t> ids;
+  std::vector<PlannerRobot> robots;
+  for (const auto& kv : usable) {
+    ids.push_back(kv.first);
+    robots.push_back(kv.second);
+  }
+  std::vector<PlannerTarget> targets;
+  for (const Vec2& s : slots) targets.push_back({s, 0.0});
+  const SelectionPlan plan = PlanSelection(robots, targets, p);
+  std::vector<std::uint16_t> picked;
+  for (std::size_t r = 0; r < ids.size(); ++r) {
+    if (plan.target_of[r] >= 0) picked.push_back(ids[r]);
+  }
+  spec->robot_ids = picked;  // ascending: `usable` is ordered by id
+  spec->robot_count = 0;
+  return "";
+}
+
+std::vector<Vec2> SlotsIn(const Shape& object, std::size_t count) {
+  std::vector<Vec2> slots;
+  if (object.empty() || count == 0) return slots;
+  double x0 = kInf, y0 = kInf, x1 = -kInf, y1 = -kInf;
+  for (const Primitive& part : object.parts()) {
+    Vec2 lo, hi;
+    if (part.kind == Primitive::Kind::kRect) {
+      lo = part.rect.centre - part.rect.size * 0.5;
+      hi = part.rect.centre + part.rect.size * 0.5;
+    } else {
+      lo = part.circle.centre - Vec2{part.circle.radius, part.circle.radius};
+      hi = part.circle.centre + Vec2{part.circle.radius, part.circle.radius};
+    }
+    x0 = std::min(x0, lo.x);
+    y0 = std::min(y0, lo.y);
+    x1 = std::max(x1, hi.x);
+    y1 = std::max(y1, hi.y);
+  }
+  const double w = x1 - x0, h = y1 - y0;
+  if (!(w > 0.0) || !(h > 0.0)) return slots;
+  for (std::size_t cells = count; cells <= count * kMaxSlotGridFactor; ++cells) {
+    // Cells as square as the box allows, at most `cells` columns (a needle of an object must
+    // not ask for billions of cells).
+    double wide = std::ceil(std::sqrt(static_cast<double>(cells) * w / h));
+    if (!(wide >= 1.0)) wide = 1.0;
+    wide = std::min(wide, static_cast<double>(cells));
+    const std::size_t cols = static_cast<std::size_t>(wide);
+    const std::size_t rows = std::max<std::size_t>(1, (cells + cols - 1) / cols);
+    slots.clear();
+    for (std::size_t r = 0; r < rows; ++r) {
+      for (std::size_t c = 0; c < cols; ++c) {
+        const Vec2 centre{x0 + (static_cast<double>(c) + 0.5) * w / static_cast<double>(cols),
+                          y0 + (static_cast<double>(r) + 0.5) * h / static_cast<double>(rows)};
+        if (object.Contains(centre)) slots.push_back(centre);
+      }
+    }
+    if (slots.size() >= count) return slots;
+  }
+  return slots;
+}
+
+}  // namespace core
+}  // namespace swarm_transport
