@@ -34,8 +34,7 @@ import sys
 import tempfile
 import time
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import st_ros  # noqa: E402
+from swarm_transport import st_ros
 
 PYTHON = '/usr/bin/python3'
 STATS_TOPIC = '/flock/robot_stats'
@@ -438,7 +437,7 @@ def child_run(a, clock, comm):
     """Runs one configuration in a child process (one rospy node per master)."""
     fd, out = tempfile.mkstemp(prefix='st_bench_', suffix='.json')
     os.close(fd)
-    args = [PYTHON, os.path.abspath(__file__), '--robots', str(a.robots), '--clock', clock,
+    args = [PYTHON, '-m', 'swarm_transport.bench', '--robots', str(a.robots), '--clock', clock,
             '--deploy', a.deploy, '--comm', comm, '--seconds', str(a.seconds),
             '--warmup', str(a.warmup), '--seed', str(a.seed), '--threads', str(a.threads),
             '--startup-timeout', str(a.startup_timeout), '--arena', a.arena,
