@@ -74,7 +74,7 @@ def parse_args(argv):
     p.add_argument('--deploy', default='process', choices=('process', 'host', 'host_sim'),
                    help='process: a process per robot; host: all robots in one robot_host '
                         'process (both via swarm.launch); host_sim: robots and simulator in '
-                        'one robot_host process (~run_simulator)')
+                        'one robot_host process (~deploy host_sim)')
     p.add_argument('--comm', default='local', choices=('local', 'broadcast', 'both'),
                    help='local: the radio relays in-range positions (SPEC 7); broadcast: every '
                         'robot hears every /flock/position (the thesis); both: run both and '
@@ -282,7 +282,7 @@ def set_host_sim_params(master, a):
     master.setParam('/swarm', swarm)
     master.setParam('/robot_host', {
         'from': 0, 'to': a.robots, 'clock': a.clock, 'comm': a.comm, 'diagnostics': True,
-        'threads': a.threads, 'run_simulator': True,
+        'threads': a.threads, 'deploy': 'host_sim',
         'simulator': {'robots': a.robots, 'clock': a.clock}})
 
 
