@@ -235,7 +235,7 @@ void World2D::Step(double dt_s) {
         // The last piece of a command is exactly what is left of it, so a command drives for
         // exactly command_duration_s and a robot's prediction matches the simulation.
         const double d = robot.command_remaining_s <= h ? robot.command_remaining_s : h;
-        robot.pose = core::Integrate(robot.pose, robot.command, d);
+        robot.pose = core::Integrate(robot.pose, robot.command, d, &robot.trig);
         robot.last_velocity = robot.command;
         robot.command_remaining_s -= d;
         if (robot.command_remaining_s <= kTimeEpsilonS) {

@@ -36,6 +36,7 @@ struct Robot {
   core::Velocity command;            // the held command (zero once it expired)
   double command_remaining_s = 0.0;  // how much longer `command` is held
   core::Velocity last_velocity;      // what it drove with in the last sub-step (zero: stood)
+  core::HeadingTrig trig;            // Step's cos / sin of its heading (a cache, not state)
 };
 
 // A square arena of unicycle disc robots, advanced only by Step(dt). The same state and the
