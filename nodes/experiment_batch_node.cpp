@@ -3,9 +3,13 @@
 // reads one job.json path per line from stdin, runs it (swarm_transport::RunBatchJob: the
 // run's files and result.json go where the job says) and answers one line per job on stdout,
 // "ok <path>" or "error <path>: <why>", so that scripts/experiment can hand it the next job.
+//   experiment_batch --metrics
+// answers the core's swarm metrics one line per request line instead (core/metrics_query.h), for
+// the Python tools (src/swarm_transport/core_metrics.py).
 #include <iostream>
 #include <string>
 
+#include "swarm_transport/core/metrics_query.h"
 #include "swarm_transport/ros/batch_run.h"
 #include "swarm_transport/ros/params.h"
 
@@ -15,8 +19,15 @@ int main(int argc, char** argv) {
     const std::string arg = argv[i];
     if (arg == "--base-config" && i + 1 < argc) {
       base_path = argv[++i];
+    } else if (arg == "--metrics" && argc == 2) {
+      std::string line;
+      while (std::getline(std::cin, line)) {
+        std::cout << swarm_transport::core::AnswerMetricsQuery(line) << std::endl;
+      }
+      return 0;
     } else {
-      std::cerr << "usage: experiment_batch --base-config SWARM_YAML < job.json paths\n";
+      std::cerr << "usage: experiment_batch --base-config SWARM_YAML < job.json paths\n"
+                   "       experiment_batch --metrics < requests\n";
       return 2;
     }
   }

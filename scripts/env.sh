@@ -49,6 +49,13 @@ st_source_ws() {
   set +u; source "$ST_WS/devel/setup.bash"; set -u
 }
 
+# Puts the devel space's Python packages on PYTHONPATH (and nothing else of the workspace's
+# environment): its swarm_transport package holds the tools' modules (src/swarm_transport, by
+# catkin_python_setup) and the generated messages together. Then `python3 -m swarm_transport.X`.
+st_python_path() {
+  export PYTHONPATH="$ST_WS/devel/lib/python3/dist-packages${PYTHONPATH:+:$PYTHONPATH}"
+}
+
 # Prints a free TCP port on loopback.
 st_free_port() {
   /usr/bin/python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1",0)); print(s.getsockname()[1]); s.close()'

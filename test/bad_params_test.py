@@ -58,6 +58,13 @@ class BadParams(unittest.TestCase):
                                           '__name:=dispatcher_bad_events'], {},
                    '~events_file /no/such/events.yaml')
 
+    def test_robot_host_bad_deploy(self):
+        # A robot_host runs deploy host or host_sim; a typo or another deployment is refused.
+        self.check('robot_host', ['_to:=2', '_deploy:=host-sim', '__name:=host_bad_deploy'], {},
+                   "~deploy must be 'process', 'host', 'host_sim' or 'none' but is 'host-sim'")
+        self.check('robot_host', ['_to:=2', '_deploy:=process', '__name:=host_bad_deploy2'], {},
+                   "~deploy of a robot_host must be 'host' or 'host_sim' but is 'process'")
+
 
 if __name__ == '__main__':
     rospy.init_node('bad_params_test')

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """deploy:=host (all robots in one robot_host process) behaves exactly like deploy:=process (a
-robot process each), and so does a robot_host that runs the simulator too (~run_simulator,
+robot process each), and so does a robot_host that runs the simulator too (~deploy host_sim,
 deploy:=host_sim), whose robots are linked to the simulator directly, not by topics: in
 lock-step with the same seed all give identical poses at tick N."""
 
@@ -58,7 +58,7 @@ def poses_one_process(seed, robots, ticks, timeout):
     rospy.set_param('/swarm', swarm)
     name = 'robot_host_sim'
     rospy.set_param('/' + name, {
-        'from': 0, 'to': robots, 'clock': 'lockstep', 'run_simulator': True, 'threads': 2,
+        'from': 0, 'to': robots, 'clock': 'lockstep', 'deploy': 'host_sim', 'threads': 2,
         'simulator': {'robots': robots, 'clock': 'lockstep', 'lockstep_max_ticks': ticks,
                       'lockstep_observers': 1}})
     log = st.PositionLog()
@@ -141,7 +141,7 @@ class DeployEquivalence(unittest.TestCase):
                  (['_to:=3', '_threads:=0'], '~threads must be in'),
                  (['_to:=3', '_comm:=shout'], '~comm must be'),
                  # The simulator's clock defaults to realtime.
-                 (['_to:=3', '_clock:=lockstep', '_run_simulator:=true'],
+                 (['_to:=3', '_clock:=lockstep', '_deploy:=host_sim'],
                   '~clock is \'lockstep\' but ~simulator/clock is \'realtime\''))
         for i, (args, expect) in enumerate(cases):
             # A node name per case: private parameters from the command line stay set.

@@ -20,8 +20,7 @@ import rospy
 import rostest
 
 ROOT = os.path.dirname(os.path.dirname(os.path.realpath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, 'scripts', 'lib'))
-import experiment_presets as presets  # noqa: E402
+from swarm_transport import experiment_presets as presets
 
 SUMMARY_HEADER = ['setting', 'metric', 'mean', 'median', 'trimmed_mean', 'runs']
 COUNT_METRICS = ('final_swarm_count', 'mean_swarm_count', 'initial_swarm_count',

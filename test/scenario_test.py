@@ -12,9 +12,8 @@ import rospy
 import rostest
 
 ROOT = os.path.dirname(os.path.dirname(os.path.realpath(__file__)))
-sys.path.insert(0, os.path.join(ROOT, 'scripts', 'lib'))
-import scenario  # noqa: E402
-import scenario_format as fmt  # noqa: E402
+from swarm_transport import scenario
+from swarm_transport import scenario_format as fmt
 
 
 def scenario_path(name):

@@ -29,6 +29,27 @@ Pose2 Integrate(const Pose2& pose, Velocity velocity, double duration_s) {
   return result;
 }
 
+Pose2 Integrate(const Pose2& pose, Velocity velocity, double duration_s, HeadingTrig* trig) {
+  if (!(std::fabs(velocity.angular) < kStraightAngularRadPerS)) {
+    return Integrate(pose, velocity, duration_s);
+  }
+  const double theta = pose.heading.radians();
+  if (!trig->valid || !(theta == trig->theta_rad) ||
+      std::signbit(theta) != std::signbit(trig->theta_rad)) {
+    trig->theta_rad = theta;
+    trig->cos = std::cos(theta);
+    trig->sin = std::sin(theta);
+    trig->valid = true;
+  }
+  // Integrate's straight branch with the same expressions.
+  const double turn = velocity.angular * duration_s;
+  const double length = velocity.linear * duration_s;
+  Pose2 result;
+  result.position = {pose.position.x + length * trig->cos, pose.position.y + length * trig->sin};
+  result.heading = Angle::FromRadians(theta + turn);
+  return result;
+}
+
 Velocity CommandFor(const Pose2& pose, Angle heading, double distance, double duration_s) {
   if (!(duration_s > 0.0)) throw std::invalid_argument("CommandFor: duration_s must be > 0");
   // The shortest signed turn, so a robot never spins the long way round.

@@ -38,6 +38,21 @@ bool ParsePlacement(const std::string& name, Placement* out) {
   return true;
 }
 
+bool ParseDeploy(const std::string& name, Deploy* out) {
+  if (name == "process") {
+    *out = Deploy::kProcess;
+  } else if (name == "host") {
+    *out = Deploy::kHost;
+  } else if (name == "host_sim") {
+    *out = Deploy::kHostSim;
+  } else if (name == "none") {
+    *out = Deploy::kNone;
+  } else {
+    return false;
+  }
+  return true;
+}
+
 const char* ClockName(Clock clock) { return clock == Clock::kLockstep ? "lockstep" : "realtime"; }
 
 const char* CommName(Comm comm) { return comm == Comm::kBroadcast ? "broadcast" : "local"; }
@@ -50,6 +65,19 @@ const char* PlacementName(Placement placement) {
       return "file";
     default:
       return "random";
+  }
+}
+
+const char* DeployName(Deploy deploy) {
+  switch (deploy) {
+    case Deploy::kHost:
+      return "host";
+    case Deploy::kHostSim:
+      return "host_sim";
+    case Deploy::kNone:
+      return "none";
+    default:
+      return "process";
   }
 }
 

@@ -332,4 +332,10 @@ bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, core::Placem
                          core::ParsePlacement);
 }
 
+bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, core::Deploy* value,
+                 std::string* error) {
+  return ReadPrivateMode(nh, key, "'process', 'host', 'host_sim' or 'none'", value, error,
+                         core::ParseDeploy);
+}
+
 }  // namespace swarm_transport

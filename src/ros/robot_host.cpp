@@ -32,6 +32,9 @@ std::string RobotHostOptions::Validate() const {
     os << "~to must be in (~from, 65536] but is " << to << " (~from " << from << ")";
   } else if (threads < 1 || threads > kMaxThreads) {
     os << "~threads must be in [1, " << kMaxThreads << "] but is " << threads;
+  } else if (deploy != core::Deploy::kHost && deploy != core::Deploy::kHostSim) {
+    os << "~deploy of a robot_host must be 'host' or 'host_sim' but is '"
+       << core::DeployName(deploy) << "'";
   }
   return os.str();
 }
@@ -172,7 +175,7 @@ bool RobotHost::Initialize() {
       ReadPrivate(private_nh_, "comm", &options_.comm, &error) &&
       ReadPrivate(private_nh_, "diagnostics", &options_.diagnostics, &error) &&
       ReadPrivate(private_nh_, "threads", &options_.threads, &error) &&
-      ReadPrivate(private_nh_, "run_simulator", &options_.run_simulator, &error) &&
+      ReadPrivate(private_nh_, "deploy", &options_.deploy, &error) &&
       ReadPrivate(private_nh_, "adopt", &options_.adopt, &error)) {
     error = options_.Validate();
   }
@@ -182,7 +185,7 @@ bool RobotHost::Initialize() {
   }
   // Its robots, before the simulator (linking them directly) asks.
   for (int id = options_.from; id < options_.to; ++id) ids_.insert(static_cast<std::uint16_t>(id));
-  if (options_.run_simulator) {
+  if (options_.RunsSimulator()) {
     simulator_ = std::make_unique<Simulator>(nh_, ros::NodeHandle(private_nh_, "simulator"));
     simulator_->AttachDirect(this);
     if (!simulator_->Initialize()) return false;
@@ -193,7 +196,7 @@ bool RobotHost::Initialize() {
     if (sim_clock != options_.clock) {
       ROS_FATAL(
           "robot_host: invalid parameters: ~clock is '%s' but ~simulator/clock is '%s'; "
-          "with ~run_simulator both must be the same",
+          "with ~deploy host_sim both must be the same",
           core::ClockName(options_.clock), core::ClockName(sim_clock));
       return false;
     }
@@ -330,7 +333,7 @@ void RobotHost::OnRobots(const Robot_Positions::ConstPtr& msg) {
 }
 
 bool RobotHost::Hosts(std::uint16_t id) const {
-  return options_.run_simulator && ids_.count(id) > 0;
+  return options_.RunsSimulator() && ids_.count(id) > 0;
 }
 
 void RobotHost::Deliver(std::uint16_t id, const Neighbors::ConstPtr& round) {

@@ -19,8 +19,6 @@ namespace swarm_transport {
 namespace {
 
 constexpr char kClockTopic[] = "/clock";
-// The stream of the seed's generator that draws the poses of robots joining by New_Robot.
-constexpr std::uint64_t kSpawnStream = 0x737061776eULL;  // "spawn"
 // Queue sizes. /flock/position: every robot publishes every tick and only virtual copies /
 // statists matter, so it must hold a whole swarm's tick. /flock/positions: the recorder must
 // see every lock-step tick.
@@ -35,16 +33,6 @@ constexpr std::uint32_t kMissionQueue = 100;
 constexpr double kIdleS = 0.01;
 // At most one warning of a kind per this many wall seconds (see WallThrottle).
 constexpr double kWarnPeriodS = 5.0;
-
-// A teleport service's answer: OK, or ERROR with the reason (also logged).
-template <typename Response>
-bool Reply(bool ok, const char* service, std::uint16_t id, const std::string& error,
-           Response* res) {
-  if (!ok) ROS_WARN("simulator: %s of robot %u rejected: %s", service, id, error.c_str());
-  res->code = ok ? Response::OK : Response::ERROR;
-  res->message = ok ? "ok" : error;
-  return true;
-}
 
 }  // namespace
 
@@ -87,17 +75,16 @@ bool Simulator::Initialize() {
   tuning_ = std::make_unique<TuningRelay>(params_.swarm);
   radio_rng_ = std::make_unique<core::Rng>(params_.swarm.seed, sim::kRadioLossStream);
   radio_ = std::make_unique<sim::Radio>(RadioParamsOf(params_), radio_rng_.get());
-  spawn_rng_ = std::make_unique<core::Rng>(params_.swarm.seed, kSpawnStream);
   RobotLinkHandlers handlers;
   handlers.cmd_vel = [this](std::uint16_t id, const geometry_msgs::Twist& m) { OnCmdVel(id, m); };
   handlers.answer = [this](std::uint16_t id, const Tick_Answer& m) { OnAnswer(id, m); };
   handlers.teleport_absolute = [this](std::uint16_t id, TeleportAbsolute::Request& req,
                                       TeleportAbsolute::Response& res) {
-    return OnTeleportAbsolute(id, req, res);
+    return roster_->OnTeleportAbsolute(id, req, res);
   };
   handlers.teleport_relative = [this](std::uint16_t id, TeleportRelative::Request& req,
                                       TeleportRelative::Response& res) {
-    return OnTeleportRelative(id, req, res);
+    return roster_->OnTeleportRelative(id, req, res);
   };
   links_ = std::make_unique<RobotLinks>(nh_, &cmd_queue_, direct_, lockstep_,
                                         params_.pose_topics, std::move(handlers));
@@ -107,19 +94,16 @@ bool Simulator::Initialize() {
     hooks.spin = [this](double wait_s) { SpinOnce(wait_s); };
     hooks.spin_robots = [this] { SpinRobots(); };
     hooks.visuals = [this] { PublishVisualsIfDue(); };
-    hooks.books = [this](const Tick_Answer& a) {
-      for (const Update_Object& u : a.object_updates) {
-        sim::UpdateMissionObject(u.mission_id, {u.object_position_x, u.object_position_y},
-                                 *world_, &missions_);
-      }
-      for (const Delete_Object& d : a.object_deletes) missions_.erase(d.mission_id);
-    };
+    hooks.books = [this](const Tick_Answer& a) { missions_->TakeAnswer(a); };
     session_ = std::make_unique<LockstepSession>(nh_, params_, links_.get(), &cmd_queue_,
                                                  std::move(hooks));
   }
+  roster_ = std::make_unique<RobotRoster>(world_.get(), links_.get(), session_.get(), direct_,
+                                          params_.swarm.seed, &tick_);
+  missions_ = std::make_unique<MissionMirror>(params_.swarm.admission, world_.get());
   Connect();
-  for (const auto& entry : world_->robots()) AddRobot(entry.first);
-  PublishRobotList();
+  for (const auto& entry : world_->robots()) roster_->Add(entry.first);
+  roster_->PublishList();
 
   bool use_sim_time = false;
   nh_.getParam("/use_sim_time", use_sim_time);
@@ -138,12 +122,9 @@ bool Simulator::Initialize() {
 }
 
 void Simulator::Connect() {
-  objects_pub_ = nh_.advertise<Mission_Objects>(
-      names::kObjects, lockstep_ ? kLockstepPositionsQueue : kPositionsQueue);
+  const std::uint32_t positions_queue = lockstep_ ? kLockstepPositionsQueue : kPositionsQueue;
   // Latched: a late subscriber (a test after the last lock-step tick) still gets the state.
-  positions_pub_ = nh_.advertise<Robot_Positions>(
-      names::kPositions, lockstep_ ? kLockstepPositionsQueue : kPositionsQueue, true);
-  robots_pub_ = nh_.advertise<Robot_Positions>(names::kRobots, 1, true);
+  positions_pub_ = nh_.advertise<Robot_Positions>(names::kPositions, positions_queue, true);
   if (lockstep_) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>(kClockTopic, 10);
   sim::VisualsParams visuals;
   visuals.rate_hz = params_.markers_rate_hz;
@@ -155,29 +136,9 @@ void Simulator::Connect() {
   visuals_ = std::make_unique<sim::Visuals>(nh_, std::move(visuals));
   diagnostics_ = std::make_unique<NodeDiagnostics>(
       nh_, "swarm_transport: simulator" + std::string(direct_ ? " (in robot_host)" : ""));
-  spawn_srv_ = nh_.advertiseService(names::kSpawn, &Simulator::OnSpawn, this);
-  kill_srv_ = nh_.advertiseService(names::kKill, &Simulator::OnKill, this);
-  reset_srv_ = nh_.advertiseService(names::kReset, &Simulator::OnReset, this);
+  roster_->Connect(nh_, kPositionQueue, kMissionQueue);
+  missions_->Connect(nh_, lockstep_, positions_queue);
   hold_srv_ = private_nh_.advertiseService("hold", &Simulator::OnHold, this);
-  // /flock/position also carries every robot's own position each tick; we only keep virtual
-  // copies and statists, but the queue must hold a whole tick of the swarm.
-  position_sub_ = nh_.subscribe(names::kPosition, kPositionQueue, &Simulator::OnPosition, this,
-                                ros::TransportHints().tcpNoDelay());
-  robot_new_sub_ = nh_.subscribe(names::kRobotNew, kMissionQueue, &Simulator::OnRobotNew, this);
-  robot_delete_sub_ =
-      nh_.subscribe(names::kRobotDelete, kMissionQueue, &Simulator::OnRobotDelete, this);
-  if (!lockstep_) {
-    // Lock-step takes orders in through the relay, at the tick the robots take them.
-    mission_new_sub_ =
-        nh_.subscribe(names::kMissionNew, kMissionQueue, &Simulator::OnMissionNew, this);
-  }
-  object_update_sub_ =
-      nh_.subscribe(names::kObjectUpdate, kMissionQueue, &Simulator::OnObjectUpdate, this);
-  // Each mission's phase, for the status line in rviz (lock-step: this node's own relay).
-  status_sub_ = nh_.subscribe(names::kMissionStatus, kMissionQueue, &Simulator::OnMissionStatus,
-                              this);
-  object_delete_sub_ =
-      nh_.subscribe(names::kObjectDelete, kMissionQueue, &Simulator::OnObjectDelete, this);
   if (events_ && !lockstep_) {
     // Real time: a timed event goes out as this node's message (robots take it as relayed).
     event_freeze_pub_ = nh_.advertise<Robot_Freeze>(names::kFreeze, kMissionQueue);
@@ -188,19 +149,6 @@ void Simulator::Connect() {
   if (lockstep_) session_->Connect();
   tuning_pub_ = nh_.advertise<Flocking_Tuning>(names::kTuning, 1, true);
   tuning_server_ = std::make_unique<FlockingTuningServer>(private_nh_, tuning_.get());
-}
-
-void Simulator::AddRobot(std::uint16_t id) {
-  links_->Add(id);
-  if (session_) session_->AddRobot(id);
-}
-
-void Simulator::RemoveRobot(std::uint16_t id) {
-  world_->Kill(id, nullptr);
-  links_->Remove(id);
-  if (session_) session_->RemoveRobot(id);
-  if (direct_ != nullptr && direct_->Hosts(id)) direct_->Release(id);
-  relayed_.EraseCopiesOf(id);  // its virtual copies die with it
 }
 
 void Simulator::Run() {
@@ -215,17 +163,9 @@ void Simulator::Run() {
 
 void Simulator::Shutdown() {
   if (links_) links_->Shutdown();
-  position_sub_.shutdown();
-  robot_new_sub_.shutdown();
-  robot_delete_sub_.shutdown();
-  mission_new_sub_.shutdown();
+  if (roster_) roster_->Shutdown();
   if (session_) session_->Shutdown();
-  object_update_sub_.shutdown();
-  status_sub_.shutdown();
-  object_delete_sub_.shutdown();
-  spawn_srv_.shutdown();
-  kill_srv_.shutdown();
-  reset_srv_.shutdown();
+  if (missions_) missions_->Shutdown();
   hold_srv_.shutdown();
   positions_pub_.shutdown();
   clock_pub_.shutdown();
@@ -276,7 +216,7 @@ void Simulator::ApplyAnswers() {
 }
 
 void Simulator::RunLockstep() {
-  session_->WaitForStart(positions_pub_, robots_pub_);
+  session_->WaitForStart(positions_pub_, roster_->list_publisher());
   const ros::WallTime started = ros::WallTime::now();
   const std::uint64_t max_ticks = static_cast<std::uint64_t>(params_.lockstep_max_ticks);
   ros::WallTime started_pacing = started;
@@ -411,7 +351,7 @@ void Simulator::PublishRadio() {
   if (lockstep_) {
     // The orders due by this tick enter its relay and the simulator's books together (the
     // mission channel, markers); the rest wait for their start tick.
-    for (const New_Mission& order : session_->ReleaseOrders(tick_)) RegisterMission(order);
+    for (const New_Mission& order : session_->ReleaseOrders(tick_)) missions_->Register(order);
   }
   const double sim_time = SimTime();
   const auto& robots = world_->robots();
@@ -427,9 +367,10 @@ void Simulator::PublishRadio() {
         lockstep_ ? session_->Live(entry.first) : entry.second.neighbors_subscribers > 0;
     if (!answering) quiet.insert(entry.first);
   }
-  radio_->Begin(*world_, relayed_.Extras(), missions_, quiet);
+  radio_->Begin(*world_, roster_->relayed().Extras(), missions_->missions(), quiet);
   // Virtual copies are relayed at their owner's true pose, the others where announced.
-  const std::vector<Robot_Position> relayed = relayed_.AtOwners(radio_->extra_owner(), truth);
+  const std::vector<Robot_Position> relayed =
+      roster_->relayed().AtOwners(radio_->extra_owner(), truth);
 
   sim::RadioRound round;
   if (lockstep_) session_->StartRound(tick_);
@@ -452,29 +393,7 @@ void Simulator::PublishRadio() {
   all.sim_time = sim_time;
   all.robots = std::move(truth);
   positions_pub_.publish(all);
-  if (objects_pub_.getNumSubscribers() > 0) {
-    Mission_Objects objects;
-    objects.tick = tick_;
-    for (const auto& entry : missions_) {
-      const sim::LiveMission& m = entry.second;
-      if (m.object_size.x <= 0.0 && m.object_size.y <= 0.0) continue;  // leader-only
-      objects.mission_ids.push_back(entry.first);
-      objects.x.push_back(static_cast<float>(m.object_position.x));
-      objects.y.push_back(static_cast<float>(m.object_position.y));
-      objects.size_x.push_back(static_cast<float>(m.object_size.x));
-      objects.size_y.push_back(static_cast<float>(m.object_size.y));
-    }
-    objects_pub_.publish(objects);
-  }
-}
-
-void Simulator::PublishRobotList() {
-  Robot_Positions list;
-  list.tick = tick_;
-  for (const auto& entry : world_->robots()) {
-    list.robots.push_back(ToRobotPosition(entry.first, entry.second.pose));
-  }
-  robots_pub_.publish(list);
+  missions_->PublishObjects(tick_);
 }
 
 void Simulator::PublishPoses() {
@@ -486,7 +405,7 @@ void Simulator::PublishPoses() {
 }
 
 void Simulator::PublishVisualsIfDue() {
-  if (visuals_->Due()) visuals_->Publish(*world_, missions_, Stamp(), tick_);
+  if (visuals_->Due()) visuals_->Publish(*world_, missions_->missions(), Stamp(), tick_);
   diagnostics_->PublishIfDue([this](NodeStatus* s) {
     const std::size_t robots = world_->size();
     const std::size_t live = session_ ? session_->LiveCount() : robots;
@@ -503,7 +422,7 @@ void Simulator::PublishVisualsIfDue() {
     s->Add("sim_time_s", SimTime());
     s->Add("robots", static_cast<std::uint64_t>(robots));
     s->Add("answering", static_cast<std::uint64_t>(live));
-    s->Add("missions", static_cast<std::uint64_t>(missions_.size()));
+    s->Add("missions", static_cast<std::uint64_t>(missions_->missions().size()));
     s->Add("flocking_tuning", static_cast<std::uint64_t>(tuning_->generation()));
   });
 }
@@ -570,7 +489,7 @@ void Simulator::ApplyDueEvents() {
         msg.mission_id = e.mission;
         msg.object_position_x = static_cast<float>(e.x);
         msg.object_position_y = static_cast<float>(e.y);
-        sim::UpdateMissionObject(e.mission, {e.x, e.y}, *world_, &missions_);
+        missions_->UpdateObject(e.mission, {e.x, e.y});
         if (session_) session_->Inject(msg); else event_update_pub_.publish(msg);
         break;
       }
@@ -583,18 +502,10 @@ void Simulator::ApplyDueEvents() {
         break;
       }
       case TimedEvent::Kind::kKill:
-        if (world_->Find(e.robot) == nullptr) {
-          ROS_WARN("simulator: timed kill of robot %u at tick %llu: no such robot", e.robot,
-                   static_cast<unsigned long long>(tick_));
-          break;
-        }
-        RemoveRobot(e.robot);
-        PublishRobotList();
-        ROS_INFO("simulator: killed robot %u (timed event, tick %llu)", e.robot,
-                 static_cast<unsigned long long>(tick_));
+        roster_->KillByEvent(e.robot);
         break;
       case TimedEvent::Kind::kSpawn:
-        SpawnRobot(e.robot, {{e.x, e.y}, core::Angle(e.theta_deg)});
+        roster_->Spawn(e.robot, {{e.x, e.y}, core::Angle(e.theta_deg)});
         break;
       case TimedEvent::Kind::kStatist: {
         Robot_Position statist;
@@ -603,164 +514,14 @@ void Simulator::ApplyDueEvents() {
         statist.type = Robot_Position::TYPE_STATIST;
         statist.pos_x = static_cast<float>(e.x);
         statist.pos_y = static_cast<float>(e.y);
-        relayed_.Take(statist);
+        roster_->relayed().Take(statist);
         break;
       }
       case TimedEvent::Kind::kRemoveStatist:
-        relayed_.Erase(e.robot, e.sub_id);
+        roster_->relayed().Erase(e.robot, e.sub_id);
         break;
     }
   }
-}
-
-std::string Simulator::SpawnRobot(std::uint16_t id, const core::Pose2& pose) {
-  std::string error;
-  if (!world_->Spawn(id, pose, &error)) {
-    ROS_WARN("simulator: spawn of robot %u rejected: %s", id, error.c_str());
-    return error;
-  }
-  PublishRobotList();  // first: a robot started now finds itself listed
-  // A host of many robots that runs this simulator starts the robot itself.
-  if (direct_ != nullptr && !direct_->Hosts(id)) direct_->Adopt(id);
-  AddRobot(id);
-  ROS_INFO("simulator: spawned robot %u at (%.3f, %.3f, %.1f deg)", id, pose.position.x,
-           pose.position.y, pose.heading.degrees());
-  return "";
-}
-
-bool Simulator::OnSpawn(Spawn::Request& req, Spawn::Response& res) {
-  const core::Pose2 pose{{req.x, req.y}, core::Angle::FromRadians(req.theta)};
-  const std::string error = SpawnRobot(req.robot_id, pose);
-  if (!error.empty()) {
-    res.code = Spawn::Response::ERROR;
-    res.message = error;
-    return true;
-  }
-  res.code = Spawn::Response::OK;
-  res.message = "spawned robot " + std::to_string(req.robot_id);
-  return true;
-}
-
-bool Simulator::OnKill(Kill::Request& req, Kill::Response& res) {
-  if (world_->Find(req.robot_id) == nullptr) {
-    res.code = Kill::Response::ERROR;
-    res.message = "robot " + std::to_string(req.robot_id) + " does not exist";
-    ROS_WARN("simulator: kill rejected: %s", res.message.c_str());
-    return true;
-  }
-  RemoveRobot(req.robot_id);
-  PublishRobotList();
-  ROS_INFO("simulator: killed robot %u", req.robot_id);
-  res.code = Kill::Response::OK;
-  res.message = "killed robot " + std::to_string(req.robot_id);
-  return true;
-}
-
-bool Simulator::OnReset(std_srvs::Empty::Request& /*req*/, std_srvs::Empty::Response& /*res*/) {
-  world_->Reset();
-  ROS_INFO("simulator: reset %zu robots to their spawn poses", world_->size());
-  return true;
-}
-
-bool Simulator::OnTeleportAbsolute(std::uint16_t id, TeleportAbsolute::Request& req,
-                                   TeleportAbsolute::Response& res) {
-  std::string error;
-  const core::Pose2 pose{{req.x, req.y}, core::Angle::FromRadians(req.theta)};
-  return Reply(world_->TeleportAbsolute(id, pose, &error), "teleport_absolute", id, error, &res);
-}
-
-bool Simulator::OnTeleportRelative(std::uint16_t id, TeleportRelative::Request& req,
-                                   TeleportRelative::Response& res) {
-  std::string error;
-  return Reply(world_->TeleportRelative(id, req.linear, req.angular, &error), "teleport_relative",
-               id, error, &res);
-}
-
-void Simulator::OnPosition(const Robot_Position::ConstPtr& msg) {
-  const std::string why = relayed_.Take(*msg);
-  if (!why.empty() && WallThrottle(&last_bad_position_warning_wall_, kWarnPeriodS)) {
-    ROS_WARN("simulator: rejected a Robot_Position of robot %u/%u: %s", msg->robot_id,
-             msg->sub_id, why.c_str());
-  }
-}
-
-void Simulator::OnRobotNew(const New_Robot::ConstPtr& msg) {
-  if (msg->type != Robot_Position::TYPE_PHYSICAL) {
-    ROS_DEBUG("simulator: New_Robot %u/%u of type %u: it joins by announcing itself on %s",
-              msg->robot_id, msg->sub_id, msg->type, names::kPosition);
-    return;
-  }
-  if (world_->Find(msg->robot_id) != nullptr) {
-    ROS_INFO("simulator: New_Robot %u: it is in the swarm already", msg->robot_id);
-    return;
-  }
-  core::Pose2 pose;
-  if (!sim::FreePose(*world_, spawn_rng_.get(), &pose)) {
-    ROS_WARN("simulator: New_Robot %u rejected: no free place in the arena", msg->robot_id);
-    return;
-  }
-  SpawnRobot(msg->robot_id, pose);
-}
-
-void Simulator::OnRobotDelete(const Delete_Robot::ConstPtr& msg) {
-  if (relayed_.Erase(msg->robot_id, msg->sub_id)) return;
-  if (msg->sub_id == 0 && world_->Find(msg->robot_id) != nullptr) {
-    RemoveRobot(msg->robot_id);
-    PublishRobotList();
-    ROS_INFO("simulator: Delete_Robot %u: the robot left the swarm", msg->robot_id);
-    return;
-  }
-  if (WallThrottle(&last_bad_position_warning_wall_, kWarnPeriodS)) {
-    ROS_WARN("simulator: Delete_Robot %u/%u: no such robot, virtual copy or statist",
-             msg->robot_id, msg->sub_id);
-  }
-}
-
-// Real time: the mission mirror (the radio's mission channel, markers) follows what the robots
-// act on, with the robots' rules (core::MayOrder, core::MayReport).
-void Simulator::OnMissionNew(const ros::MessageEvent<New_Mission const>& event) {
-  if (!core::MayOrder(params_.swarm.admission, SenderOf(event.getPublisherName()))) return;
-  RegisterMission(*event.getConstMessage());
-}
-
-void Simulator::RegisterMission(const New_Mission& order) {
-  const std::string why = sim::RegisterMission(ToMissionSpec(order), *world_, &missions_);
-  if (!why.empty()) {
-    ROS_DEBUG("simulator: ignored New_Mission %u: %s", order.mission_id, why.c_str());
-  }
-}
-
-void Simulator::OnObjectUpdate(const ros::MessageEvent<Update_Object const>& event) {
-  const Update_Object& msg = *event.getConstMessage();
-  if (!MayReport(msg.mission_id, event.getPublisherName())) return;
-  sim::UpdateMissionObject(msg.mission_id, {msg.object_position_x, msg.object_position_y},
-                           *world_, &missions_);
-}
-
-void Simulator::OnObjectDelete(const ros::MessageEvent<Delete_Object const>& event) {
-  if (!MayReport(event.getConstMessage()->mission_id, event.getPublisherName())) return;
-  missions_.erase(event.getConstMessage()->mission_id);
-}
-
-void Simulator::OnMissionStatus(const ros::MessageEvent<Mission_Status const>& event) {
-  const Mission_Status& msg = *event.getConstMessage();
-  auto it = missions_.find(msg.mission_id);
-  // A REJECTED names an order refused, which may carry a live mission's id (a duplicate).
-  if (it == missions_.end() || msg.state >= Mission_Status::REJECTED ||
-      !MayReport(msg.mission_id, event.getPublisherName())) {
-    return;
-  }
-  it->second.phase = std::max<int>(it->second.phase, msg.state);
-}
-
-bool Simulator::MayReport(std::uint16_t mission_id, const std::string& publisher) const {
-  const core::Sender from = SenderOf(publisher);
-  const auto it = missions_.find(mission_id);
-  if (from.kind != core::SenderKind::kRobot || it == missions_.end()) {
-    return core::MayReport(nullptr, from);
-  }
-  const std::vector<std::uint16_t>& members = it->second.members;
-  return std::binary_search(members.begin(), members.end(), from.robot_id);
 }
 
 }  // namespace swarm_transport

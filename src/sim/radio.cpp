@@ -48,15 +48,22 @@ void Radio::Begin(const World2D& world, std::vector<RadioExtra> extras,
       if (i >= 0) missions_of_[static_cast<std::size_t>(i)].push_back(m);
     }
   }
-  lists_ = world.NeighbourLists(params_.range_m);
+  world.NeighbourIndices(params_.range_m, &table_);
   quiet_.assign(ids_.size(), 0);
   if (!quiet.empty()) {
     for (std::size_t i = 0; i < ids_.size(); ++i) quiet_[i] = quiet.count(ids_[i]) > 0 ? 1 : 0;
-    for (auto& list : lists_) {
-      list.erase(std::remove_if(list.begin(), list.end(),
-                                [&quiet](std::uint16_t id) { return quiet.count(id) > 0; }),
-                 list.end());
+    // Nobody hears a quiet robot: it leaves every list (its own list stays).
+    std::uint32_t read = 0;
+    std::uint32_t write = 0;
+    for (std::size_t i = 0; i < ids_.size(); ++i) {
+      const std::uint32_t end = table_.start[i + 1];
+      table_.start[i] = write;
+      for (; read < end; ++read) {
+        if (!quiet_[table_.index[read]]) table_.index[write++] = table_.index[read];
+      }
     }
+    table_.start[ids_.size()] = write;
+    table_.index.resize(write);
   }
   heard_.assign(ids_.size(), 0);
   touched_.clear();
@@ -72,9 +79,11 @@ void Radio::Hear(std::size_t i, RadioRound* out) {
     heard_[j] = 1;
     touched_.push_back(j);
   };
-  for (std::uint16_t other : lists_[i]) {
+  const std::vector<std::uint32_t>& start = table_.start;
+  const std::vector<std::uint32_t>& index = table_.index;
+  for (std::uint32_t k = start[i]; k < start[i + 1]; ++k) {
     if (Lost()) continue;  // a lost neighbour may still be heard as a mission peer
-    const std::size_t j = static_cast<std::size_t>(IndexOf(other));
+    const std::size_t j = index[k];
     out->in_range.push_back(j);
     mark(j);
   }
@@ -82,13 +91,14 @@ void Radio::Hear(std::size_t i, RadioRound* out) {
   if (params_.hops > 1) {
     mark(i);
     ring_.clear();
-    for (std::uint16_t other : lists_[i]) ring_.push_back(static_cast<std::size_t>(IndexOf(other)));
+    for (std::uint32_t k = start[i]; k < start[i + 1]; ++k) ring_.push_back(index[k]);
     std::size_t ring_begin = 0;
     for (int hop = 2; hop <= params_.hops && ring_begin < ring_.size(); ++hop) {
       const std::size_t ring_end = ring_.size();
       for (std::size_t k = ring_begin; k < ring_end; ++k) {
-        for (std::uint16_t far : lists_[ring_[k]]) {
-          const std::size_t j = static_cast<std::size_t>(IndexOf(far));
+        const std::size_t near = ring_[k];
+        for (std::uint32_t f = start[near]; f < start[near + 1]; ++f) {
+          const std::size_t j = index[f];
           if (heard_[j]) continue;
           mark(j);
           ring_.push_back(j);

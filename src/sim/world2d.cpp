@@ -235,7 +235,7 @@ void World2D::Step(double dt_s) {
         // The last piece of a command is exactly what is left of it, so a command drives for
         // exactly command_duration_s and a robot's prediction matches the simulation.
         const double d = robot.command_remaining_s <= h ? robot.command_remaining_s : h;
-        robot.pose = core::Integrate(robot.pose, robot.command, d);
+        robot.pose = core::Integrate(robot.pose, robot.command, d, &robot.trig);
         robot.last_velocity = robot.command;
         robot.command_remaining_s -= d;
         if (robot.command_remaining_s <= kTimeEpsilonS) {
@@ -259,17 +259,18 @@ void World2D::ClampAll() {
 }
 
 bool World2D::PushApartOnce() {
-  std::vector<Robot*> order;
-  std::vector<core::Vec2> points;
-  order.reserve(robots_.size());
-  points.reserve(robots_.size());
+  std::vector<Robot*>& order = push_order_;
+  std::vector<core::Vec2>& points = push_points_;
+  std::vector<std::pair<std::size_t, std::size_t>>& pairs = push_pairs_;
+  order.clear();
+  points.clear();
+  pairs.clear();
   for (auto& entry : robots_) {
     order.push_back(&entry.second);
     points.push_back(entry.second.pose.position);
   }
   const double contact = 2.0 * params_.robot_radius_m;
   const double contact2 = contact * contact;
-  std::vector<std::pair<std::size_t, std::size_t>> pairs;
   {
     const Grid grid(points, params_.world_size_m, contact);
     for (std::size_t i = 0; i < points.size(); ++i) {
@@ -321,29 +322,40 @@ const Robot* World2D::Find(std::uint16_t id) const {
 }
 
 std::vector<std::vector<std::uint16_t>> World2D::NeighbourLists(double range_m) const {
-  std::vector<std::vector<std::uint16_t>> lists(robots_.size());
-  if (!(range_m > 0.0) || !std::isfinite(range_m)) return lists;
-  std::vector<core::Vec2> points;
+  NeighbourTable table;
+  NeighbourIndices(range_m, &table);
   std::vector<std::uint16_t> ids;
-  points.reserve(robots_.size());
   ids.reserve(robots_.size());
-  for (const auto& entry : robots_) {
-    ids.push_back(entry.first);
-    points.push_back(entry.second.pose.position);
-  }
-  const Grid grid(points, params_.world_size_m, range_m);
-  const double range2 = range_m * range_m;
-  std::vector<std::size_t> found;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    found.clear();
-    grid.ForNearby(i, [&](std::size_t j) {
-      if (j != i && SquaredDistance(points[i], points[j]) <= range2) found.push_back(j);
-    });
-    std::sort(found.begin(), found.end());
-    lists[i].reserve(found.size());
-    for (std::size_t j : found) lists[i].push_back(ids[j]);
+  for (const auto& entry : robots_) ids.push_back(entry.first);
+  std::vector<std::vector<std::uint16_t>> lists(robots_.size());
+  for (std::size_t i = 0; i < lists.size(); ++i) {
+    for (std::uint32_t k = table.start[i]; k < table.start[i + 1]; ++k) {
+      lists[i].push_back(ids[table.index[k]]);
+    }
   }
   return lists;
+}
+
+void World2D::NeighbourIndices(double range_m, NeighbourTable* out) const {
+  const std::size_t n = robots_.size();
+  out->start.assign(n + 1, 0);
+  out->index.clear();
+  if (!(range_m > 0.0) || !std::isfinite(range_m)) return;
+  std::vector<core::Vec2> points;
+  points.reserve(n);
+  for (const auto& entry : robots_) points.push_back(entry.second.pose.position);
+  const Grid grid(points, params_.world_size_m, range_m);
+  const double range2 = range_m * range_m;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t first = out->index.size();
+    grid.ForNearby(i, [&](std::size_t j) {
+      if (j != i && SquaredDistance(points[i], points[j]) <= range2) {
+        out->index.push_back(static_cast<std::uint32_t>(j));
+      }
+    });
+    std::sort(out->index.begin() + static_cast<std::ptrdiff_t>(first), out->index.end());
+    out->start[i + 1] = static_cast<std::uint32_t>(out->index.size());
+  }
 }
 
 bool FreePose(const World2D& world, core::Rng* rng, core::Pose2* pose) {

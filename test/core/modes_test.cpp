@@ -1,4 +1,4 @@
-// Clock, comm and placement modes: every name parses to its mode and back; anything else is refused.
+// Clock, comm, placement and deploy modes: every name parses to its mode and back; anything else is refused.
 #include "swarm_transport/core/modes.h"
 
 #include <gtest/gtest.h>
@@ -23,6 +23,15 @@ TEST(ModesTest, NamesRoundTripAndUnknownNamesChangeNothing) {
     ASSERT_TRUE(ParsePlacement(PlacementName(p), &parsed));
     EXPECT_EQ(parsed, p);
   }
+  for (const Deploy d : {Deploy::kProcess, Deploy::kHost, Deploy::kHostSim, Deploy::kNone}) {
+    Deploy parsed = d == Deploy::kNone ? Deploy::kProcess : Deploy::kNone;
+    ASSERT_TRUE(ParseDeploy(DeployName(d), &parsed));
+    EXPECT_EQ(parsed, d);
+  }
+  Deploy deploy = Deploy::kHostSim;
+  EXPECT_FALSE(ParseDeploy("hostsim", &deploy));
+  EXPECT_FALSE(ParseDeploy("batch", &deploy));
+  EXPECT_EQ(deploy, Deploy::kHostSim);
   Placement placement = Placement::kCorner;
   EXPECT_FALSE(ParsePlacement("grid", &placement));
   EXPECT_EQ(placement, Placement::kCorner);

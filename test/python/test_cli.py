@@ -3,19 +3,18 @@ there is and refuse bad arguments with one clear message and a non-zero exit, be
 anything. The entry points are run directly (scripts/* would build first)."""
 import os
 import subprocess
-import sys
 import unittest
 
-# scripts/lib is not a package on the path: the tests put it there (as its scripts do).
-LIB = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__)))),
-                   'scripts', 'lib')
-sys.path.insert(0, LIB)
+from swarm_transport import experiment_presets as presets
 
 PY = '/usr/bin/python3'
 
 
 def run(script, *args):
-    proc = subprocess.run([PY, os.path.join(LIB, script)] + list(args),
+    # The package as the scripts run it (python3 -m swarm_transport.<module>), with this
+    # process's environment: the devel space's PYTHONPATH.
+    module = 'swarm_transport.' + os.path.splitext(script)[0]
+    proc = subprocess.run([PY, '-m', module] + list(args),
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=60,
                           universal_newlines=True)
     return proc.returncode, proc.stdout
@@ -24,7 +23,6 @@ def run(script, *args):
 class CommandLines(unittest.TestCase):
 
     def test_experiment_list_names_every_preset(self):
-        import experiment_presets as presets  # noqa: E402
         code, out = run('experiment.py', 'list')
         self.assertEqual(code, 0, out)
         listed = [line.split()[0] for line in out.splitlines() if line.strip()]

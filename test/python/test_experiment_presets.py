@@ -1,16 +1,11 @@
-"""scripts/lib/experiment_presets.py without ROS: every shipped preset is valid, a bad preset is
-refused with the key named, and the swarm count's connected components (SPEC 8)."""
+"""src/swarm_transport/experiment_presets.py without ROS: every shipped preset is valid, a bad
+preset is refused with the key named, and the swarm count's connected components (SPEC 8, the
+core's SwarmComponents through experiment_batch --metrics)."""
 import copy
-import os
-import sys
 import unittest
 
-# scripts/lib is not a package on the path: the tests put it there (as its scripts do).
-LIB = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__)))),
-                   'scripts', 'lib')
-sys.path.insert(0, LIB)
-
-import experiment_presets as presets  # noqa: E402
+from swarm_transport import core_metrics
+from swarm_transport import experiment_presets as presets
 
 GOOD = {'description': 'x', 'kind': 'flocking', 'runs': 2, 'base_config': 'thesis_flocking.yaml',
         'max_ticks': 30, 'settings': [{'name': 's1'}]}
@@ -58,7 +53,7 @@ class Presets(unittest.TestCase):
         self.assertIn('smoke', str(cm.exception))  # it lists what there is
 
     def test_the_thesis_measured_table_is_checked_and_rendered(self):
-        import experiment_report as report
+        from swarm_transport import experiment_report as report
         p = copy.deepcopy(GOOD)
         p['thesis_measured'] = {'source': 'a file', 'metrics': ['transport_ticks'],
                                 'rows': [{'label': '10R 2L', 'transport_ticks': 60.7}]}
@@ -81,20 +76,20 @@ class Presets(unittest.TestCase):
     def test_components_link_hop_by_hop_within_range(self):
         # A chain 0.9 m apart is one swarm though its ends are 1.8 m apart; a robot 1.01 m
         # from the nearest is a swarm of its own; exactly the range links.
-        count, labels = presets.components([(0, 0), (0.9, 0), (1.8, 0), (2.81, 0)], 1.0)
+        count, labels = core_metrics.components([(0, 0), (0.9, 0), (1.8, 0), (2.81, 0)], 1.0)
         self.assertEqual(count, 2)
         self.assertEqual(len({labels[0], labels[1], labels[2]}), 1)
         self.assertNotEqual(labels[3], labels[0])
-        self.assertEqual(presets.components([(0, 0), (1.0, 0)], 1.0)[0], 1)
-        self.assertEqual(presets.components([], 1.0), (0, []))
-        self.assertEqual(presets.components([(5, 5)] * 3, 1.0)[0], 1)
+        self.assertEqual(core_metrics.components([(0, 0), (1.0, 0)], 1.0)[0], 1)
+        self.assertEqual(core_metrics.components([], 1.0), (0, []))
+        self.assertEqual(core_metrics.components([(5, 5)] * 3, 1.0)[0], 1)
 
     def test_a_cluster_placement_is_connected_and_reproducible(self):
         a = presets.cluster_placement(12, 3, 1.0, 0.05, 11.088889)
         self.assertEqual(a, presets.cluster_placement(12, 3, 1.0, 0.05, 11.088889))
         self.assertNotEqual(a, presets.cluster_placement(12, 4, 1.0, 0.05, 11.088889))
         self.assertEqual(len(a), 12)
-        self.assertEqual(presets.components([(x, y) for x, y, _ in a], 1.0)[0], 1)
+        self.assertEqual(core_metrics.components([(x, y) for x, y, _ in a], 1.0)[0], 1)
         for x, y, theta in a:
             self.assertTrue(0.05 <= x <= 11.088889 - 0.05 and 0.05 <= y <= 11.088889 - 0.05)
             self.assertTrue(0.0 <= theta <= 360.0)

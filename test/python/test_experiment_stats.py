@@ -1,19 +1,14 @@
-"""scripts/lib/experiment_stats.py without ROS: the thesis's trimmed mean, and the aggregation
-of hand-made run files (flocking samples on the 10 s grid; an aborted transport)."""
+"""src/swarm_transport/experiment_stats.py without ROS: the thesis's trimmed mean, and the
+aggregation of hand-made run files (flocking samples on the 10 s grid; an aborted transport)."""
 import json
 import os
 import shutil
-import sys
 import tempfile
 import unittest
 
-# scripts/lib is not a package on the path: the tests put it there (as its scripts do).
-LIB = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__)))),
-                   'scripts', 'lib')
-sys.path.insert(0, LIB)
 
-import experiment_presets as presets  # noqa: E402
-import experiment_stats as stats  # noqa: E402
+from swarm_transport import experiment_presets as presets
+from swarm_transport import experiment_stats as stats
 
 
 class Stats(unittest.TestCase):

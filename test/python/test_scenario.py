@@ -3,15 +3,12 @@ parses; a malformed scenario gets one error naming the line and the key; every e
 passes on a hand-made log that meets it and fails on one that does not."""
 import math
 import os
-import sys
 import unittest
 
-# scripts/lib is not a package on the path: the tests put it there (as its scripts do).
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.realpath(__file__))))
-sys.path.insert(0, os.path.join(ROOT, 'scripts', 'lib'))
 
-import scenario_checks as checks  # noqa: E402
-import scenario_format as fmt  # noqa: E402
+from swarm_transport import scenario_checks as checks
+from swarm_transport import scenario_format as fmt
 
 MINIMAL = '''world:
   robots: 6

@@ -24,6 +24,19 @@ struct Velocity {
 // seconds. Composes exactly: Integrate(Integrate(p, v, a), v, b) == Integrate(p, v, a + b).
 Pose2 Integrate(const Pose2& pose, Velocity velocity, double duration_s);
 
+// The cosine and sine of the heading a robot last drove straight on. A robot driving straight
+// keeps its heading from one integration sub-step to the next, so the simulator asks for the
+// same two values over and over (they were 39 % of the batch engine's time at 10,000 robots).
+struct HeadingTrig {
+  double theta_rad = 0.0;
+  double cos = 1.0;
+  double sin = 0.0;
+  bool valid = false;
+};
+// Integrate, bit for bit, computing cos and sin only when the heading is not the very double
+// `trig` holds (sign of zero included).
+Pose2 Integrate(const Pose2& pose, Velocity velocity, double duration_s, HeadingTrig* trig);
+
 // One tick's move as the thesis executed it [T6.2, SPEC 4]: turn in place by
 // angular * duration, then drive linear * duration straight ahead. This is what the simulator
 // does with a cmd_vel (World2D::SetCommand turns at once, then holds the linear part), so a

@@ -17,14 +17,19 @@ enum class Comm : std::uint8_t { kLocal, kBroadcast };
 // Where the simulator puts its initial robots: seeded random non-overlapping poses, a grid in
 // the bottom-left corner, or the lines of a placement file.
 enum class Placement : std::uint8_t { kRandom, kCorner, kFile };
+// Where the robots run (swarm.launch deploy:=...): a process each, all in one robot_host, all in
+// one robot_host that also runs the simulator (direct links), or on other machines.
+enum class Deploy : std::uint8_t { kProcess, kHost, kHostSim, kNone };
 
 // False (and `out` untouched) for a name that is none of the modes.
 bool ParseClock(const std::string& name, Clock* out);
 bool ParseComm(const std::string& name, Comm* out);
 bool ParsePlacement(const std::string& name, Placement* out);
+bool ParseDeploy(const std::string& name, Deploy* out);
 const char* ClockName(Clock clock);
 const char* CommName(Comm comm);
 const char* PlacementName(Placement placement);
+const char* DeployName(Deploy deploy);
 
 }  // namespace core
 }  // namespace swarm_transport

@@ -44,8 +44,11 @@ bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, core::Clock*
                  std::string* error);
 bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, core::Comm* value,
                  std::string* error);
-// ~placement (random | corner | file), the same way.
+// ~placement (random | corner | file) and ~deploy (process | host | host_sim | none), the same
+// way.
 bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, core::Placement* value,
+                 std::string* error);
+bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, core::Deploy* value,
                  std::string* error);
 
 // Parses one zone dictionary {shape: rect|circle, x, y, size_x, size_y | radius}.

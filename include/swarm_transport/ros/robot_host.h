@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "swarm_transport/Robot_Positions.h"
+#include "swarm_transport/core/modes.h"
 #include "swarm_transport/ros/diagnostics.h"
 #include "swarm_transport/ros/direct_link.h"
 #include "swarm_transport/ros/robot_node.h"
@@ -31,15 +32,17 @@ struct RobotHostOptions {
   // robot's callbacks never run concurrently; 1 (default) also keeps the order of callbacks
   // across robots fixed, which lock-step determinism does not need but debugging likes.
   int threads = 1;
-  // ~run_simulator: also run the simulator in this process (its private parameters under
-  // ~simulator/, as under /simulator/ for the simulator node; its ~clock must be ours). The
-  // simulator and the hosted robots are then linked directly (direct_link.h): no
-  // robot_<id>/neighbors, cmd_vel or answer topics, and by default no robot_<id>/pose
-  // (~simulator/pose_topics). Lock-step runs the robots in the simulator's thread.
-  bool run_simulator = false;
+  // ~deploy: host (default) | host_sim, swarm.launch's deploy. host_sim also runs the simulator
+  // in this process (its private parameters under ~simulator/, as under /simulator/ for the
+  // simulator node; its ~clock must be ours). The simulator and the hosted robots are then
+  // linked directly (direct_link.h): no robot_<id>/neighbors, cmd_vel or answer topics, and by
+  // default no robot_<id>/pose (~simulator/pose_topics). Lock-step runs the robots in the
+  // simulator's thread.
+  core::Deploy deploy = core::Deploy::kHost;
+  bool RunsSimulator() const { return deploy == core::Deploy::kHostSim; }
   // ~adopt: the swarm changes size while it runs (issue 11): a robot spawned later (/spawn,
   // New_Robot) gets a robot of this host, and a robot of this host that leaves the world
-  // (/kill, Delete_Robot) is removed. With ~run_simulator the simulator tells the host;
+  // (/kill, Delete_Robot) is removed. With deploy host_sim the simulator tells the host;
   // without, the host runs every robot /flock/robots lists. false: robots beyond [from, to)
   // need processes of their own (a host beside robot processes).
   bool adopt = true;
@@ -56,7 +59,7 @@ class TickScheduler;
 // Real-time ticks come from one scheduler (one heap, one thread) instead of a wall timer per
 // robot: roscpp's timer manager re-sorts all of a process's timers, with a linear search per
 // comparison, at every expiry.
-// With ~run_simulator the host is the simulator's DirectRobots: it delivers each round on the
+// With ~deploy host_sim the host is the simulator's DirectRobots: it delivers each round on the
 // robot's callback queue, and in lock-step it runs those queues from the simulator's thread
 // (no spinner threads: no hand-offs, and the order of callbacks is fixed).
 class RobotHost : public DirectRobots {
@@ -102,7 +105,7 @@ class RobotHost : public DirectRobots {
   std::unique_ptr<Simulator> simulator_;
   // Declared before the robots: their subscriptions refer to these queues.
   std::vector<std::unique_ptr<ros::CallbackQueue>> queues_;
-  // The hosted robots by id. Changed only from one thread: the simulator's (~run_simulator,
+  // The hosted robots by id. Changed only from one thread: the simulator's (~deploy host_sim,
   // which also calls Deliver) or the control queue's (/flock/robots).
   std::map<std::uint16_t, Hosted> hosted_;
   std::set<std::uint16_t> ids_;  // hosted or about to be (Hosts() before the robots start)

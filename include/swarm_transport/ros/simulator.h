@@ -5,7 +5,6 @@
 #include <geometry_msgs/Twist.h>
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
-#include <std_srvs/Empty.h>
 
 #include <csignal>
 #include <cstdint>
@@ -16,21 +15,11 @@
 #include <utility>
 #include <vector>
 
-#include "swarm_transport/Delete_Object.h"
-#include "swarm_transport/Delete_Robot.h"
 #include "swarm_transport/Hold.h"
-#include "swarm_transport/Kill.h"
-#include "swarm_transport/New_Robot.h"
-#include "swarm_transport/Mission_Objects.h"
-#include "swarm_transport/Mission_Status.h"
 #include "swarm_transport/Neighbors.h"
-#include "swarm_transport/New_Mission.h"
-#include "swarm_transport/Robot_Position.h"
-#include "swarm_transport/Spawn.h"
 #include "swarm_transport/TeleportAbsolute.h"
 #include "swarm_transport/TeleportRelative.h"
 #include "swarm_transport/Tick_Answer.h"
-#include "swarm_transport/Update_Object.h"
 #include "swarm_transport/core/modes.h"
 #include "swarm_transport/core/random.h"
 #include "swarm_transport/ros/diagnostics.h"
@@ -38,10 +27,10 @@
 #include "swarm_transport/ros/event_schedule.h"
 #include "swarm_transport/ros/flocking_tuning.h"
 #include "swarm_transport/ros/lockstep_session.h"
-#include "swarm_transport/ros/mission_relay.h"
+#include "swarm_transport/ros/mission_mirror.h"
 #include "swarm_transport/ros/robot_links.h"
+#include "swarm_transport/ros/robot_roster.h"
 #include "swarm_transport/ros/simulator_params.h"
-#include "swarm_transport/sim/live_mission.h"
 #include "swarm_transport/sim/radio.h"
 #include "swarm_transport/ros/visuals.h"
 #include "swarm_transport/sim/world2d.h"
@@ -85,16 +74,10 @@ class Simulator : public RobotOutlet {
   static void RequestStop();
 
  private:
-  using Mission = sim::LiveMission;
-
   // ROS is up and no stop was requested.
   static bool Running();
   // Subscribes, advertises and offers the services of the node (not the robots').
   void Connect();
-  // A robot's links and (lock-step) its place in the barrier.
-  void AddRobot(std::uint16_t id);
-  void RemoveRobot(std::uint16_t id);
-
   void RunRealtime();
   void RunLockstep();
   // Lock-step: the current tick's answers (zero for late robots) become the world's commands.
@@ -109,8 +92,6 @@ class Simulator : public RobotOutlet {
   void BeginTuningRound();
   // Lock-step: robot `id`'s answer, for the session (ignored after the last tick).
   void OnAnswer(std::uint16_t id, const Tick_Answer& answer);
-  // Latched /flock/robots: the robots that exist (robots check missions against it).
-  void PublishRobotList();
   void PublishPoses();
   void PublishClock();
   // Markers and tf when their wall-clock period has passed, and the node's diagnostic status.
@@ -126,37 +107,13 @@ class Simulator : public RobotOutlet {
   void OnCmdVel(std::uint16_t id, const geometry_msgs::Twist& msg);
   // Runs `call` now on the simulator's thread, or queues it for its loop from another one.
   void OnSimulatorThread(std::function<void()> call);
-  bool OnSpawn(Spawn::Request& req, Spawn::Response& res);
-  bool OnKill(Kill::Request& req, Kill::Response& res);
-  bool OnReset(std_srvs::Empty::Request& req, std_srvs::Empty::Response& res);
   // ~hold (lock-step): stand before a stated tick until released.
   bool OnHold(Hold::Request& req, Hold::Response& res);
   // Lock-step, before tick tick_ begins: stands while a hold asks for it (markers, tf and
   // services go on); returns the wall time it stood.
   ros::WallDuration HoldIfAsked();
-  bool OnTeleportAbsolute(std::uint16_t id, TeleportAbsolute::Request& req,
-                          TeleportAbsolute::Response& res);
-  bool OnTeleportRelative(std::uint16_t id, TeleportRelative::Request& req,
-                          TeleportRelative::Response& res);
-  void OnPosition(const Robot_Position::ConstPtr& msg);
-  // New_Robot of a physical robot: it joins at a free random pose (the /spawn service takes a
-  // pose). Virtual copies and statists join by announcing themselves on /flock/position.
-  void OnRobotNew(const New_Robot::ConstPtr& msg);
-  // Delete_Robot: a virtual copy or statist of that (id, sub_id) is no longer relayed; else a
-  // physical robot (sub_id 0) leaves the world, as by /kill.
-  void OnRobotDelete(const Delete_Robot::ConstPtr& msg);
-  // Spawns robot `id` at `pose` with its links; empty when done, else why not.
-  std::string SpawnRobot(std::uint16_t id, const core::Pose2& pose);
   // The scenario's timed events due at this tick (~events_file).
   void ApplyDueEvents();
-  void OnMissionNew(const ros::MessageEvent<New_Mission const>& event);
-  // Validated like the robots do: a valid order gets its mission channel and markers.
-  void RegisterMission(const New_Mission& order);
-  void OnObjectUpdate(const ros::MessageEvent<Update_Object const>& event);
-  void OnObjectDelete(const ros::MessageEvent<Delete_Object const>& event);
-  void OnMissionStatus(const ros::MessageEvent<Mission_Status const>& event);
-  // core::MayReport against the mission mirror's members.
-  bool MayReport(std::uint16_t mission_id, const std::string& publisher) const;
 
   static volatile std::sig_atomic_t stop_requested_;
 
@@ -166,7 +123,6 @@ class Simulator : public RobotOutlet {
   bool lockstep_ = false;
   std::unique_ptr<sim::World2D> world_;
   std::unique_ptr<core::Rng> radio_rng_;
-  std::unique_ptr<core::Rng> spawn_rng_;  // poses of robots that join by New_Robot
   std::unique_ptr<sim::Radio> radio_;
   DirectRobots* direct_ = nullptr;
   std::thread::id thread_;  // Initialize()'s and Run()'s
@@ -175,17 +131,15 @@ class Simulator : public RobotOutlet {
   // running services (which may spawn or kill robots) at arbitrary points.
   ros::CallbackQueue cmd_queue_;
   std::unique_ptr<RobotLinks> links_;
-  RelayedPositions relayed_;  // virtual copies and statists
   // Live tuning of the flocking parameters (dynamic_reconfigure on the private handle).
   std::unique_ptr<TuningRelay> tuning_;
   std::unique_ptr<FlockingTuningServer> tuning_server_;
   ros::Publisher tuning_pub_;
   bool radio_follows_range_ = true;  // ~radio_range_m unset: the radio's range is the local range
-  sim::LiveMissions missions_;
+  std::unique_ptr<RobotRoster> roster_;      // spawn, kill, teleports, copies and statists
+  std::unique_ptr<MissionMirror> missions_;  // what the robots act on, for radio and markers
 
   ros::Publisher positions_pub_;
-  ros::Publisher objects_pub_;  // Mission_Objects with every positions message, on demand
-  ros::Publisher robots_pub_;
   std::unique_ptr<LockstepSession> session_;  // lock-step only
   std::unique_ptr<EventSchedule> events_;     // with ~events_file only
   ros::Publisher event_freeze_pub_;           // real time: the timed events' messages
@@ -195,27 +149,16 @@ class Simulator : public RobotOutlet {
   ros::Publisher clock_pub_;
   std::unique_ptr<sim::Visuals> visuals_;
   std::unique_ptr<NodeDiagnostics> diagnostics_;
-  ros::ServiceServer spawn_srv_;
-  ros::ServiceServer kill_srv_;
-  ros::ServiceServer reset_srv_;
   ros::ServiceServer hold_srv_;
   std::uint64_t hold_at_ = 0;  // lock-step: hold before this tick (0: none)
   bool holding_ = false;
   bool tick_begun_ = false;    // lock-step: tick tick_ is under way
-  ros::Subscriber position_sub_;
-  ros::Subscriber robot_new_sub_;
-  ros::Subscriber robot_delete_sub_;
-  ros::Subscriber mission_new_sub_;
-  ros::Subscriber object_update_sub_;
-  ros::Subscriber status_sub_;
-  ros::Subscriber object_delete_sub_;
 
   std::uint64_t tick_ = 0;    // radio rounds so far (lock-step: ticks)
   bool finished_ = false;     // lock-step: max ticks reached, the world is frozen
   ros::WallTime start_wall_;
   ros::WallTime last_bad_cmd_warning_wall_;  // wall-clock throttles of repeated warnings
   ros::WallTime last_unsolicited_warning_wall_;
-  ros::WallTime last_bad_position_warning_wall_;
 };
 
 }  // namespace swarm_transport

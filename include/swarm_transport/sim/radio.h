@@ -76,7 +76,7 @@ class Radio {
   core::Rng* loss_rng_;
   std::vector<std::uint16_t> ids_;
   std::vector<core::Vec2> positions_;
-  std::vector<std::vector<std::uint16_t>> lists_;
+  World2D::NeighbourTable table_;  // in range, by index; quiet robots left out
   std::vector<RadioExtra> extras_;
   std::vector<long> extra_owner_;
   std::vector<std::vector<std::size_t>> missions_of_;  // per robot: its missions' member lists

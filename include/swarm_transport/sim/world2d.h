@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "swarm_transport/core/kinematics.h"
@@ -35,6 +36,7 @@ struct Robot {
   core::Velocity command;            // the held command (zero once it expired)
   double command_remaining_s = 0.0;  // how much longer `command` is held
   core::Velocity last_velocity;      // what it drove with in the last sub-step (zero: stood)
+  core::HeadingTrig trig;            // Step's cos / sin of its heading (a cache, not state)
 };
 
 // A square arena of unicycle disc robots, advanced only by Step(dt). The same state and the
@@ -78,6 +80,13 @@ class World2D {
   // within `range_m` (distance <= range_m) of its centre. A uniform grid makes it O(N) for
   // bounded density. Empty lists when range_m is not > 0.
   std::vector<std::vector<std::uint16_t>> NeighbourLists(double range_m) const;
+  // The same by index into robots() order, in one table that keeps its memory between calls
+  // (the radio asks every tick): robot i's neighbours are index[start[i] .. start[i + 1]).
+  struct NeighbourTable {
+    std::vector<std::uint32_t> start;  // robots() + 1 entries
+    std::vector<std::uint32_t> index;  // ascending within each robot's range
+  };
+  void NeighbourIndices(double range_m, NeighbourTable* out) const;
 
  private:
   bool Inside(const core::Pose2& pose, std::string* error) const;
@@ -88,6 +97,10 @@ class World2D {
 
   WorldParams params_;
   std::map<std::uint16_t, Robot> robots_;
+  // PushApartOnce's scratch, kept between calls (it runs up to 5 times per integration step).
+  std::vector<Robot*> push_order_;
+  std::vector<core::Vec2> push_points_;
+  std::vector<std::pair<std::size_t, std::size_t>> push_pairs_;
 };
 
 // Poses of `n` robots at random positions inside [r, size - r]^2, centres at least

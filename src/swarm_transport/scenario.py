@@ -23,11 +23,10 @@ import time
 
 import yaml
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import scenario_checks as checks  # noqa: E402
-import scenario_format as fmt  # noqa: E402
+from swarm_transport import scenario_checks as checks
+from swarm_transport import scenario_format as fmt
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), '..', '..'))
+ROOT = os.path.realpath(os.path.join(os.path.dirname(os.path.realpath(__file__)), '..', '..'))
 STATE_NAMES = dict(enumerate(fmt.STATES))
 
 
@@ -263,7 +262,7 @@ def main(argv):
         s['world']['deploy'] = a.deploy
     if a.clock:
         s['world']['clock'] = a.clock
-    import st_ros
+    from swarm_transport import st_ros
     directory = a.keep or tempfile.mkdtemp(prefix='st_scenario_')
     try:
         with st_ros.PrivateRos(log_dir=os.path.join(directory, 'logs')) as ros:

@@ -4,7 +4,7 @@ check returns (passed, measured): the measured value is printed beside pass / fa
 
 import math
 
-import experiment_presets as presets
+from swarm_transport import core_metrics
 
 
 class RunLog(object):
@@ -62,7 +62,7 @@ def check(e, log, scenario, second=None):
         pts = log.positions.get(e['at_tick'])
         if pts is None:
             return False, 'no positions at tick %d' % e['at_tick']
-        count = presets.components(list(pts.values()), log.params['local_range_m'])[0]
+        count = core_metrics.components(list(pts.values()), log.params['local_range_m'])[0]
         return e['min'] <= count <= e['max'], '%d swarm(s) at tick %d' % (count,
                                                                          e['at_tick'])
     if kind == 'phases':

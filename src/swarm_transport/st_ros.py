@@ -8,7 +8,7 @@ import subprocess
 import sys
 import time
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), '..', '..'))
+ROOT = os.path.realpath(os.path.join(os.path.dirname(os.path.realpath(__file__)), '..', '..'))
 WS = os.path.join(ROOT, '.catkin_ws')
 
 
@@ -58,10 +58,6 @@ class PrivateRos(object):
                   'ROS_DISTRO', 'ROS_ETC_DIR', 'ROSLISP_PACKAGE_DIRECTORIES'):
             if k in self.env:
                 os.environ[k] = self.env[k]
-        # The workspace's generated messages must be importable in this very process too.
-        for path in reversed(self.env.get('PYTHONPATH', '').split(':')):
-            if path and path not in sys.path:
-                sys.path.insert(0, path)
         return self
 
     def __exit__(self, *exc):

@@ -34,8 +34,7 @@ import sys
 import tempfile
 import time
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import st_ros  # noqa: E402
+from swarm_transport import st_ros
 
 PYTHON = '/usr/bin/python3'
 STATS_TOPIC = '/flock/robot_stats'
@@ -75,7 +74,7 @@ def parse_args(argv):
     p.add_argument('--deploy', default='process', choices=('process', 'host', 'host_sim'),
                    help='process: a process per robot; host: all robots in one robot_host '
                         'process (both via swarm.launch); host_sim: robots and simulator in '
-                        'one robot_host process (~run_simulator)')
+                        'one robot_host process (~deploy host_sim)')
     p.add_argument('--comm', default='local', choices=('local', 'broadcast', 'both'),
                    help='local: the radio relays in-range positions (SPEC 7); broadcast: every '
                         'robot hears every /flock/position (the thesis); both: run both and '
@@ -283,7 +282,7 @@ def set_host_sim_params(master, a):
     master.setParam('/swarm', swarm)
     master.setParam('/robot_host', {
         'from': 0, 'to': a.robots, 'clock': a.clock, 'comm': a.comm, 'diagnostics': True,
-        'threads': a.threads, 'run_simulator': True,
+        'threads': a.threads, 'deploy': 'host_sim',
         'simulator': {'robots': a.robots, 'clock': a.clock}})
 
 
@@ -438,7 +437,7 @@ def child_run(a, clock, comm):
     """Runs one configuration in a child process (one rospy node per master)."""
     fd, out = tempfile.mkstemp(prefix='st_bench_', suffix='.json')
     os.close(fd)
-    args = [PYTHON, os.path.abspath(__file__), '--robots', str(a.robots), '--clock', clock,
+    args = [PYTHON, '-m', 'swarm_transport.bench', '--robots', str(a.robots), '--clock', clock,
             '--deploy', a.deploy, '--comm', comm, '--seconds', str(a.seconds),
             '--warmup', str(a.warmup), '--seed', str(a.seed), '--threads', str(a.threads),
             '--startup-timeout', str(a.startup_timeout), '--arena', a.arena,

@@ -9,7 +9,8 @@ import math
 import os
 import re
 
-import experiment_presets as presets
+from swarm_transport import core_metrics
+from swarm_transport import experiment_presets as presets
 
 SAMPLE_PERIOD_S = 10.0          # the recorder's swarm count period (thesis 7.2: every 10 s)
 PATH_STEP_PERCENT = 5           # leader track: a point every 5 % of the path
@@ -167,10 +168,7 @@ def _mission(kind, run_dir, info):
 
 
 def trimmed_mean(values, trim=None):
-    v = sorted(values)
-    k = presets.trim_each_end(len(v), trim)
-    kept = v[k:len(v) - k] if k else v
-    return sum(kept) / len(kept)
+    return core_metrics.trimmed_mean(values, presets.trim_each_end(len(values), trim))
 
 
 def median(values):

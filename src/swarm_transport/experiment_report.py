@@ -6,8 +6,8 @@ import os
 import shutil
 import sys
 
-import experiment_presets as presets
-import experiment_stats as stats
+from swarm_transport import experiment_presets as presets
+from swarm_transport import experiment_stats as stats
 
 # Short column titles and units of the metrics (tables and plot axes).
 TITLES = {

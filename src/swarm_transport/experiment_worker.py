@@ -17,9 +17,8 @@ import tempfile
 import threading
 import time
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import experiment_presets as presets  # noqa: E402
-import st_ros  # noqa: E402
+from swarm_transport import core_metrics
+from swarm_transport import st_ros
 
 FINAL = {5: 'DONE', 6: 'ABORTED', 7: 'REJECTED'}
 STARTUP_TIMEOUT_S = 90.0      # launch -> first tick
@@ -357,7 +356,7 @@ class LeaderTrack(object):
         total = math.hypot(self.target[0] - self.start[0], self.target[1] - self.start[1])
         left = math.hypot(self.target[0] - lp[0], self.target[1] - lp[1])
         progress = min(1.0, max(0.0, 1.0 - left / total)) if total > 0 else 1.0
-        count, labels = presets.components(pts, self.local_range)
+        count, labels = core_metrics.components(pts, self.local_range)
         swarm = sum(1 for lab in labels if lab == labels[li]) - 1
         with self.lock:
             # Checked again here: arrived() may have ended the track while this frame was

@@ -9,7 +9,9 @@ import random
 
 import yaml
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), '..', '..'))
+from swarm_transport import core_metrics
+
+ROOT = os.path.realpath(os.path.join(os.path.dirname(os.path.realpath(__file__)), '..', '..'))
 PRESET_DIR = os.path.join(ROOT, 'config', 'experiments')
 CONFIG_DIR = os.path.join(ROOT, 'config')
 
@@ -235,32 +237,10 @@ def cluster_placement(robots, seed, local_range_m, radius_m, world_size_m, clust
             else:
                 raise PresetError('cannot place %d robots %.3f m apart in a %.2f m square'
                                   % (robots, min_d, side))
-        if components(pts, local_range_m)[0] == 1:
+        if core_metrics.components(pts, local_range_m)[0] == 1:
             return [(x, y, rng.uniform(0.0, 360.0)) for x, y in pts]
     raise PresetError('no connected cluster of %d robots found (local range %.2f)'
                       % (robots, local_range_m))
-
-
-def components(points, local_range):
-    """(number of connected components, component label per point) of the graph linking
-    points within local_range (SPEC 8's swarm count)."""
-    parent = list(range(len(points)))
-
-    def find(i):
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
-    r2 = local_range * local_range
-    for i in range(len(points)):
-        xi, yi = points[i][0], points[i][1]
-        for j in range(i + 1, len(points)):
-            dx, dy = xi - points[j][0], yi - points[j][1]
-            if dx * dx + dy * dy <= r2:
-                parent[find(i)] = find(j)
-    labels = [find(i) for i in range(len(points))]
-    return len(set(labels)), labels
 
 
 def leader_of(seed, robots):

@@ -10,9 +10,8 @@ import subprocess
 import sys
 import time
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import st_ros  # noqa: E402
-from experiment_presets import components  # noqa: E402
+from swarm_transport import st_ros
+from swarm_transport.core_metrics import components
 
 
 def parse_args(argv):

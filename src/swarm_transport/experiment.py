@@ -25,10 +25,8 @@ import time
 
 import yaml
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import experiment_presets as presets  # noqa: E402
+from swarm_transport import experiment_presets as presets
 
-LIB = os.path.dirname(os.path.abspath(__file__))
 ROOT = presets.ROOT
 DEFAULT_OUT_ROOT = os.path.join(ROOT, 'results')        # git-ignored
 DEFAULT_REPORT = os.path.join(ROOT, 'docs', 'results.md')
@@ -99,9 +97,9 @@ def main(argv):
         if a.command == 'run':
             return cmd_run(a)
         if a.command == 'report':
-            import experiment_report as report
+            from swarm_transport import experiment_report as report
             return report.cmd_report(a.dirs, a.out)
-        import experiment_worker
+        from swarm_transport import experiment_worker
         return experiment_worker.main(a.job)
     except presets.PresetError as e:
         log('experiment: %s' % e)
@@ -211,7 +209,7 @@ class Pool(object):
         if os.path.exists(flag):
             os.remove(flag)
         logfile = open(os.path.join(job['run_dir'], 'worker.log'), 'a')
-        p = subprocess.Popen([PYTHON, os.path.join(LIB, 'experiment_worker.py'),
+        p = subprocess.Popen([PYTHON, '-m', 'swarm_transport.experiment_worker',
                               os.path.join(job['run_dir'], 'job.json')],
                              stdout=logfile, stderr=subprocess.STDOUT)
         self.running.append((p, job, attempt, logfile))
@@ -353,7 +351,7 @@ class BatchPool(object):
 
 
 def experiment_worker_flag():
-    import experiment_worker
+    from swarm_transport import experiment_worker
     return experiment_worker.TICKED_FLAG
 
 
@@ -431,7 +429,7 @@ def cmd_run(a):
     with open(os.path.join(out, 'experiment.json'), 'w') as f:
         json.dump(meta, f, indent=1, sort_keys=True)
 
-    import experiment_report as report
+    from swarm_transport import experiment_report as report
     report.aggregate_dir(out, preset, print_table=True)
     log('')
     for j, r in failed:
