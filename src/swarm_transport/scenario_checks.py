@@ -164,7 +164,7 @@ def _at_a_tick(e, log):
         return e['min_m'] <= d <= e['max_m'], 'robot %d at (%.2f, %.2f) at %s, %.3f m away' % (
             e['robot'], p[0], p[1], when, d)
     ids = sorted(pts)
-    labels = presets.components([pts[i] for i in ids], log.params['local_range_m'])[1]
+    labels = core_metrics.components([pts[i] for i in ids], log.params['local_range_m'])[1]
     own = labels[ids.index(e['robot'])]
     others = len(ids) - 1
     with_it = sum(1 for i, label in zip(ids, labels) if label == own and i != e['robot'])
