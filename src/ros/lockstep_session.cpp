@@ -107,7 +107,18 @@ void LockstepSession::Shutdown() {
   schedule_sub_.shutdown();
 }
 
+void LockstepSession::AddRobot(std::uint16_t id) {
+  barrier_.Add(id);
+  if (started_) joining_.insert(id);
+}
+
+void LockstepSession::RemoveRobot(std::uint16_t id) {
+  barrier_.Remove(id);
+  joining_.erase(id);
+}
+
 void LockstepSession::BeginTick(std::uint64_t tick) {
+  WaitForJoining(tick);
   UpdateLiveness(tick);
   // A phase status relayed now makes its dispatcher event due in this tick's relay.
   WaitForDispatcher(tick);
@@ -171,6 +182,45 @@ void LockstepSession::WaitForStart(const ros::Publisher& positions,
     ros::WallDuration(kIdleS).sleep();
   }
   ROS_INFO("lockstep: %zu robots connected", connected);
+  started_ = true;
+}
+
+void LockstepSession::WaitForJoining(std::uint64_t tick) {
+  // A robot spawned while a process for its id runs (`robot.launch id:=N` started first idles
+  // until the id is listed) is waited for as the robots are at the start, so that it answers
+  // from its first tick in the world whatever the scheduling (issue 11: a new robot flocks
+  // within a tick of appearing). A robot spawned before its process starts stands until the
+  // process connects (UpdateLiveness); directly linked robots answer at once.
+  std::vector<std::uint16_t> awaited;
+  for (std::uint16_t id : joining_) {
+    const RobotLink* link = links_->Find(id);
+    if (link != nullptr && !link->direct && link->answer) awaited.push_back(id);
+  }
+  joining_.clear();
+  TopicNodeCounts graph;
+  if (awaited.empty() || !QueryTopicNodeCounts(&graph)) return;
+  awaited.erase(std::remove_if(awaited.begin(), awaited.end(),
+                               [this, &graph](std::uint16_t id) {
+                                 return graph.Publishers(links_->Find(id)->answer.getTopic()) == 0;
+                               }),
+                awaited.end());
+  const auto connected = [this, &awaited] {
+    for (std::uint16_t id : awaited) {
+      RobotLink* link = links_->Find(id);  // a /kill meanwhile removes it
+      if (link != nullptr && !RobotLinks::Ready(link, kSettleS)) return false;
+    }
+    return true;
+  };
+  const ros::WallTime deadline =
+      ros::WallTime::now() + ros::WallDuration(params_.lockstep_start_timeout_s);
+  while (!connected() && hooks_.running() && ros::WallTime::now() < deadline) {
+    hooks_.spin(kPollS);
+  }
+  if (!connected() && hooks_.running()) {
+    ROS_WARN("lockstep tick %llu: a joining robot's process did not connect within %.1f s; "
+             "it stands until it does", static_cast<unsigned long long>(tick),
+             params_.lockstep_start_timeout_s);
+  }
 }
 
 void LockstepSession::UpdateLiveness(std::uint64_t tick) {

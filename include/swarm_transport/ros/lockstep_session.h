@@ -18,6 +18,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <set>
 #include <utility>
 #include <vector>
 
@@ -61,8 +62,10 @@ class LockstepSession {
   void Inject(const Robot_Continue& msg);
   void Inject(const Update_Object& msg);
   void Inject(const Mission_Event& msg);
-  void AddRobot(std::uint16_t id) { barrier_.Add(id); }
-  void RemoveRobot(std::uint16_t id) { barrier_.Remove(id); }
+  // A robot enters the barrier; after the start, one whose process already runs is waited for
+  // when the next tick begins (see WaitForJoining).
+  void AddRobot(std::uint16_t id);
+  void RemoveRobot(std::uint16_t id);
   bool Live(std::uint16_t id) const { return barrier_.Live(id); }
   std::size_t LiveCount() const { return barrier_.LiveCount(); }
 
@@ -95,6 +98,9 @@ class LockstepSession {
   void NoteStatus(const Mission_Status& status);
   void OnSchedule(const Mission_Schedule::ConstPtr& msg);
   bool RelaysConnected(const ros::Publisher& robot_list) const;
+  // Robots spawned since the last tick whose process already runs (it publishes their answer
+  // topic, idling until listed): waits until they are connected, as at the start.
+  void WaitForJoining(std::uint64_t tick);
   void UpdateLiveness(std::uint64_t tick);
   void WaitForDispatcher(std::uint64_t tick);
   // Once a tick's answers are in: their mission messages, by robot id, into the next relay,
@@ -110,6 +116,8 @@ class LockstepSession {
   MissionRelay relay_;
   std::vector<std::pair<std::uint16_t, Tick_Answer>> answers_;  // not taken yet
   bool finished_ = false;
+  bool started_ = false;             // WaitForStart is done
+  std::set<std::uint16_t> joining_;  // added since the last tick began (after the start)
   std::vector<ros::Subscriber> relay_subs_;
   ros::Subscriber schedule_sub_;
   // The answers' mission messages for observers (robots in lock-step publish no mission topic).
