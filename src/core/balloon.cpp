@@ -78,10 +78,9 @@ std::vector<BalloonContact> BalloonContacts(const Perception& in, const Flocking
     if (d <= kCoincidentM) continue;
     contacts.push_back({d, (at - nearest) * (1.0 / d)});
   }
-  std::stable_sort(contacts.begin(), contacts.end(),
-                   [](const BalloonContact& a, const BalloonContact& b) {
-                     return a.distance_m < b.distance_m;
-                   });
+  std::stable_sort(
+      contacts.begin(), contacts.end(),
+      [](const BalloonContact& a, const BalloonContact& b) { return a.distance_m < b.distance_m; });
   return contacts;
 }
 

@@ -53,7 +53,7 @@ TEST(BalloonTest, ContactsAreHalfwayToRobotsInRangeAndTheBorders) {
   // A robot 1 m to the right touches at 0.5 m; one 3.1 m away is out of range.
   const Perception in = Self(1, {0.5, 1.0}, {At(2, 1.5, 1.0), At(3, 2.95, 2.95)});
   const std::vector<BalloonContact> c = BalloonContacts(in, p);
-  ASSERT_EQ(c.size(), 5u);  // one robot, four borders
+  ASSERT_EQ(c.size(), 5u);                 // one robot, four borders
   EXPECT_DOUBLE_EQ(c[0].distance_m, 0.5);  // the left border and the robot: 0.5 each
   EXPECT_DOUBLE_EQ(c[1].distance_m, 0.5);
   EXPECT_DOUBLE_EQ(c[2].distance_m, 1.0);  // bottom
@@ -86,8 +86,7 @@ TEST(BalloonTest, ARobotInACornerTouchingTwoBordersAndANeighbourStopsGrowing) {
 TEST(BalloonTest, TwoBordersAndANeighbourInALineLeaveAFreeSide) {
   // Left and bottom border and a neighbour straight to the right: up is free.
   const FlockingParams p = Small();
-  const std::vector<BalloonContact> c =
-      BalloonContacts(Self(1, {0.5, 0.5}, {At(2, 1.5, 0.5)}), p);
+  const std::vector<BalloonContact> c = BalloonContacts(Self(1, {0.5, 0.5}, {At(2, 1.5, 0.5)}), p);
   EXPECT_FALSE(BalloonEnclosed(c, 0.51));
   // Its push points away from what it touches: the left border and the neighbour cancel, the
   // bottom border pushes it up.
