@@ -31,8 +31,11 @@ TITLES = {
     'aborted': 'aborted (%)',
     'gathering_swerves': 'swerves while gathering',
     'mission_ticks': 'mission ticks',
+    'coverage_fraction': 'area covered (%)',
+    'nn_spacing_mean_m': 'nearest neighbour (m)',
+    'nn_spacing_cv': 'nearest-neighbour spread (CV)',
 }
-PERCENT = {'path_fraction_attached', 'leader_contact', 'aborted'}   # stored as fractions, shown in %
+PERCENT = {'path_fraction_attached', 'leader_contact', 'aborted', 'coverage_fraction'}   # stored as fractions, shown in %
 PANELS = {   # the metrics drawn as bars, in the thesis's order of diagrams
     'flocking': ['final_swarm_count', 'mean_swarm_count', 'swarm_count_slope_per_h'],
     'leader': ['path_fraction_attached', 'leader_swarm_at_arrival', 'leader_waits'],

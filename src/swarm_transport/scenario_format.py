@@ -45,6 +45,10 @@ EXPECTATIONS = {
     'released': (set(), {}),
     'object_clear_of_zones': ({'mission'}, {'tolerance_m': 0.0}),
     'centroid_near': ({'at_tick', 'x', 'y'}, {'min_m': 0.0, 'max_m': float('inf')}),
+    # Each robot's distance to its nearest other robot at at_tick: every one of them within
+    # [min_nn_m, max_nn_m], and their coefficient of variation (std / mean) at most max_cv.
+    'spacing': ({'at_tick'}, {'min_nn_m': 0.0, 'max_nn_m': float('inf'),
+                              'max_cv': float('inf')}),
     # At a tick: at_tick, or the tick `mission` first reported `state`.
     'robot_near': ({'robot', 'x', 'y'}, {'min_m': 0.0, 'max_m': float('inf'), 'at_tick': None,
                                          'mission': None, 'state': None}),

@@ -52,6 +52,23 @@ class Presets(unittest.TestCase):
             presets.load_preset('no_such_preset')
         self.assertIn('smoke', str(cm.exception))  # it lists what there is
 
+    def test_dispersion_metrics_join_a_preset_whose_table_names_them(self):
+        plain = presets.validate(copy.deepcopy(GOOD), 'good')
+        self.assertEqual(presets.metrics_of(plain), presets.METRICS['flocking'])
+        p = copy.deepcopy(GOOD)
+        p['table'] = ['nn_spacing_cv', 'final_swarm_count', 'coverage_fraction']
+        p = presets.validate(p, 'good')
+        self.assertEqual(presets.metrics_of(p), presets.METRICS['flocking'] +
+                         ['coverage_fraction', 'nn_spacing_cv'])
+        # The shipped balloon preset reports them; a dispersion metric may carry an expectation.
+        balloon = presets.load_preset('balloon_dispersion')
+        self.assertIn('coverage_fraction', presets.metrics_of(balloon))
+        self.assertIn('coverage_fraction', [e['metric'] for e in balloon['expect']])
+        q = copy.deepcopy(GOOD)
+        q['expect'] = [{'metric': 'coverage_fraction', 'trend': 'increasing'}]
+        with self.assertRaises(presets.PresetError):
+            presets.validate(q, 'bad')  # not in its table: not among its metrics
+
     def test_the_thesis_measured_table_is_checked_and_rendered(self):
         from swarm_transport import experiment_report as report
         p = copy.deepcopy(GOOD)

@@ -274,6 +274,18 @@ class Checks(unittest.TestCase):
         self.assertTrue(self.run_check('  - centroid_near: {at_tick: 5, x: 8, y: 8, min_m: 5}\n',
                                        log)[0])
 
+    def test_spacing_bounds_the_nearest_neighbour_distances_and_their_spread(self):
+        # Nearest neighbours 1, 1 and 2 m: mean 4/3, cv sqrt(2/9) / (4/3) = 0.354.
+        log = log_of({5: {0: (1.0, 1.0, 0), 1: (2.0, 1.0, 0), 2: (4.0, 1.0, 0)}})
+        ok, measured = self.run_check('  - spacing: {at_tick: 5, min_nn_m: 0.9, max_nn_m: 2.1}\n',
+                                      log)
+        self.assertTrue(ok, measured)
+        self.assertIn('1.000-2.000 m', measured)
+        self.assertIn('cv 0.3536', measured)
+        for bad in ('{at_tick: 5, min_nn_m: 1.1}', '{at_tick: 5, max_nn_m: 1.9}',
+                    '{at_tick: 5, max_cv: 0.3}', '{at_tick: 6}'):
+            self.assertFalse(self.run_check('  - spacing: %s\n' % bad, log)[0], bad)
+
     def test_robot_near_and_swarm_of_at_a_tick_or_a_state(self):
         # robot 4 leads to (5, 5): at DONE (tick 6) it is 0.1 m from it with robots 0 and 1 in
         # its swarm (hop by hop within 1 m), robot 2 far away; robot 3 has not arrived at tick 2.
