@@ -40,6 +40,9 @@ def parse_args(argv):
                    help='rviz: a line through each robot\'s last K positions (default 0: off)')
     p.add_argument('--range-circles', action='store_true',
                    help='rviz: each robot\'s local range, in its swarm\'s colour')
+    p.add_argument('--bag', default='',
+                   help='record the run with rosbag into this file (swarm.launch record:=true): '
+                   'replay it with replay.launch, or rosbag play it beside rviz')
     p.add_argument('--config', default='', help='extra YAML merged over config/swarm.yaml')
     p.add_argument('--no-mission', action='store_true',
                    help='no transport mission: let the swarm flock for --ticks / --seconds')
@@ -105,6 +108,9 @@ def main(argv):
                 launch_args['rviz_args'] = '--fullscreen'  # nobody sees its panels: all view
         if a.config:
             launch_args['extra_config'] = os.path.abspath(a.config)
+        if a.bag:
+            launch_args['record'] = 'true'
+            launch_args['bag'] = os.path.abspath(a.bag)
         if not a.realtime and a.no_mission:
             launch_args['max_ticks'] = a.ticks
         started = time.time()
