@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <set>
 #include <string>
 #include <thread>
 #include <utility>
@@ -114,6 +115,9 @@ class Simulator : public RobotOutlet {
   ros::WallDuration HoldIfAsked();
   // The scenario's timed events due at this tick (~events_file).
   void ApplyDueEvents();
+  // Lock-step: the statists of the dispatcher's recruiting missions (SPEC 9.4) that stand at
+  // this tick are relayed, those of missions that found their robots no more.
+  void ApplyRecruitStatists();
 
   static volatile std::sig_atomic_t stop_requested_;
 
@@ -157,6 +161,7 @@ class Simulator : public RobotOutlet {
   std::uint64_t tick_ = 0;    // radio rounds so far (lock-step: ticks)
   bool finished_ = false;     // lock-step: max ticks reached, the world is frozen
   ros::WallTime start_wall_;
+  std::set<std::pair<std::uint16_t, std::uint8_t>> recruit_statists_;  // relayed now
   ros::WallTime last_bad_cmd_warning_wall_;  // wall-clock throttles of repeated warnings
   ros::WallTime last_unsolicited_warning_wall_;
 };
