@@ -225,6 +225,7 @@ void Simulator::RunLockstep() {
     if (!Running()) break;
     hold_->BeginTick();
     session_->BeginTick(tick_);
+    ApplyRecruitStatists();
     if (events_) events_->ApplyDue(tick_);
     PublishClock();
     PublishRadio();
@@ -422,6 +423,19 @@ void Simulator::OnCmdVel(std::uint16_t id, const geometry_msgs::Twist& msg) {
   }
   // Real time, or a robot outside the lock-step protocol: the command applies at once.
   if (finite) world_->SetCommand(id, ToVelocity(msg), nullptr);
+}
+
+void Simulator::ApplyRecruitStatists() {
+  std::set<std::pair<std::uint16_t, std::uint8_t>> standing;
+  for (const Robot_Position& statist : session_->RecruitStatists(tick_)) {
+    const auto key = std::make_pair(statist.robot_id, statist.sub_id);
+    standing.insert(key);
+    if (recruit_statists_.count(key) == 0) roster_->relayed().Take(statist);
+  }
+  for (const auto& key : recruit_statists_) {
+    if (standing.count(key) == 0) roster_->relayed().Erase(key.first, key.second);
+  }
+  recruit_statists_ = std::move(standing);
 }
 
 }  // namespace swarm_transport

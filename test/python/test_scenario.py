@@ -53,6 +53,16 @@ class Format(unittest.TestCase):
         self.assertTrue(msg.startswith('bad.yaml:%d: ' % line), msg)
         self.assertIn(words, msg)
 
+    def test_a_recruiting_mission_names_no_robots(self):
+        recruit = MINIMAL.replace('    robots_from: 0\n    robots_to: 4\n', '    recruit: 3\n')
+        m = fmt.parse(recruit, 'r.yaml')['missions'][0]
+        self.assertEqual((m['recruit'], m['robot_ids']), (3, []))
+        self.expect_error(MINIMAL.replace('    robots_from: 0\n', '    recruit: 3\n'
+                                          '    robots_from: 0\n'), 6,
+                          'missions[0].recruit: names no robots')
+        self.expect_error(recruit.replace('leaders: 1', 'leaders: 4'), 7,
+                          'missions[0].leaders: more leaders than recruit')
+
     def test_a_malformed_scenario_names_the_line_and_the_key(self):
         self.expect_error(MINIMAL.replace('max_ticks: 100', 'max_tick: 100'), 3,
                           'max_tick: unknown key')

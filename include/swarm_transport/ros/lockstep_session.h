@@ -25,6 +25,7 @@
 #include "swarm_transport/Mission_Schedule.h"
 #include "swarm_transport/Mission_Status.h"
 #include "swarm_transport/Neighbors.h"
+#include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/New_Mission.h"
 #include "swarm_transport/Tick_Answer.h"
 #include "swarm_transport/core/kinematics.h"
@@ -74,6 +75,9 @@ class LockstepSession {
   void WaitForStart(const ros::Publisher& positions, const ros::Publisher& robot_list);
   // Tick `tick` begins: liveness, then the dispatcher's awaited events and orders.
   void BeginTick(std::uint64_t tick);
+  // Statist as dispatcher (SPEC 9.4): the statists of the dispatcher's recruiting missions that
+  // stand at tick `tick` (from its schedule; the simulator relays them).
+  std::vector<Robot_Position> RecruitStatists(std::uint64_t tick) const;
   // The held orders due by `tick` (they enter this tick's relay; the simulator's books too).
   std::vector<New_Mission> ReleaseOrders(std::uint64_t tick) { return relay_.ReleaseOrders(tick); }
   // Round of tick `tick`: StartRound, then per live robot FillRound, its delivery, Asked;
@@ -120,6 +124,7 @@ class LockstepSession {
   std::set<std::uint16_t> joining_;  // added since the last tick began (after the start)
   std::vector<ros::Subscriber> relay_subs_;
   ros::Subscriber schedule_sub_;
+  std::vector<std::pair<std::uint64_t, Robot_Position>> recruit_statists_;  // (first tick, statist)
   // The answers' mission messages for observers (robots in lock-step publish no mission topic).
   ros::Publisher status_pub_;
   ros::Publisher progress_pub_;

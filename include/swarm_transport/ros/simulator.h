@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <set>
 #include <string>
 #include <thread>
 #include <utility>
@@ -107,6 +108,9 @@ class Simulator : public RobotOutlet {
   void OnCmdVel(std::uint16_t id, const geometry_msgs::Twist& msg);
   // Runs `call` now on the simulator's thread, or queues it for its loop from another one.
   void OnSimulatorThread(std::function<void()> call);
+  // Lock-step: the statists of the dispatcher's recruiting missions (SPEC 9.4) that stand at
+  // this tick are relayed, those of missions that found their robots no more.
+  void ApplyRecruitStatists();
 
   static volatile std::sig_atomic_t stop_requested_;
 
@@ -141,6 +145,7 @@ class Simulator : public RobotOutlet {
   std::uint64_t tick_ = 0;    // radio rounds so far (lock-step: ticks)
   bool finished_ = false;     // lock-step: max ticks reached, the world is frozen
   ros::WallTime start_wall_;
+  std::set<std::pair<std::uint16_t, std::uint8_t>> recruit_statists_;  // relayed now
   ros::WallTime last_bad_cmd_warning_wall_;  // wall-clock throttles of repeated warnings
   ros::WallTime last_unsolicited_warning_wall_;
 };
