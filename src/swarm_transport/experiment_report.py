@@ -174,6 +174,12 @@ def _num(v):
     return '%.3g' % v
 
 
+def high_at_last(ys):
+    """The last value clearly above every other: by more than FLAT_TOLERANCE of the highest
+    of the others."""
+    return len(ys) >= 2 and ys[-1] > (1.0 + FLAT_TOLERANCE) * max(ys[:-1])
+
+
 def trend_lines(preset, summary):
     """One line per expected trend: the measured trimmed means along the settings, their
     direction (Spearman's rank correlation with the settings' order) and whether it agrees
@@ -204,11 +210,14 @@ def trend_lines(preset, summary):
                 got = 'flat'
             else:
                 got = 'increasing' if rho >= 0.5 else 'decreasing' if rho <= -0.5 else 'mixed'
+            if e['trend'] == 'high_at_last' and high_at_last(ys):
+                got = 'high_at_last'
             verdict = 'agrees' if got == e['trend'] else 'differs'
             seq = ' → '.join('%s %s' % (v['label'], _num(_scale(metric, t))) for v, t in pts)
             out.append('%s%s: %s — measured %s (ρ = %+.2f, spread %.0f %%), thesis %s: %s'
                        % ('%s, ' % group if group else '', TITLES.get(metric, metric), seq,
-                          got, rho, 100 * spread, e['trend'], verdict))
+                          got.replace('_', ' '), rho, 100 * spread,
+                          e['trend'].replace('_', ' '), verdict))
     return out
 
 

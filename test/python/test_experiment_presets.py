@@ -69,6 +69,28 @@ class Presets(unittest.TestCase):
         with self.assertRaises(presets.PresetError):
             presets.validate(q, 'bad')  # not in its table: not among its metrics
 
+    def test_high_at_last_needs_the_last_setting_clearly_above_every_other(self):
+        from swarm_transport import experiment_report as report
+        p = presets.load_preset('leader_group_cohesion')
+        names = ['p25_c000', 'p25_c005', 'p25_c010', 'p25_c020', 'p25_c040']
+
+        def line(values):
+            summary = {(n, 'leader_swarm_at_arrival'): {'trimmed_mean': v}
+                       for n, v in zip(names, values)}
+            return [x for x in report.trend_lines(p, summary)
+                    if x.startswith('25 passive, leader swarm')]
+
+        self.assertTrue(report.high_at_last([11.4, 4.55, 9.09, 4.55, 22.7]))
+        self.assertFalse(report.high_at_last([11.4, 4.55, 9.09, 21.0, 22.7]))  # not clearly
+        self.assertFalse(report.high_at_last([22.7, 4.55, 9.09, 4.55, 11.4]))
+        self.assertIn('thesis high at last: agrees', line([11.4, 4.55, 9.09, 4.55, 22.7])[0])
+        self.assertIn('differs', line([11.4, 4.55, 9.09, 21.0, 22.7])[0])
+        self.assertIn('differs', line([25.0, 20.0, 15.0, 10.0, 5.0])[0])
+        bad = copy.deepcopy(GOOD)
+        bad['expect'] = [{'metric': 'final_swarm_count', 'trend': 'upwards'}]
+        with self.assertRaises(presets.PresetError):
+            presets.validate(bad, 'bad')
+
     def test_the_thesis_measured_table_is_checked_and_rendered(self):
         from swarm_transport import experiment_report as report
         p = copy.deepcopy(GOOD)
