@@ -13,9 +13,10 @@ int main(int argc, char** argv) {
   std::signal(SIGTERM, [](int) { swarm_transport::Recorder::RequestStop(); });
   ros::NodeHandle nh;
   ros::NodeHandle private_nh("~");
+  // Before the set-up: a master restart stops the node, even one during its set-up.
+  swarm_transport::MasterWatch watch;
   swarm_transport::Recorder recorder(nh, private_nh);
-  if (!recorder.Initialize()) return 1;
-  swarm_transport::MasterWatch watch;  // a master restart stops the node
+  if (!recorder.Initialize()) return watch.ExitCode(1);
   recorder.Run();
   recorder.Shutdown();
   ros::shutdown();

@@ -8,9 +8,10 @@ int main(int argc, char** argv) {
   ros::init(argc, argv, "robot_host");
   ros::NodeHandle nh;
   ros::NodeHandle private_nh("~");
+  // Before the set-up: a master restart stops the node, even one during its set-up.
+  swarm_transport::MasterWatch watch;
   swarm_transport::RobotHost host(nh, private_nh);
-  if (!host.Initialize()) return 1;
-  swarm_transport::MasterWatch watch;  // a master restart stops the node
+  if (!host.Initialize()) return watch.ExitCode(1);
   host.Spin();
   host.Shutdown();
   return watch.ExitCode(0);

@@ -8,7 +8,12 @@
 - New_Robot (type 0) adds a robot at a free place, Delete_Robot (sub_id 0) removes one; a
   Delete_Robot naming no robot changes nothing, and the good one after it takes effect;
 - a robot process whose id the simulator does not have idles (and says so once) until the id
-  is spawned; then it joins.
+  is spawned; then it joins;
+- a robot process started for a new id (`roslaunch swarm_transport robot.launch id:=N`) joins
+  the running lock-step swarm when the id is spawned beside the others: per tick of
+  /flock/positions it moves in the first or second tick after it first appears there (the
+  bound is argued in dynamic_swarm.test), it is within local range of a neighbour and hears
+  the others, and the next mission naming it ends DONE.
 With all robots in one robot_host (~deploy host_sim or host, either clock): the host starts a
 robot for every robot spawned (/spawn, New_Robot) and removes it when it leaves (/kill,
 Delete_Robot); it moves with the swarm and can be named by the next mission."""
@@ -19,7 +24,7 @@ import unittest
 import rospy
 import rostest
 from swarm_transport.msg import Delete_Robot, New_Mission, New_Robot, Robot_Positions
-from swarm_transport.srv import Kill, Spawn
+from swarm_transport.srv import Hold, Kill, Spawn
 
 import swarm_testing as st
 
@@ -68,13 +73,13 @@ class DynamicSwarm(unittest.TestCase):
             lambda: st.moved(self.log.at(self.log.latest_tick()).get(robot, start), start)
             >= g('moves_m'), self.timeout)
 
-    def lead(self, mission_id, robot):
+    def lead(self, mission_id, robot, target=None):
         """A leader-only mission of `robot` ends DONE (the next mission can name it)."""
         status = st.StatusLog()
         pub = rospy.Publisher('/flock/mission/new', New_Mission, queue_size=10, latch=True)
         self.assertTrue(st.wait_connected(pub, self.timeout))
         pub.publish(st.mission(mission_id, robot, robot + 1, 1, (0.0, 0.0, 0.0, 0.0),
-                               g('lead_target')))
+                               g('lead_target') if target is None else target))
         self.assertTrue(st.wait_for(lambda: status.final(mission_id), self.timeout),
                         'the mission of robot %d did not end: %s'
                         % (robot, status.states(mission_id)))
@@ -153,6 +158,63 @@ class DynamicSwarm(unittest.TestCase):
         leaves.publish(Delete_Robot(robot_id=n + 40, sub_id=0))  # no such robot: nothing
         leaves.publish(Delete_Robot(robot_id=other, sub_id=0))
         self.assertTrue(self.listed(base), self.list.ids)
+
+    def test_a_joining_robot_flocks_from_its_first_ticks(self):
+        if self.deploy != 'process' or not self.lockstep:
+            self.skipTest('a process per robot in lock-step only')
+        base = list(range(g('robots')))
+        self.assertTrue(self.listed(base), self.list.ids)
+        joiner = g('robots') + g('joiner_offset')
+        self.extra.append(st.launch_file('robot.launch', id=joiner, clock='lockstep'))
+        self.assertFalse(st.robot_state(joiner, self.timeout).listed)
+        # Beside a robot of the swarm, half a local range from it towards the arena's centre:
+        # the run holds (~hold) while the place is chosen and the robot spawned, so that the
+        # others do not move on meanwhile (unpaced lock-step runs hundreds of ticks per second).
+        local_range = rospy.get_param('/swarm/local_range_m')
+        centre = rospy.get_param('/swarm/world_size_m') / 2.0
+        hold = rospy.ServiceProxy('/simulator/hold', Hold)
+        hold.wait_for_service(self.timeout)
+        at = None
+        while at is None or hold(tick=at).code != 0:
+            at = self.log.latest_tick() + 50
+        self.assertTrue(st.wait_for(lambda: hold(tick=at).holding, self.timeout), 'never held')
+        self.addCleanup(hold, tick=0)
+        self.assertTrue(self.log.wait_tick(at - 1, self.timeout))
+        near = self.log.at(at - 1)[base[0]]
+        d = st.moved((centre, centre), near)
+        step = 0.5 * local_range / max(d, 1e-9)
+        place = (near[0] + (centre - near[0]) * step, near[1] + (centre - near[1]) * step)
+        spawn = rospy.ServiceProxy('/spawn', Spawn)
+        spawn.wait_for_service(self.timeout)
+        kill = rospy.ServiceProxy('/kill', Kill)
+        self.assertEqual(spawn(robot_id=joiner, x=place[0], y=place[1], theta=0.0).code, 0)
+        self.addCleanup(kill, robot_id=joiner)  # also when an assertion fails: the next tests
+        self.assertEqual(hold(tick=0).code, 0)
+        self.assertTrue(st.wait_for(lambda: any(joiner in self.log.at(k)
+                                                for k in self.log.ticks()), self.timeout),
+                        'robot %d never appeared on /flock/positions' % joiner)
+        first = min(k for k in self.log.ticks() if joiner in self.log.at(k))
+        bound = g('moves_within_ticks')
+        self.assertTrue(self.log.wait_tick(first + g('in_swarm_within_ticks'), self.timeout))
+        track = [self.log.at(k).get(joiner) for k in range(first, first + bound + 1)]
+        self.assertNotIn(None, track, 'a tick of /flock/positions is missing (from %d)' % first)
+        moved = [k for k in range(1, bound + 1)
+                 if st.moved(track[k], track[0]) >= g('tick_move_m')]
+        self.assertTrue(moved, 'robot %d first appeared at tick %d and had not moved by tick %d: '
+                        '%s' % (joiner, first, first + bound, track))
+        # In the others' swarm: within local range of one of them at every tick until then.
+        for k in range(first, first + g('in_swarm_within_ticks') + 1):
+            now = self.log.at(k)
+            gap = min(st.moved(now[joiner], p) for r, p in now.items() if r != joiner)
+            self.assertLessEqual(gap, local_range, 'robot %d is %.2f m from its nearest '
+                                 'neighbour at tick %d (it appeared at tick %d)'
+                                 % (joiner, gap, k, first))
+        state = st.robot_state(joiner, self.timeout)
+        self.assertTrue(state.listed)
+        self.assertGreater(state.ticks, 0)
+        # The next mission can name it.
+        self.lead(33, joiner, [min(max(place[0] + 0.5, 1.0), 2 * centre - 1.0),
+                               min(max(place[1] - 0.5, 1.0), 2 * centre - 1.0)])
 
     def test_a_robot_process_without_a_robot_idles_until_spawned(self):
         if self.deploy != 'process':

@@ -112,11 +112,15 @@ class MasterRestart(unittest.TestCase):
         self.start('roscore', '-p', str(self.port))
         self.core_up()
         restarted = time.monotonic()
+        stopped = st.wait_for(lambda: not any(st.process_alive(p) for p in pids.values()),
+                              g('max_s_to_stop'))
+        launch_log.flush()
+        with open(launch_log.name) as f:
+            text = f.read()
         self.assertTrue(
-            st.wait_for(lambda: not any(st.process_alive(p) for p in pids.values()),
-                        g('max_s_to_stop')),
-            'still running %.0f s after the restart: %s'
-            % (g('max_s_to_stop'), [n for n, p in pids.items() if st.process_alive(p)]))
+            stopped, 'still running %.0f s after the restart: %s; the launch said:\n%s'
+            % (g('max_s_to_stop'), [n for n, p in pids.items() if st.process_alive(p)],
+               text[-4000:]))
         took = time.monotonic() - restarted
         self.assertTrue(st.wait_for(lambda: launch.poll() is not None, 30),
                         'roslaunch ran on without its simulator')

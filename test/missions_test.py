@@ -100,6 +100,42 @@ class Missions(unittest.TestCase):
         self.assertIsNotNone(done, 'mission ended %s' % self.status.states(51))
         self.assertEqual(done.robots_assigned, count)
 
+    def test_a_recruiting_mission_takes_the_first_robots_into_its_object_and_completes(self):
+        """New_Mission.recruit (ext, SPEC 9.4): no robots named; a statist at the object pulls the
+        swarm, the first robot_count idle robots inside the object take the mission."""
+        g = lambda k: rospy.get_param('~recruit/' + k)  # noqa: E731
+        robots, count = g('robots'), g('count')
+        self.start(robots=robots, seed=g('seed'), extra_config=g('extra_config'))
+        obj = (5.5, 5.5, 2.0, 2.0)
+        too_many = st.mission(62, 0, 0, 1, obj, (3.0, 3.0))
+        too_many.robot_count, too_many.recruit = robots + 1, True
+        answer = self.submit(too_many)
+        self.assertNotEqual(answer.code, 0, 'a recruit above the swarm was accepted')
+        self.assertIn('idle', answer.message)
+        outside = st.mission(63, 0, 0, 1, (20.0, 5.5, 2.0, 2.0), (3.0, 3.0))
+        outside.robot_count, outside.recruit = count, True
+        answer = self.submit(outside)
+        self.assertNotEqual(answer.code, 0, 'a recruit outside the arena was accepted')
+        self.assertIn('outside the arena', answer.message)
+        orders = []
+        sub = rospy.Subscriber('/flock/mission/new', New_Mission,
+                               lambda o: orders.append(o) if o.mission_id == 61 else None)
+        m = st.mission(61, 0, 0, g('leaders'), obj, (3.0, 3.0))
+        m.robot_count, m.recruit = count, True
+        answer = self.submit(m)
+        self.assertEqual(answer.code, 0, answer.message)
+        self.assertIn('recruiting', answer.message)
+        self.assertTrue(st.wait_for(lambda: self.status.final(61), self.timeout),
+                        'recruiting mission did not finish: %s' % self.status.states(61))
+        done = self.status.first(61, 5)
+        self.assertIsNotNone(done, 'mission ended %s' % self.status.states(61))
+        self.assertEqual(done.robots_assigned, count)
+        # The dispatcher named the robots only once enough were inside: the order it sent.
+        sub.unregister()
+        self.assertTrue(orders, 'no order of mission 61 was heard')
+        self.assertEqual(len(orders[-1].robot_ids), count)
+        self.assertFalse(orders[-1].recruit)
+
 
 if __name__ == '__main__':
     rospy.init_node('missions_test')

@@ -26,7 +26,8 @@ MISSIONS_HEADER = [
     'slip_per_robot_m', 'distance_per_robot_m', 'leader_waits', 'path_fraction_attached',
     'leader_swarm_at_arrival', 'object_error_m', 'leader_contact']
 RUN_HEADER = ['run_name', 'seed', 'robots', 'ticks', 'sim_time_s', 'samples',
-              'mean_swarm_count', 'final_swarm_count', 'missions_done', 'missions_aborted']
+              'mean_swarm_count', 'final_swarm_count', 'missions_done', 'missions_aborted',
+              'coverage_fraction', 'nn_spacing_mean_m', 'nn_spacing_cv']
 
 
 def read_csv(path):

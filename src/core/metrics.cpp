@@ -111,6 +111,50 @@ std::size_t SwarmComponents::LargestSwarm() const {
   return sizes_.empty() ? 0 : *std::max_element(sizes_.begin(), sizes_.end());
 }
 
+Dispersion DispersionOf(const std::vector<Vec2>& positions, double world_size_m,
+                        double cover_radius_m, double cell_m) {
+  Dispersion d;
+  d.nn_mean_m = std::numeric_limits<double>::quiet_NaN();
+  d.nn_cv = d.nn_mean_m;
+  std::vector<Vec2> at;
+  for (const Vec2& p : positions) {
+    if (std::isfinite(p.x) && std::isfinite(p.y)) at.push_back(p);
+  }
+  if (!(world_size_m > 0.0) || !(cell_m > 0.0) || !std::isfinite(world_size_m)) return d;
+  // Every robot marks the cells around it: N x (2 r / cell)^2 tests, not N x cells.
+  const long cells = std::max(1L, static_cast<long>(std::ceil(world_size_m / cell_m - 1e-9)));
+  std::vector<char> covered(static_cast<std::size_t>(cells * cells), 0);
+  const auto cell_of = [&](double v) {
+    return std::clamp(static_cast<long>(std::floor(v / cell_m)), 0L, cells - 1);
+  };
+  for (const Vec2& p : at) {
+    for (long i = cell_of(p.x - cover_radius_m); i <= cell_of(p.x + cover_radius_m); ++i) {
+      for (long j = cell_of(p.y - cover_radius_m); j <= cell_of(p.y + cover_radius_m); ++j) {
+        const Vec2 centre{(i + 0.5) * cell_m, (j + 0.5) * cell_m};
+        if (!FartherThan(p, centre, cover_radius_m)) covered[i * cells + j] = 1;
+      }
+    }
+  }
+  d.coverage_fraction = static_cast<double>(std::count(covered.begin(), covered.end(), 1)) /
+                        static_cast<double>(covered.size());
+  if (at.size() < 2) return d;
+  std::vector<double> nearest(at.size(), std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < at.size(); ++i) {
+    for (std::size_t j = i + 1; j < at.size(); ++j) {
+      const double gap = Distance(at[i], at[j]);
+      nearest[i] = std::min(nearest[i], gap);
+      nearest[j] = std::min(nearest[j], gap);
+    }
+  }
+  const double mean = Mean(nearest);
+  double squares = 0.0;
+  for (const double v : nearest) squares += (v - mean) * (v - mean);
+  d.nn_mean_m = mean;
+  d.nn_cv = mean > 0.0 ? std::sqrt(squares / static_cast<double>(nearest.size())) / mean
+                       : std::numeric_limits<double>::quiet_NaN();
+  return d;
+}
+
 double Mean(const std::vector<double>& values) { return MeanOfRange(values.begin(), values.end()); }
 
 double Median(std::vector<double> values) {

@@ -82,6 +82,8 @@ std::string ValidateMission(const MissionSpec& m, const MissionContext& ctx) {
   const std::vector<std::uint16_t> assigned = m.Assigned();
   if (!m.all_finite) {
     os << "a field is not a finite number (NaN or inf)";
+  } else if (m.recruit) {
+    os << "recruit needs the mission dispatcher to gather the robots with a statist";
   } else if (m.robot_count > 0 && (!m.robot_ids.empty() || m.range_from < m.range_to)) {
     os << "robot_count " << m.robot_count
        << " is given besides a robot range or robot_ids (give one of them)";

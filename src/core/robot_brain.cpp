@@ -33,7 +33,11 @@ std::string BadRange(const char* what, std::uint16_t from, std::uint16_t to) {
 }  // namespace
 
 RobotBrain::RobotBrain(std::uint16_t id, const SwarmConfig& config)
-    : id_(id), params_(config), rng_(config.seed, id), agent_(id, MissionParams(config)) {}
+    : id_(id),
+      params_(config),
+      rng_(config.seed, id),
+      agent_(id, MissionParams(config)),
+      balloon_radius_m_(config.flocking.robot_radius_m) {}
 
 std::string RobotBrain::OnFreeze(std::uint16_t from, std::uint16_t to) {
   if (from >= to) return BadRange("Robot_Freeze", from, to);
@@ -127,6 +131,10 @@ BrainTick RobotBrain::Tick(Perception in, std::uint64_t tick, bool publish) {
   last_plan_ = plan;
 
   const double dt = params_.tick_period_s;
+  const bool balloon = params_.standby == StandbyMode::kBalloon && !plan.active &&
+                       !plan.carry && !plan.lead;
+  // A balloon grows anew each time its robot returns to standby.
+  if (!balloon) balloon_radius_m_ = params_.flocking.robot_radius_m;
   if (plan.carry) {
     out.move = CarryStep(in, params_.flocking, params_.transport, *plan.carry, rng_, dt);
   } else if (plan.lead) {
@@ -155,6 +163,9 @@ BrainTick RobotBrain::Tick(Perception in, std::uint64_t tick, bool publish) {
     out.move = AvoidCollisions(in, params_.flocking, desired, dt);
     out.move.fleeing = fleeing;
     out.move.neighbours_in_range = neighbourhood_size;
+  } else if (balloon) {
+    // Balloon dispersion (SPEC 9.5): on no mission, it spreads over the arena.
+    out.move = BalloonStep(in, params_.flocking, params_.balloon, rng_, dt, &balloon_radius_m_);
   } else {
     out.move = FlockingStep(in, params_.flocking, rng_, dt);
   }

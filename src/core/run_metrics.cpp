@@ -44,7 +44,7 @@ const char RunMetrics::kMissionsHeader[] =
     "object_error_m,leader_contact";
 const char RunMetrics::kRunHeader[] =
     "run_name,seed,robots,ticks,sim_time_s,samples,mean_swarm_count,final_swarm_count,"
-    "missions_done,missions_aborted";
+    "missions_done,missions_aborted,coverage_fraction,nn_spacing_mean_m,nn_spacing_cv";
 
 long MetricsFrame::IndexOf(std::uint16_t id) const {
   const auto it = std::lower_bound(ids.begin(), ids.end(), id);
@@ -390,18 +390,23 @@ std::string RunMetrics::RunRow(const std::string& run_name, std::int64_t seed) c
   std::size_t final_count = 0;
   std::uint64_t ticks = 0;
   double sim_time_s = 0.0;
+  std::optional<Dispersion> spread;
   if (!history_.empty()) {
     const MetricsFrame& last = history_.back();
     robots = last.positions.size();
     ticks = last.tick;
     sim_time_s = last.sim_time_s;
     final_count = SwarmComponents(last.positions, params_.local_range_m).SwarmCount();
+    spread = DispersionOf(last.positions, params_.world_size_m, params_.coverage_radius_m,
+                          params_.coverage_cell_m);
   }
   std::ostringstream row;
   row << run_name << "," << seed << "," << robots << "," << ticks << "," << Num(sim_time_s) << ","
       << samples_ << ","
       << (samples_ > 0 ? Num(swarm_count_sum_ / static_cast<double>(samples_)) : "") << ","
-      << final_count << "," << missions_done_ << "," << missions_aborted_;
+      << final_count << "," << missions_done_ << "," << missions_aborted_ << ","
+      << (spread ? Num(spread->coverage_fraction) : "") << ","
+      << (spread ? Num(spread->nn_mean_m) : "") << "," << (spread ? Num(spread->nn_cv) : "");
   return row.str();
 }
 

@@ -34,6 +34,8 @@ std::string SwarmConfig::Validate() const {
   if (!e.empty()) return e;
   e = transport.Validate();
   if (!e.empty()) return e;
+  e = balloon.Validate();
+  if (!e.empty()) return e;
   std::ostringstream os;
   if (!(tick_period_s > 0.0) || !std::isfinite(tick_period_s)) {
     os << "tick_period_s must be > 0 but is " << tick_period_s;

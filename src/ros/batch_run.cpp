@@ -320,6 +320,7 @@ bool Run::SetUp(const XmlRpc::XmlRpcValue& base_config, std::string* error) {
   metrics.local_range_m = config_.flocking.local_range_m;
   metrics.goal_tolerance_m = config_.leader.goal_tolerance_m;
   metrics.sample_period_s = kSamplePeriodS;
+  metrics.world_size_m = config_.flocking.world_size_m;
   metrics_ = std::make_unique<core::RunMetrics>(
       metrics, [this](core::RunMetrics::Level level, const std::string& text) {
         if (level == core::RunMetrics::Level::kWarn && logged_warnings_++ < 20) {

@@ -81,6 +81,7 @@ core::MissionSpec ToMissionSpec(const New_Mission& msg) {
   spec.target = {msg.target_x, msg.target_y};
   spec.transport_mode = msg.transport_mode;
   spec.robot_count = msg.robot_count;
+  spec.recruit = msg.recruit;
   spec.all_finite = std::isfinite(msg.object_position_x) && std::isfinite(msg.object_position_y) &&
                     std::isfinite(msg.object_size_x) && std::isfinite(msg.object_size_y) &&
                     std::isfinite(msg.target_x) && std::isfinite(msg.target_y);
@@ -103,6 +104,7 @@ New_Mission ToNewMission(const core::MissionSpec& spec) {
   msg.target_y = static_cast<float>(spec.target.y);
   msg.transport_mode = spec.transport_mode;
   msg.robot_count = spec.robot_count;
+  msg.recruit = spec.recruit;
   return msg;
 }
 

@@ -5,6 +5,8 @@
 #include <set>
 #include <sstream>
 
+#include "swarm_transport/core/recruit.h"
+
 namespace swarm_transport {
 namespace {
 
@@ -42,9 +44,9 @@ bool AsNumbers(XmlRpcValue& v, int n, std::vector<double>* out) {
 // Reads one missions-file entry; `error` says which key is wrong.
 bool MissionFromXmlRpc(XmlRpcValue& e, core::MissionSpec* spec, std::uint64_t* at_tick,
                        std::string* error) {
-  static const std::set<std::string> kKeys = {"id",     "robots_from", "robots_to",
-                                              "robot_ids", "leaders", "object",
-                                              "target", "mode",        "at_tick"};
+  static const std::set<std::string> kKeys = {"id",      "robots_from", "robots_to", "robot_ids",
+                                              "leaders", "object",      "target",    "mode",
+                                              "at_tick", "recruit"};
   if (e.getType() != XmlRpcValue::TypeStruct) {
     *error = "must be a dictionary";
     return false;
@@ -53,7 +55,7 @@ bool MissionFromXmlRpc(XmlRpcValue& e, core::MissionSpec* spec, std::uint64_t* a
     if (kKeys.count(kv.first) == 0) {
       *error = "unknown key '" + kv.first +
                "' (known: id, robots_from, robots_to, robot_ids, leaders, object, target, mode, "
-               "at_tick)";
+               "at_tick, recruit)";
       return false;
     }
   }
@@ -67,8 +69,23 @@ bool MissionFromXmlRpc(XmlRpcValue& e, core::MissionSpec* spec, std::uint64_t* a
     m.id = static_cast<std::uint16_t>(value);
   }
   const bool has_range = e.hasMember("robots_from") || e.hasMember("robots_to");
-  if (has_range == e.hasMember("robot_ids")) {
-    *error = "give either robots_from and robots_to (half-open range) or robot_ids (a list)";
+  const bool recruit = e.hasMember("recruit");
+  if (recruit) {
+    // Statist as dispatcher (SPEC 9.4): no robots named, the first N to enter the object.
+    if (!AsInt(e["recruit"], 1, 65535, &value)) {
+      *error = "'recruit' must be an integer in [1, 65535] (how many robots the statist gathers)";
+      return false;
+    }
+    if (has_range || e.hasMember("robot_ids")) {
+      *error = "'recruit' names no robots: give it without robots_from, robots_to or robot_ids";
+      return false;
+    }
+    m.recruit = true;
+    m.robot_count = static_cast<std::uint16_t>(value);
+  } else if (has_range == e.hasMember("robot_ids")) {
+    *error =
+        "give either robots_from and robots_to (half-open range), robot_ids (a list) or recruit "
+        "(a count)";
     return false;
   }
   if (has_range) {
@@ -80,7 +97,7 @@ bool MissionFromXmlRpc(XmlRpcValue& e, core::MissionSpec* spec, std::uint64_t* a
     }
     m.range_from = static_cast<std::uint16_t>(from);
     m.range_to = static_cast<std::uint16_t>(to);
-  } else {
+  } else if (!recruit) {
     XmlRpcValue& ids = e["robot_ids"];
     if (ids.getType() != XmlRpcValue::TypeArray || ids.size() == 0) {
       *error = "'robot_ids' must be a non-empty list of robot ids";
@@ -202,7 +219,15 @@ bool ReadMissionsFile(const std::string& path, double world_size_m,
   context.world_size_m = world_size_m;
   for (std::size_t i = 0; i < read.size(); ++i) {
     const core::MissionSpec& m = read[i];
-    std::string reason = core::ValidateMission(m, context);
+    std::string reason;
+    if (m.recruit) {
+      // The robots are not known yet: the count is checked against the idle ones at its start.
+      std::set<std::uint16_t> any;
+      for (std::uint16_t id = 0; id < m.robot_count; ++id) any.insert(id);
+      reason = core::ValidateRecruit(m, any, context);
+    } else {
+      reason = core::ValidateMission(m, context);
+    }
     if (context.live_missions.count(m.id) > 0) {
       reason = "id " + std::to_string(m.id) + " appears twice in the file";
     }

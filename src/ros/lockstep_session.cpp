@@ -107,7 +107,18 @@ void LockstepSession::Shutdown() {
   schedule_sub_.shutdown();
 }
 
+void LockstepSession::AddRobot(std::uint16_t id) {
+  barrier_.Add(id);
+  if (started_) joining_.insert(id);
+}
+
+void LockstepSession::RemoveRobot(std::uint16_t id) {
+  barrier_.Remove(id);
+  joining_.erase(id);
+}
+
 void LockstepSession::BeginTick(std::uint64_t tick) {
+  WaitForJoining(tick);
   UpdateLiveness(tick);
   // A phase status relayed now makes its dispatcher event due in this tick's relay.
   WaitForDispatcher(tick);
@@ -171,6 +182,45 @@ void LockstepSession::WaitForStart(const ros::Publisher& positions,
     ros::WallDuration(kIdleS).sleep();
   }
   ROS_INFO("lockstep: %zu robots connected", connected);
+  started_ = true;
+}
+
+void LockstepSession::WaitForJoining(std::uint64_t tick) {
+  // A robot spawned while a process for its id runs (`robot.launch id:=N` started first idles
+  // until the id is listed) is waited for as the robots are at the start, so that it answers
+  // from its first tick in the world whatever the scheduling (issue 11: a new robot flocks
+  // within a tick of appearing). A robot spawned before its process starts stands until the
+  // process connects (UpdateLiveness); directly linked robots answer at once.
+  std::vector<std::uint16_t> awaited;
+  for (std::uint16_t id : joining_) {
+    const RobotLink* link = links_->Find(id);
+    if (link != nullptr && !link->direct && link->answer) awaited.push_back(id);
+  }
+  joining_.clear();
+  TopicNodeCounts graph;
+  if (awaited.empty() || !QueryTopicNodeCounts(&graph)) return;
+  awaited.erase(std::remove_if(awaited.begin(), awaited.end(),
+                               [this, &graph](std::uint16_t id) {
+                                 return graph.Publishers(links_->Find(id)->answer.getTopic()) == 0;
+                               }),
+                awaited.end());
+  const auto connected = [this, &awaited] {
+    for (std::uint16_t id : awaited) {
+      RobotLink* link = links_->Find(id);  // a /kill meanwhile removes it
+      if (link != nullptr && !RobotLinks::Ready(link, kSettleS)) return false;
+    }
+    return true;
+  };
+  const ros::WallTime deadline =
+      ros::WallTime::now() + ros::WallDuration(params_.lockstep_start_timeout_s);
+  while (!connected() && hooks_.running() && ros::WallTime::now() < deadline) {
+    hooks_.spin(kPollS);
+  }
+  if (!connected() && hooks_.running()) {
+    ROS_WARN("lockstep tick %llu: a joining robot's process did not connect within %.1f s; "
+             "it stands until it does", static_cast<unsigned long long>(tick),
+             params_.lockstep_start_timeout_s);
+  }
 }
 
 void LockstepSession::UpdateLiveness(std::uint64_t tick) {
@@ -278,7 +328,8 @@ void LockstepSession::NoteStatus(const Mission_Status& status) {
 
 void LockstepSession::WaitForDispatcher(std::uint64_t tick) {
   const auto holding = [this, tick] {
-    return barrier_.EventsAwaited() || barrier_.OrdersMissing(tick);
+    return barrier_.EventsAwaited() || barrier_.OrdersMissing(tick) ||
+           barrier_.RecruitsUnchecked(tick);
   };
   if (!holding()) return;
   // An order or the schedule is due once per run and may wait for the dispatcher's listeners:
@@ -300,6 +351,13 @@ void LockstepSession::WaitForDispatcher(std::uint64_t tick) {
              "%.2f s; not waiting for it any longer", static_cast<unsigned long long>(tick), id,
              timeout_s);
   }
+  if (barrier_.RecruitsUnchecked(tick)) {
+    ROS_WARN("lockstep tick %llu: the dispatcher did not watch tick %llu for its recruiting "
+             "missions within %.2f s; not waiting for it at this tick",
+             static_cast<unsigned long long>(tick), static_cast<unsigned long long>(tick - 1),
+             timeout_s);
+    barrier_.GiveUpRecruits(tick);
+  }
   for (const auto& key : barrier_.GiveUpEvents()) {
     ROS_WARN("lockstep tick %llu: no %s for mission %u from the dispatcher within %.2f s; "
              "not waiting for it any longer",
@@ -313,6 +371,33 @@ void LockstepSession::OnSchedule(const Mission_Schedule::ConstPtr& msg) {
   const std::size_t n = std::min(msg->mission_ids.size(), msg->start_ticks.size());
   for (std::size_t i = 0; i < n; ++i) orders.emplace_back(msg->mission_ids[i], msg->start_ticks[i]);
   barrier_.OnSchedule(orders);
+  // The recruiting missions (SPEC 9.4): the whole list each time, with their statists.
+  std::vector<std::pair<std::uint16_t, std::uint64_t>> recruiting;
+  recruit_statists_.clear();
+  const std::size_t r = std::min({msg->recruiting.size(), msg->recruit_start_ticks.size(),
+                                  msg->statist_x.size(), msg->statist_y.size(),
+                                  msg->statist_ids.size(), msg->statist_copies.size()});
+  for (std::size_t i = 0; i < r; ++i) {
+    recruiting.emplace_back(msg->recruiting[i], msg->recruit_start_ticks[i]);
+    Robot_Position statist;
+    statist.robot_id = msg->statist_ids[i];
+    statist.type = Robot_Position::TYPE_STATIST;
+    statist.pos_x = msg->statist_x[i];
+    statist.pos_y = msg->statist_y[i];
+    for (int copy = 0; copy < msg->statist_copies[i]; ++copy) {
+      statist.sub_id = static_cast<std::uint8_t>(copy);
+      recruit_statists_.emplace_back(msg->recruit_start_ticks[i], statist);
+    }
+  }
+  barrier_.OnRecruits(msg->checked_tick, recruiting);
+}
+
+std::vector<Robot_Position> LockstepSession::RecruitStatists(std::uint64_t tick) const {
+  std::vector<Robot_Position> standing;
+  for (const auto& s : recruit_statists_) {
+    if (s.first <= tick) standing.push_back(s.second);
+  }
+  return standing;
 }
 
 

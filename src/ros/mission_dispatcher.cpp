@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "swarm_transport/Delete_Object.h"
+#include "swarm_transport/Delete_Robot.h"
 #include "swarm_transport/Mission_Event.h"
 #include "swarm_transport/Mission_Schedule.h"
 #include "swarm_transport/Robot_Position.h"
@@ -27,6 +28,11 @@ constexpr double kListenerWaitS = 1.0;
 constexpr std::uint32_t kOrderQueue = 256;
 constexpr double kSilentWallGraceS = 1.0;
 constexpr double kListenerPollS = 0.005;
+// At most this many missions recruit at once: each has a statist of its own (ids 65535 down).
+constexpr std::size_t kMaxRecruiting = 256;
+// A recruit's statist counts this many times in every centroid (stacked copies, thesis 5.5.3):
+// one would weigh as little as one robot of a neighbourhood (statist_pull uses 3 as well).
+constexpr int kRecruitStatistCopies = 3;
 
 const char* EventName(core::MissionEventKind kind) {
   return kind == core::MissionEventKind::kLoaded ? "LOADED" : "UNLOADED";
@@ -59,7 +65,13 @@ bool MissionDispatcher::Initialize() {
   event_pub_ = nh_.advertise<Mission_Event>(names::kMissionEvent, 10);
   delete_pub_ = nh_.advertise<Delete_Object>(names::kObjectDelete, 10);
   lockstep_ = ros::Time::isSimTime();
-  if (lockstep_) schedule_pub_ = nh_.advertise<Mission_Schedule>(names::kMissionSchedule, 1, true);
+  // Lock-step: published again at every tick a mission recruits (SPEC 9.4); none may be lost.
+  if (lockstep_) {
+    schedule_pub_ = nh_.advertise<Mission_Schedule>(names::kMissionSchedule, 100, true);
+  } else {
+    statist_pub_ = nh_.advertise<Robot_Position>(names::kPosition, 10);
+    statist_delete_pub_ = nh_.advertise<Delete_Robot>(names::kRobotDelete, 10);
+  }
   positions_sub_ = nh_.subscribe(names::kPositions, 1, &MissionDispatcher::OnPositions, this);
   new_sub_ = nh_.subscribe(names::kMissionNew, 100, &MissionDispatcher::OnNewMission, this);
   status_sub_ = nh_.subscribe(names::kMissionStatus, 100, &MissionDispatcher::OnStatus, this);
@@ -172,6 +184,7 @@ core::MissionBook::Verdict MissionDispatcher::Submit(core::MissionSpec spec,
                                                      const std::string& source, bool auto_id,
                                                      bool publish, std::uint64_t start_tick,
                                                      const std::set<std::uint16_t>& robots) {
+  if (spec.recruit) return StartRecruit(std::move(spec), source, auto_id, start_tick);
   if (spec.robot_count > 0 && spec.robot_ids.empty() && spec.range_from >= spec.range_to) {
     // A count-only order: the robots are picked by the selection matrix (SPEC 9.10); the order
     // goes out with their ids. Nothing is picked from a swarm the dispatcher has not heard yet.
@@ -222,6 +235,129 @@ core::MissionBook::Verdict MissionDispatcher::Submit(core::MissionSpec spec,
   return verdict;
 }
 
+core::MissionBook::Verdict MissionDispatcher::StartRecruit(core::MissionSpec spec,
+                                                           const std::string& source, bool auto_id,
+                                                           std::uint64_t start_tick) {
+  if (auto_id && spec.id == 0) {
+    do {
+      spec.id = book_->NextFreeId();
+    } while (recruiting_.count(spec.id) > 0);
+  }
+  std::map<std::uint16_t, core::PlannerRobot> idle_robots = IdleRobots();
+  std::set<std::uint16_t> idle;
+  for (const auto& kv : idle_robots) idle.insert(kv.first);
+  core::MissionContext context = book_->Context(KnownRobots());
+  for (const auto& kv : recruiting_) context.live_missions.insert(kv.first);
+  std::string why = core::ValidateRecruit(spec, idle, context);
+  if (why.empty() && recruiting_.size() >= kMaxRecruiting) {
+    why = "already " + std::to_string(kMaxRecruiting) + " missions recruit";
+  }
+  if (why.empty() &&
+      book_->LiveCount() + static_cast<int>(recruiting_.size()) >= options_.max_live_missions) {
+    why = "already " + std::to_string(options_.max_live_missions) + " live missions";
+  }
+  core::MissionBook::Verdict verdict;
+  verdict.id = spec.id;
+  verdict.spec = spec;
+  if (!why.empty()) {
+    verdict.reason = why;
+    verdict.message = "mission " + std::to_string(spec.id) + " rejected: " + why;
+    ROS_WARN("%s: rejected mission %u from %s: %s", kNode, spec.id, source.c_str(), why.c_str());
+    PublishStatus(spec, MissionPhase::kRejected, why);
+    return verdict;
+  }
+  std::set<std::uint16_t> statists_used;
+  for (const auto& kv : recruiting_) statists_used.insert(kv.second.statist_id);
+  std::uint16_t statist_id = Mission_Schedule::RECRUIT_STATIST_ID;
+  while (statists_used.count(statist_id) > 0) --statist_id;
+  Recruiting r{spec, core::RecruitWatch(spec), source, 0, statist_id};
+  const std::uint64_t now_tick = positions_ ? positions_->tick : 0;
+  r.start_tick = start_tick > now_tick ? start_tick : now_tick + 1;
+  recruiting_.emplace(spec.id, r);
+  verdict.accepted = true;
+  verdict.message = "mission " + std::to_string(spec.id) + " recruiting: a statist at (" +
+                    std::to_string(spec.object_centre.x) + ", " +
+                    std::to_string(spec.object_centre.y) + ") gathers " +
+                    std::to_string(spec.robot_count) + " robots";
+  if (lockstep_) {
+    // The simulator places the statist from the schedule at its start tick (the file missions'
+    // schedule carries it at the first positions).
+    if (file_missions_scheduled_) PublishRecruitSchedule(now_tick, {});
+  } else {
+    Robot_Position statist;
+    statist.robot_id = statist_id;
+    statist.type = Robot_Position::TYPE_STATIST;
+    statist.pos_x = static_cast<float>(spec.object_centre.x);
+    statist.pos_y = static_cast<float>(spec.object_centre.y);
+    for (int copy = 0; copy < kRecruitStatistCopies; ++copy) {
+      statist.sub_id = static_cast<std::uint8_t>(copy);
+      statist_pub_.publish(statist);
+    }
+  }
+  ROS_INFO("%s: mission %u from %s recruits %u robots with a statist at (%.3f, %.3f)%s", kNode,
+           spec.id, source.c_str(), spec.robot_count, spec.object_centre.x, spec.object_centre.y,
+           lockstep_ ? (" from tick " + std::to_string(r.start_tick)).c_str() : "");
+  return verdict;
+}
+
+void MissionDispatcher::PublishRecruitSchedule(
+    std::uint64_t checked_tick, const std::vector<std::pair<std::uint16_t, std::uint64_t>>& due) {
+  Mission_Schedule schedule;
+  for (const auto& order : due) {
+    schedule.mission_ids.push_back(order.first);
+    schedule.start_ticks.push_back(order.second);
+  }
+  schedule.checked_tick = checked_tick;
+  for (const auto& kv : recruiting_) {
+    schedule.recruiting.push_back(kv.first);
+    schedule.recruit_start_ticks.push_back(kv.second.start_tick);
+    schedule.statist_x.push_back(static_cast<float>(kv.second.spec.object_centre.x));
+    schedule.statist_y.push_back(static_cast<float>(kv.second.spec.object_centre.y));
+    schedule.statist_ids.push_back(kv.second.statist_id);
+    schedule.statist_copies.push_back(kRecruitStatistCopies);
+  }
+  schedule_pub_.publish(schedule);
+}
+
+void MissionDispatcher::WatchRecruits(const Robot_Positions& positions) {
+  if (recruiting_.empty()) return;
+  std::map<std::uint16_t, core::Vec2> idle;
+  for (const auto& kv : IdleRobots()) idle[kv.first] = kv.second.position;
+  std::vector<std::pair<std::uint16_t, std::uint64_t>> due;
+  for (auto it = recruiting_.begin(); it != recruiting_.end();) {
+    Recruiting& r = it->second;
+    // Lock-step: its statist stands from its start tick; the robots before it are not watched.
+    if ((lockstep_ && positions.tick < r.start_tick) || !r.watch.Observe(idle)) {
+      ++it;
+      continue;
+    }
+    const std::vector<std::uint16_t> recruits = r.watch.Recruits();
+    for (std::uint16_t id : recruits) idle.erase(id);  // not for another recruit of this tick
+    core::MissionSpec order = core::RecruitedOrder(r.spec, recruits);
+    std::ostringstream first;
+    for (std::size_t i = 0; i < recruits.size(); ++i) first << (i ? "," : "") << recruits[i];
+    ROS_INFO("%s: mission %u: %zu robots inside its object at tick %llu (first in: %s); its "
+             "statist is deleted", kNode, order.id, recruits.size(),
+             static_cast<unsigned long long>(positions.tick), first.str().c_str());
+    if (!lockstep_) {
+      Delete_Robot gone;
+      gone.robot_id = r.statist_id;
+      for (int copy = 0; copy < kRecruitStatistCopies; ++copy) {
+        gone.sub_id = static_cast<std::uint8_t>(copy);
+        statist_delete_pub_.publish(gone);
+      }
+    }
+    const std::string source = r.source;
+    it = recruiting_.erase(it);
+    // The robots take the order at the next tick (lock-step), entering GATHERING inside the
+    // object; they freeze for LOADING as in every mission.
+    const std::uint64_t start = lockstep_ ? positions.tick + 1 : 0;
+    const core::MissionBook::Verdict verdict = Submit(order, source, false, true, start);
+    if (verdict.accepted && lockstep_) due.emplace_back(verdict.id, start);
+  }
+  if (lockstep_) PublishRecruitSchedule(positions.tick, due);
+}
+
 void MissionDispatcher::SubmitFileMissions(std::uint64_t at_tick) {
   for (std::size_t i = 0; i < file_missions_.size(); ++i) {
     if (file_ticks_[i] == at_tick) Submit(file_missions_[i], "missions_file", true, true);
@@ -242,14 +378,19 @@ void MissionDispatcher::ScheduleFileMissions(std::uint64_t tick) {
     const core::MissionBook::Verdict verdict =
         Submit(file_missions_[i], "missions_file", true, true, start,
                RobotsAt(KnownRobots(), options_.events, start));
-    if (!verdict.accepted) continue;
+    if (!verdict.accepted || recruiting_.count(verdict.id) > 0) continue;  // a recruit: below
     schedule.mission_ids.push_back(verdict.id);
     schedule.start_ticks.push_back(start);
     ROS_INFO("%s: file mission %u enters the run at tick %llu", kNode, verdict.id,
              static_cast<unsigned long long>(start));
   }
   file_missions_.clear();
-  schedule_pub_.publish(schedule);
+  // With the recruiting file missions and their statists (SPEC 9.4).
+  std::vector<std::pair<std::uint16_t, std::uint64_t>> due;
+  for (std::size_t i = 0; i < schedule.mission_ids.size(); ++i) {
+    due.emplace_back(schedule.mission_ids[i], schedule.start_ticks[i]);
+  }
+  PublishRecruitSchedule(tick, due);
 }
 
 void MissionDispatcher::OnPositions(const Robot_Positions::ConstPtr& msg) {
@@ -257,11 +398,13 @@ void MissionDispatcher::OnPositions(const Robot_Positions::ConstPtr& msg) {
   if (lockstep_) {
     // Even without a file: a lock-step simulator holds tick 1 for the schedule.
     if (!file_missions_scheduled_) {
-      file_missions_scheduled_ = true;
       ScheduleFileMissions(msg->tick);
+      file_missions_scheduled_ = true;
     }
+    WatchRecruits(*msg);
     return;
   }
+  WatchRecruits(*msg);
   if (file_missions_scheduled_ || file_missions_.empty()) return;
   file_missions_scheduled_ = true;
   // Each group of file missions after its at_tick's worth of time (0: start_delay_s).

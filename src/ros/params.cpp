@@ -191,7 +191,10 @@ bool ConfigFromXmlRpc(XmlRpc::XmlRpcValue& dict, SwarmConfig* config, std::strin
             ReadBool(dict, "leaders_face_course", &c.transport.leaders_face_course, error) &&
             ReadBool(dict, "gather_one_chain", &c.transport.gather_one_chain, error) &&
             ReadDouble(dict, "formation_speed_fraction", &c.transport.formation_speed_fraction,
-                       error);
+                       error) &&
+            ReadChoice(dict, "standby", "flock or balloon", &c.standby, error,
+                       core::ParseStandbyMode) &&
+            ReadDouble(dict, "balloon_growth_m_per_tick", &c.balloon.growth_m_per_tick, error);
   if (!ok) return false;
   if (seed < 0) {
     *error = "parameter 'seed' must be >= 0";

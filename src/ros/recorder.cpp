@@ -142,6 +142,7 @@ bool Recorder::Initialize() {
     metrics.local_range_m = params_.swarm.flocking.local_range_m;
     metrics.goal_tolerance_m = params_.swarm.leader.goal_tolerance_m;
     metrics.sample_period_s = params_.sample_period_s;
+    metrics.world_size_m = params_.swarm.flocking.world_size_m;
     metrics_.emplace(metrics, [](RunMetrics::Level level, const std::string& text) {
       if (level == RunMetrics::Level::kWarn) {
         ROS_WARN("%s: %s", kNode, text.c_str());

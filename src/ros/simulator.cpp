@@ -55,13 +55,12 @@ bool Simulator::Initialize() {
                                  &params_.robots, world_.get(), &error);
     if (!ok && error.empty()) error = "the initial robots do not fit the arena";
   }
+  std::vector<TimedEvent> events;
   if (ok && !params_.events_file.empty()) {
-    std::vector<TimedEvent> events;
     ok = ReadEventsFile(params_.events_file, &events, &error);
     if (ok) {
       ROS_INFO("simulator: %zu timed event(s) from %s", events.size(),
                params_.events_file.c_str());
-      events_ = std::make_unique<EventSchedule>(std::move(events));
     } else {
       error = "~events_file: " + error;
     }
@@ -72,7 +71,7 @@ bool Simulator::Initialize() {
   }
   lockstep_ = params_.clock == core::Clock::kLockstep;
   radio_follows_range_ = !private_nh_.hasParam("radio_range_m");
-  tuning_ = std::make_unique<TuningRelay>(params_.swarm);
+  tuning_ = std::make_unique<LiveTuning>(params_.swarm);
   radio_rng_ = std::make_unique<core::Rng>(params_.swarm.seed, sim::kRadioLossStream);
   radio_ = std::make_unique<sim::Radio>(RadioParamsOf(params_), radio_rng_.get());
   RobotLinkHandlers handlers;
@@ -101,6 +100,11 @@ bool Simulator::Initialize() {
   roster_ = std::make_unique<RobotRoster>(world_.get(), links_.get(), session_.get(), direct_,
                                           params_.swarm.seed, &tick_);
   missions_ = std::make_unique<MissionMirror>(params_.swarm.admission, world_.get());
+  if (!params_.events_file.empty()) {
+    events_ = std::make_unique<EventPlayer>(std::move(events), session_.get(), roster_.get(),
+                                            missions_.get());
+  }
+  hold_ = std::make_unique<LockstepHold>(lockstep_, &tick_, &finished_);
   Connect();
   for (const auto& entry : world_->robots()) roster_->Add(entry.first);
   roster_->PublishList();
@@ -138,17 +142,10 @@ void Simulator::Connect() {
       nh_, "swarm_transport: simulator" + std::string(direct_ ? " (in robot_host)" : ""));
   roster_->Connect(nh_, kPositionQueue, kMissionQueue);
   missions_->Connect(nh_, lockstep_, positions_queue);
-  hold_srv_ = private_nh_.advertiseService("hold", &Simulator::OnHold, this);
-  if (events_ && !lockstep_) {
-    // Real time: a timed event goes out as this node's message (robots take it as relayed).
-    event_freeze_pub_ = nh_.advertise<Robot_Freeze>(names::kFreeze, kMissionQueue);
-    event_continue_pub_ = nh_.advertise<Robot_Continue>(names::kContinue, kMissionQueue);
-    event_update_pub_ = nh_.advertise<Update_Object>(names::kObjectUpdate, kMissionQueue);
-    event_signal_pub_ = nh_.advertise<Mission_Event>(names::kMissionEvent, kMissionQueue);
-  }
+  hold_->Connect(private_nh_);
+  if (events_) events_->Connect(nh_, kMissionQueue);
   if (lockstep_) session_->Connect();
-  tuning_pub_ = nh_.advertise<Flocking_Tuning>(names::kTuning, 1, true);
-  tuning_server_ = std::make_unique<FlockingTuningServer>(private_nh_, tuning_.get());
+  tuning_->Connect(nh_, private_nh_);
 }
 
 void Simulator::Run() {
@@ -166,11 +163,10 @@ void Simulator::Shutdown() {
   if (roster_) roster_->Shutdown();
   if (session_) session_->Shutdown();
   if (missions_) missions_->Shutdown();
-  hold_srv_.shutdown();
+  if (hold_) hold_->Shutdown();
   positions_pub_.shutdown();
   clock_pub_.shutdown();
-  tuning_server_.reset();
-  tuning_pub_.shutdown();
+  if (tuning_) tuning_->Shutdown();
   if (visuals_) visuals_->Shutdown();
 }
 
@@ -192,7 +188,7 @@ void Simulator::RunRealtime() {
     SpinOnce();
     const ros::WallTime now = ros::WallTime::now();
     if (now >= next_radio) {
-      ApplyDueEvents();
+      if (events_) events_->ApplyDue(tick_);
       PublishRadio();
       visuals_->Record(*world_);
       ++tick_;
@@ -222,11 +218,15 @@ void Simulator::RunLockstep() {
   ros::WallTime started_pacing = started;
   while (Running() && (max_ticks == 0 || tick_ < max_ticks)) {
     // Pacing counts from the start without the time held.
-    started_pacing += HoldIfAsked();
+    started_pacing += hold_->HoldIfAsked(&Simulator::Running, [this] {
+      SpinOnce(kIdleS);
+      PublishVisualsIfDue();
+    });
     if (!Running()) break;
-    tick_begun_ = true;
+    hold_->BeginTick();
     session_->BeginTick(tick_);
-    ApplyDueEvents();
+    ApplyRecruitStatists();
+    if (events_) events_->ApplyDue(tick_);
     PublishClock();
     PublishRadio();
     PublishPoses();
@@ -235,7 +235,7 @@ void Simulator::RunLockstep() {
     ApplyAnswers();
     world_->Step(params_.swarm.tick_period_s);
     ++tick_;
-    tick_begun_ = false;
+    hold_->EndTick();
     visuals_->Record(*world_);
     if (params_.real_time_factor > 0.0) {
       // Paced: tick k ends no earlier than k * tick_period / factor wall seconds after the
@@ -264,46 +264,6 @@ void Simulator::RunLockstep() {
   PublishRadio();
   PublishPoses();
   Idle();
-}
-
-ros::WallDuration Simulator::HoldIfAsked() {
-  const ros::WallTime since = ros::WallTime::now();
-  if (hold_at_ == 0 || tick_ < hold_at_) return ros::WallDuration(0.0);
-  holding_ = true;
-  ROS_INFO("simulator: holding before tick %llu (~hold with tick 0 goes on)",
-           static_cast<unsigned long long>(tick_));
-  while (Running() && hold_at_ != 0 && tick_ >= hold_at_) {
-    SpinOnce(kIdleS);
-    PublishVisualsIfDue();
-  }
-  holding_ = false;
-  ROS_INFO("simulator: going on at tick %llu", static_cast<unsigned long long>(tick_));
-  return ros::WallTime::now() - since;
-}
-
-bool Simulator::OnHold(Hold::Request& req, Hold::Response& res) {
-  res.current_tick = tick_;
-  res.code = Hold::Response::ERROR;
-  if (!lockstep_) {
-    res.message = "~hold is for the lock-step clock only";
-  } else if (finished_) {
-    res.message = "the run is over (last tick done)";
-  } else if (req.tick == 0) {
-    hold_at_ = 0;
-    res.code = Hold::Response::OK;
-    res.message = "going on";
-  } else if (req.tick < tick_ || (req.tick == tick_ && tick_begun_ && !holding_)) {
-    res.message = "tick " + std::to_string(req.tick) + " has begun already (now at tick " +
-                  std::to_string(tick_) + "): ask for a later one";
-  } else {
-    hold_at_ = req.tick;
-    res.code = Hold::Response::OK;
-    res.holding = holding_ && tick_ == req.tick;
-    res.message = (res.holding ? "holding before tick " : "will hold before tick ") +
-                  std::to_string(req.tick);
-  }
-  if (res.code != Hold::Response::OK) ROS_WARN("simulator: ~hold refused: %s", res.message.c_str());
-  return true;
 }
 
 void Simulator::Idle() {
@@ -337,7 +297,6 @@ void Simulator::BeginTuningRound() {
     radio_->set_range_m(range_m);
   }
   visuals_->SetLocalRange(range_m);
-  tuning_pub_.publish(*tuned);
   ROS_INFO("simulator: flocking tuning %u from tick %llu: free_will_deg %g, cohesion %g, "
            "local_range_m %g, speed_m_per_tick %g, radio range %g m",
            tuned->generation, static_cast<unsigned long long>(tuned->tick),
@@ -417,7 +376,7 @@ void Simulator::PublishVisualsIfDue() {
       s->message += ", " + std::to_string(robots - live) + " not answering";
     }
     if (finished_) s->message += " (last tick done)";
-    if (holding_) s->message += " (held: ~hold)";
+    if (hold_->holding()) s->message += " (held: ~hold)";
     s->Add("tick", tick_);
     s->Add("sim_time_s", SimTime());
     s->Add("robots", static_cast<std::uint64_t>(robots));
@@ -466,62 +425,17 @@ void Simulator::OnCmdVel(std::uint16_t id, const geometry_msgs::Twist& msg) {
   if (finite) world_->SetCommand(id, ToVelocity(msg), nullptr);
 }
 
-void Simulator::ApplyDueEvents() {
-  if (!events_) return;
-  for (const TimedEvent& e : events_->Due(tick_)) {
-    switch (e.kind) {
-      case TimedEvent::Kind::kFreeze: {
-        Robot_Freeze msg;
-        msg.robot_index_from = e.from;
-        msg.robot_index_to = e.to;
-        if (session_) session_->Inject(msg); else event_freeze_pub_.publish(msg);
-        break;
-      }
-      case TimedEvent::Kind::kContinue: {
-        Robot_Continue msg;
-        msg.robot_index_from = e.from;
-        msg.robot_index_to = e.to;
-        if (session_) session_->Inject(msg); else event_continue_pub_.publish(msg);
-        break;
-      }
-      case TimedEvent::Kind::kObjectUpdate: {
-        Update_Object msg;
-        msg.mission_id = e.mission;
-        msg.object_position_x = static_cast<float>(e.x);
-        msg.object_position_y = static_cast<float>(e.y);
-        missions_->UpdateObject(e.mission, {e.x, e.y});
-        if (session_) session_->Inject(msg); else event_update_pub_.publish(msg);
-        break;
-      }
-      case TimedEvent::Kind::kSignal: {
-        Mission_Event msg;
-        msg.mission_id = e.mission;
-        msg.event = e.signal;
-        msg.not_before_tick = e.tick;
-        if (session_) session_->Inject(msg); else event_signal_pub_.publish(msg);
-        break;
-      }
-      case TimedEvent::Kind::kKill:
-        roster_->KillByEvent(e.robot);
-        break;
-      case TimedEvent::Kind::kSpawn:
-        roster_->Spawn(e.robot, {{e.x, e.y}, core::Angle(e.theta_deg)});
-        break;
-      case TimedEvent::Kind::kStatist: {
-        Robot_Position statist;
-        statist.robot_id = e.robot;
-        statist.sub_id = e.sub_id;
-        statist.type = Robot_Position::TYPE_STATIST;
-        statist.pos_x = static_cast<float>(e.x);
-        statist.pos_y = static_cast<float>(e.y);
-        roster_->relayed().Take(statist);
-        break;
-      }
-      case TimedEvent::Kind::kRemoveStatist:
-        roster_->relayed().Erase(e.robot, e.sub_id);
-        break;
-    }
+void Simulator::ApplyRecruitStatists() {
+  std::set<std::pair<std::uint16_t, std::uint8_t>> standing;
+  for (const Robot_Position& statist : session_->RecruitStatists(tick_)) {
+    const auto key = std::make_pair(statist.robot_id, statist.sub_id);
+    standing.insert(key);
+    if (recruit_statists_.count(key) == 0) roster_->relayed().Take(statist);
   }
+  for (const auto& key : recruit_statists_) {
+    if (standing.count(key) == 0) roster_->relayed().Erase(key.first, key.second);
+  }
+  recruit_statists_ = std::move(standing);
 }
 
 }  // namespace swarm_transport

@@ -1,5 +1,7 @@
 #include "swarm_transport/sim/lockstep_barrier.h"
 
+#include <algorithm>
+
 namespace swarm_transport {
 namespace sim {
 
@@ -77,6 +79,7 @@ void LockstepBarrier::Seen(const EventKey& event) {
 }
 
 void LockstepBarrier::Forget(std::uint16_t mission_id) {
+  orders_early_.erase(mission_id);
   for (auto it = events_awaited_.begin(); it != events_awaited_.end();) {
     it = it->first == mission_id ? events_awaited_.erase(it) : std::next(it);
   }
@@ -125,7 +128,29 @@ void LockstepBarrier::OnSchedule(
 }
 
 void LockstepBarrier::OrderArrived(std::uint16_t mission_id) {
-  if (orders_due_.erase(mission_id) == 0 && !have_schedule_) orders_early_.insert(mission_id);
+  // Not due (yet): a later schedule may name it (a recruit's order and the schedule naming it
+  // travel on two topics, in either order).
+  if (orders_due_.erase(mission_id) == 0) orders_early_.insert(mission_id);
+}
+
+void LockstepBarrier::OnRecruits(
+    std::uint64_t checked_tick,
+    const std::vector<std::pair<std::uint16_t, std::uint64_t>>& recruiting) {
+  recruit_checked_ = std::max(recruit_checked_, checked_tick);
+  recruits_.clear();
+  for (const auto& r : recruiting) recruits_[r.first] = r.second;
+}
+
+bool LockstepBarrier::RecruitsUnchecked(std::uint64_t tick) const {
+  if (tick == 0) return false;
+  for (const auto& r : recruits_) {
+    if (r.second < tick && recruit_checked_ < tick - 1) return true;
+  }
+  return false;
+}
+
+void LockstepBarrier::GiveUpRecruits(std::uint64_t tick) {
+  if (tick >= 1) recruit_checked_ = std::max(recruit_checked_, tick - 1);
 }
 
 bool LockstepBarrier::OrdersMissing(std::uint64_t tick) const {

@@ -17,7 +17,9 @@ CONFIG_DIR = os.path.join(ROOT, 'config')
 
 KINDS = ('flocking', 'leader', 'transport')
 PLACEMENTS = ('random', 'corner', 'cluster')
-TRENDS = ('increasing', 'decreasing', 'flat')
+# 'high_at_last': low over the settings, then clearly higher at the last one (the thesis's
+# words for its largest leader groups: "only at 40 % cohesion do the values stay fairly high").
+TRENDS = ('increasing', 'decreasing', 'flat', 'high_at_last')
 # The metrics of each kind, in the order of the tables (SPEC 8; docs/experiments.md).
 METRICS = {
     'flocking': ['final_swarm_count', 'mean_swarm_count', 'swarm_count_slope_per_h',
@@ -28,6 +30,9 @@ METRICS = {
                   'object_error_m', 'gathering_ticks', 'leader_contact', 'aborted',
                   'gathering_swerves', 'mission_ticks'],
 }
+# (ext, SPEC 9.5) How the swarm spreads at a run's end (the recorder's run.csv, from its last
+# frame): any preset may name them in its `table:`; they then join its runs.csv and summary.
+DISPERSION_METRICS = ['coverage_fraction', 'nn_spacing_mean_m', 'nn_spacing_cv']
 TOP_KEYS = {'description', 'kind', 'order', 'section', 'figures', 'runs', 'seed_base',
             'base_config', 'config', 'robots', 'placement', 'cluster', 'max_ticks',
             'trim_each_end', 'x_label', 'group_label', 'thesis', 'note', 'expect', 'mission',
@@ -43,6 +48,13 @@ CLUSTER_KEYS = {'origin', 'spacing_m', 'min_distance_m'}
 
 class PresetError(ValueError):
     pass
+
+
+def metrics_of(preset):
+    """The metrics of a preset's runs.csv and summary: its kind's, then the dispersion metrics
+    its table names."""
+    return METRICS[preset['kind']] + [m for m in DISPERSION_METRICS
+                                      if m in (preset.get('table') or [])]
 
 
 def preset_path(name):
@@ -86,10 +98,11 @@ def validate(preset, name):
         fail('runs must be an integer >= 1')
     if 'table' in p:
         # The metrics of the preset's table on the results page (default: its kind's).
+        known = METRICS[p['kind']] + DISPERSION_METRICS
         if (not isinstance(p['table'], list) or not p['table'] or
-                any(m not in METRICS[p['kind']] for m in p['table'])):
+                any(m not in known for m in p['table'])):
             fail('table must be a non-empty list of %s metrics (%s)'
-                 % (p['kind'], ', '.join(METRICS[p['kind']])))
+                 % (p['kind'], ', '.join(known)))
     p.setdefault('seed_base', 1)
     p.setdefault('order', 1000)
     p.setdefault('section', '')
@@ -152,7 +165,7 @@ def validate(preset, name):
                     fail('setting %s: a transport needs an object and 1 <= leaders <= group '
                          '<= robots' % s['name'])
     for e in p['expect']:
-        if e.get('trend') not in TRENDS or e.get('metric') not in METRICS[p['kind']] + [
+        if e.get('trend') not in TRENDS or e.get('metric') not in metrics_of(p) + [
                 'swarm_count_slope_per_h']:
             fail('expect entries need metric (one of the kind\'s) and trend %s' % (TRENDS,))
     measured = p.get('thesis_measured')

@@ -31,8 +31,11 @@ TITLES = {
     'aborted': 'aborted (%)',
     'gathering_swerves': 'swerves while gathering',
     'mission_ticks': 'mission ticks',
+    'coverage_fraction': 'area covered (%)',
+    'nn_spacing_mean_m': 'nearest neighbour (m)',
+    'nn_spacing_cv': 'nearest-neighbour spread (CV)',
 }
-PERCENT = {'path_fraction_attached', 'leader_contact', 'aborted'}   # stored as fractions, shown in %
+PERCENT = {'path_fraction_attached', 'leader_contact', 'aborted', 'coverage_fraction'}   # stored as fractions, shown in %
 PANELS = {   # the metrics drawn as bars, in the thesis's order of diagrams
     'flocking': ['final_swarm_count', 'mean_swarm_count', 'swarm_count_slope_per_h'],
     'leader': ['path_fraction_attached', 'leader_swarm_at_arrival', 'leader_waits'],
@@ -171,6 +174,12 @@ def _num(v):
     return '%.3g' % v
 
 
+def high_at_last(ys):
+    """The last value clearly above every other: by more than FLAT_TOLERANCE of the highest
+    of the others."""
+    return len(ys) >= 2 and ys[-1] > (1.0 + FLAT_TOLERANCE) * max(ys[:-1])
+
+
 def trend_lines(preset, summary):
     """One line per expected trend: the measured trimmed means along the settings, their
     direction (Spearman's rank correlation with the settings' order) and whether it agrees
@@ -201,11 +210,14 @@ def trend_lines(preset, summary):
                 got = 'flat'
             else:
                 got = 'increasing' if rho >= 0.5 else 'decreasing' if rho <= -0.5 else 'mixed'
+            if e['trend'] == 'high_at_last' and high_at_last(ys):
+                got = 'high_at_last'
             verdict = 'agrees' if got == e['trend'] else 'differs'
             seq = ' → '.join('%s %s' % (v['label'], _num(_scale(metric, t))) for v, t in pts)
             out.append('%s%s: %s — measured %s (ρ = %+.2f, spread %.0f %%), thesis %s: %s'
                        % ('%s, ' % group if group else '', TITLES.get(metric, metric), seq,
-                          got, rho, 100 * spread, e['trend'], verdict))
+                          got.replace('_', ' '), rho, 100 * spread,
+                          e['trend'].replace('_', ' '), verdict))
     return out
 
 

@@ -68,6 +68,10 @@ def run_metrics(kind, run_dir):
         metrics, series = _mission(kind, run_dir, info)
     if metrics is None:
         return None
+    # The swarm's spread at the end (SPEC 9.5), from the recorder's run row.
+    run = read_csv(os.path.join(run_dir, 'run.csv'))
+    for name in presets.DISPERSION_METRICS:
+        metrics[name] = number(run[-1].get(name)) if run else None
     return metrics, series, info
 
 
@@ -211,7 +215,7 @@ def summarize(preset, runs):
         mine = [r for r in runs if r['setting'] == view['name']]
         if not mine:
             continue
-        for metric in presets.METRICS[preset['kind']]:
+        for metric in presets.metrics_of(preset):
             agg = aggregate([r['metrics'].get(metric) for r in mine], trim)
             rows.append(dict(agg, setting=view['name'], metric=metric))
         names = sorted({s for r in mine for s in r['series']})
@@ -235,7 +239,7 @@ def write_summary(path, rows):
 
 def write_runs(path, preset, runs):
     """One row per completed run: setting, run, seed, how it ended, every metric."""
-    names = presets.METRICS[preset['kind']]
+    names = presets.metrics_of(preset)
     with open(path, 'w', newline='') as f:
         w = csv.writer(f)
         w.writerow(['setting', 'run', 'seed', 'end', 'ticks', 'wall_s'] + names)

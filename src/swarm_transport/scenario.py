@@ -60,8 +60,12 @@ def write_inputs(s, directory):
     if s['missions']:
         missions = []
         for m in s['missions']:
-            entry = {'id': m['id'], 'robot_ids': m['robot_ids'], 'leaders': m['leaders'],
+            entry = {'id': m['id'], 'leaders': m['leaders'],
                      'target': m['target'], 'mode': m['mode'], 'at_tick': m['at_tick']}
+            if m.get('recruit'):
+                entry['recruit'] = m['recruit']  # statist as dispatcher: no robots named
+            else:
+                entry['robot_ids'] = m['robot_ids']
             if m['object']:
                 entry['object'] = m['object']
             missions.append(entry)

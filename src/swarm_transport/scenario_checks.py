@@ -37,6 +37,27 @@ class RunLog(object):
         return min(ends) if ends else None
 
 
+def nearest_distances(points):
+    """Each point's distance to its nearest other point (empty for fewer than two)."""
+    if len(points) < 2:
+        return []
+    return [min(math.hypot(p[0] - q[0], p[1] - q[1]) for j, q in enumerate(points) if j != i)
+            for i, p in enumerate(points)]
+
+
+def _spacing(e, log):
+    pts = log.positions.get(e['at_tick'])
+    if not pts or len(pts) < 2:
+        return False, 'fewer than two robots at tick %d' % e['at_tick']
+    nearest = nearest_distances(list(pts.values()))
+    mean = sum(nearest) / len(nearest)
+    cv = (math.sqrt(sum((d - mean) ** 2 for d in nearest) / len(nearest)) / mean
+          if mean > 0 else float('inf'))
+    ok = e['min_nn_m'] <= min(nearest) and max(nearest) <= e['max_nn_m'] and cv <= e['max_cv']
+    return ok, 'nearest neighbours %.3f-%.3f m (mean %.3f, cv %.4f) at tick %d' % (
+        min(nearest), max(nearest), mean, cv, e['at_tick'])
+
+
 def check(e, log, scenario, second=None):
     kind = e['kind']
     if kind == 'mission_state':
@@ -103,6 +124,8 @@ def check(e, log, scenario, second=None):
         d = math.hypot(cx - e['x'], cy - e['y'])
         return e['min_m'] <= d <= e['max_m'], 'centroid (%.2f, %.2f) at tick %d, %.2f m away' % (
             cx, cy, e['at_tick'], d)
+    if kind == 'spacing':
+        return _spacing(e, log)
     if kind in ('robot_near', 'swarm_of'):
         return _at_a_tick(e, log)
     if kind in ('stands', 'drives'):

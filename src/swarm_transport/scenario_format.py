@@ -45,6 +45,10 @@ EXPECTATIONS = {
     'released': (set(), {}),
     'object_clear_of_zones': ({'mission'}, {'tolerance_m': 0.0}),
     'centroid_near': ({'at_tick', 'x', 'y'}, {'min_m': 0.0, 'max_m': float('inf')}),
+    # Each robot's distance to its nearest other robot at at_tick: every one of them within
+    # [min_nn_m, max_nn_m], and their coefficient of variation (std / mean) at most max_cv.
+    'spacing': ({'at_tick'}, {'min_nn_m': 0.0, 'max_nn_m': float('inf'),
+                              'max_cv': float('inf')}),
     # At a tick: at_tick, or the tick `mission` first reported `state`.
     'robot_near': ({'robot', 'x', 'y'}, {'min_m': 0.0, 'max_m': float('inf'), 'at_tick': None,
                                          'mission': None, 'state': None}),
@@ -62,7 +66,7 @@ TOP_KEYS = {'name', 'description', 'world', 'max_ticks', 'missions', 'events', '
 WORLD_KEYS = {'robots', 'seed', 'placement', 'placement_file', 'config', 'base_config',
               'danger_zones', 'deploy', 'clock'}
 MISSION_KEYS = {'at_tick', 'id', 'robots_from', 'robots_to', 'robot_ids', 'leaders', 'object',
-                'target', 'mode'}
+                'target', 'mode', 'recruit'}
 
 
 class ScenarioError(ValueError):
@@ -285,6 +289,17 @@ def _mission(r, node, where, robots, max_ticks):
            'target': r.numbers(m['target'], where + '.target', 2),
            'object': r.numbers(m['object'], where + '.object', 4) if 'object' in m else None,
            'mode': r.number(m['mode'], where + '.mode', 0, 1, integer=True) if 'mode' in m else 0}
+    if 'recruit' in m:
+        # Statist as dispatcher (SPEC 9.4): no robots named; the first N to enter the object.
+        if 'robot_ids' in m or 'robots_from' in m or 'robots_to' in m:
+            r.fail(m['recruit'], where + '.recruit', 'names no robots: give no robot_ids or range')
+        if out['object'] is None:
+            r.fail(node, where, 'recruit needs an object (the robots are those that enter it)')
+        out['recruit'] = r.number(m['recruit'], where + '.recruit', 1, 65535, integer=True)
+        out['robot_ids'] = []
+        if out['leaders'] > out['recruit']:
+            r.fail(m['leaders'], where + '.leaders', 'more leaders than recruit')
+        return out
     if 'robot_ids' in m:
         ids = [r.number(n, '%s.robot_ids[%d]' % (where, i), 0, 65535, integer=True)
                for i, n in enumerate(r.sequence(m['robot_ids'], where + '.robot_ids'))]

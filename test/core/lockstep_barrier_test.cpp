@@ -176,6 +176,36 @@ TEST(LockstepBarrierTest, HoldsTicksForTheDispatchersScheduledOrders) {
   EXPECT_FALSE(b.OrdersMissing(40));
 }
 
+// Statist as dispatcher (SPEC 9.4): while a mission recruits, each tick after its statist's
+// first waits until the dispatcher watched the previous tick's positions; its order, scheduled
+// for the next tick, is waited for whichever topic delivers first.
+TEST(LockstepBarrierTest, HoldsTicksWhileAMissionRecruits) {
+  LockstepBarrier b;
+  b.ExpectSchedule();
+  b.OnSchedule({});
+  b.OnRecruits(0, {{5, 20}});
+  EXPECT_FALSE(b.RecruitsUnchecked(20));  // the statist stands from tick 20
+  EXPECT_TRUE(b.RecruitsUnchecked(21));   // the dispatcher has not watched tick 20
+  b.OnRecruits(20, {{5, 20}});
+  EXPECT_FALSE(b.RecruitsUnchecked(21));
+  EXPECT_TRUE(b.RecruitsUnchecked(22));
+  b.GiveUpRecruits(22);
+  EXPECT_FALSE(b.RecruitsUnchecked(22));
+  // Enough robots at tick 30: the order (sent before the schedule) enters at 31.
+  b.OrderArrived(5);
+  b.OnRecruits(30, {});
+  b.OnSchedule({{5, 31}});
+  EXPECT_FALSE(b.RecruitsUnchecked(31));
+  EXPECT_FALSE(b.OrdersMissing(31));
+  // The other way round: the schedule first, then the order.
+  b.OnRecruits(40, {{6, 40}});
+  b.OnRecruits(45, {});
+  b.OnSchedule({{6, 46}});
+  EXPECT_TRUE(b.OrdersMissing(46));
+  b.OrderArrived(6);
+  EXPECT_FALSE(b.OrdersMissing(46));
+}
+
 TEST(LockstepBarrierTest, GivingUpOnAMissingScheduleLetsTheRunGoOn) {
   LockstepBarrier b;
   b.ExpectSchedule();

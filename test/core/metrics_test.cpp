@@ -296,6 +296,28 @@ TEST(LeaderTrackerTest, SplitAtTheStartGivesZeroAndBadCallsAreRejected) {
   EXPECT_FALSE(t.Feed(3, {{1.1, 1.0}, {4.0, 4.0}}, 0));  // same tick
 }
 
+TEST(DispersionTest, CoverageAndNearestNeighbourSpread) {
+  // A 10 x 10 m arena on 1 m cells; one robot at (0.5, 0.5) covering 0.6 m: only its own cell.
+  Dispersion one = DispersionOf({{0.5, 0.5}}, 10.0, 0.6, 1.0);
+  EXPECT_DOUBLE_EQ(one.coverage_fraction, 0.01);
+  EXPECT_TRUE(std::isnan(one.nn_mean_m));
+  // Covering 1.0 m it reaches the centres of the cells right of and above it too.
+  EXPECT_DOUBLE_EQ(DispersionOf({{0.5, 0.5}}, 10.0, 1.0, 1.0).coverage_fraction, 0.03);
+  // Evenly spaced: nearest neighbours all 2 m, no spread.
+  const Dispersion even = DispersionOf({{1.0, 1.0}, {3.0, 1.0}, {5.0, 1.0}}, 10.0, 0.5, 1.0);
+  EXPECT_DOUBLE_EQ(even.nn_mean_m, 2.0);
+  EXPECT_DOUBLE_EQ(even.nn_cv, 0.0);
+  // Two close, one far: nearest distances 1, 1, 4 -> mean 2, std sqrt(2), cv sqrt(2) / 2.
+  const Dispersion uneven = DispersionOf({{1.0, 1.0}, {2.0, 1.0}, {6.0, 1.0}}, 10.0, 0.5, 1.0);
+  EXPECT_DOUBLE_EQ(uneven.nn_mean_m, 2.0);
+  EXPECT_NEAR(uneven.nn_cv, std::sqrt(2.0) / 2.0, 1e-12);
+  // Non-finite positions are left out; two robots in the same cell cover it once.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_DOUBLE_EQ(DispersionOf({{0.5, 0.5}, {0.5, 0.5}, {nan, 1.0}}, 10.0, 0.6, 1.0)
+                       .coverage_fraction,
+                   0.01);
+}
+
 }  // namespace
 }  // namespace core
 }  // namespace swarm_transport

@@ -57,6 +57,30 @@ TEST(RobotBrainTest, FreezeHoldsTheRobotButNotItsBehaviour) {
   EXPECT_GT(held.Tick(in, 3, true).command.linear, 0.0);
 }
 
+TEST(RobotBrainTest, BalloonStandbyDrivesOffANeighbourUntilAMissionComes) {
+  SwarmConfig config = Params();
+  config.standby = StandbyMode::kBalloon;
+  RobotBrain brain(2, config);
+  RobotBrain flocking(2, Params());
+  // A neighbour 0.3 m to the right: once the balloon passes 0.15 m it pushes the robot left.
+  const Perception in = Sees(5.0, 5.0, 90.0, {At(1, 5.3, 5.0, 90.0)});
+  BrainTick tick;
+  for (std::uint64_t k = 0; k < 8; ++k) {
+    tick = brain.Tick(in, k, true);
+    flocking.Tick(in, k, true);
+  }
+  EXPECT_NEAR(brain.balloon_radius_m(), 0.05 + 8 * 0.02, 1e-9);
+  EXPECT_NEAR(tick.move.heading.degrees(), 180.0, 1e-6);
+  EXPECT_GT(tick.command.linear, 0.0);
+  EXPECT_DOUBLE_EQ(flocking.balloon_radius_m(), 0.05);  // flock: no balloon
+  // On a mission it leaves standby: the balloon is small again, the mission rules.
+  MissionTaken taken;
+  ASSERT_EQ(brain.OnNewMission(Thesis(), {0, 1, 2}, &taken), "");
+  brain.Tick(in, 8, true);
+  EXPECT_TRUE(brain.last_plan().active.has_value());
+  EXPECT_DOUBLE_EQ(brain.balloon_radius_m(), 0.05);
+}
+
 TEST(RobotBrainTest, AnEmptyOrInvertedRangeIsRejectedAndChangesNothing) {
   RobotBrain brain(4, Params());
   EXPECT_EQ(brain.OnFreeze(5, 3), "Robot_Freeze [5, 3): the range is empty or inverted");

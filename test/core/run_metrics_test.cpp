@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <sstream>
@@ -357,14 +358,19 @@ TEST(RunMetricsTest, DrainWritesFinishedMissionsStillWaitingForFrames) {
 
 TEST(RunMetricsTest, RunRowSummarisesSamplesMissionsAndTheLastFrame) {
   RunMetrics metrics(Params(1.0));
-  EXPECT_EQ(metrics.RunRow("r", 5), "r,5,0,0,0,0,,0,0,0");
+  EXPECT_EQ(metrics.RunRow("r", 5), "r,5,0,0,0,0,,0,0,0,,,");
   // 2 swarms at 0 s, 1 swarm at 1 s, 3 swarms at 1.5 s (not sampled).
   metrics.AddFrame(Frame(0, {{0, {1.0, 1.0}}, {1, {1.5, 1.0}}, {2, {5.0, 5.0}}}), nullptr);
   metrics.AddFrame(Frame(10, {{0, {1.0, 1.0}}, {1, {1.5, 1.0}}, {2, {2.0, 1.0}}}), nullptr);
   metrics.AddFrame(Frame(15, {{0, {1.0, 1.0}}, {1, {3.0, 1.0}}, {2, {5.0, 1.0}}}), nullptr);
   metrics.AddStatus(4, MissionPhase::kQueued, 15, {1.0, 1.0});
   metrics.AddStatus(4, MissionPhase::kAborted, 15, {1.0, 1.0});
-  EXPECT_EQ(metrics.RunRow("run_3", -3), "run_3,-3,3,15,1.5,2,1.5,3,0,1");
+  const std::string row = metrics.RunRow("run_3", -3);
+  EXPECT_EQ(row.rfind("run_3,-3,3,15,1.5,2,1.5,3,0,1,", 0), 0u) << row;
+  // The last frame's dispersion: three robots 2 m apart cover three 1 m discs of the arena.
+  EXPECT_NEAR(std::stod(Field(row, 10)), 3.0 * M_PI / (111.0 * 111.0 * 0.01), 0.002);
+  EXPECT_EQ(Field(row, 11), "2");
+  EXPECT_EQ(Field(row, 12), "0");
 }
 
 TEST(RunMetricsTest, MissionsBeyondTheLimitAreNotFollowed) {

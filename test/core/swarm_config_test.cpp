@@ -27,6 +27,8 @@ TEST(SwarmConfigTest, DefaultsAreValidAndEachBadKeyIsNamed) {
       {[](SwarmConfig* c) { c->chain_hops = 0; }, "chain_hops must be >= 1 but is 0"},
       {[](SwarmConfig* c) { c->leader.wait_fraction = 1.5; }, "wait_fraction"},
       {[](SwarmConfig* c) { c->flocking.local_range_m = -1.0; }, "local_range_m"},
+      {[](SwarmConfig* c) { c->balloon.growth_m_per_tick = 0.0; },
+       "balloon_growth_m_per_tick must be finite and > 0 but is 0"},
   };
   for (const Case& c : cases) {
     SwarmConfig config;

@@ -9,6 +9,7 @@
 #include "swarm_transport/Mission_Status.h"
 #include "swarm_transport/core/assignment.h"
 #include "swarm_transport/core/mission_book.h"
+#include "swarm_transport/core/recruit.h"
 #include "swarm_transport/core/robot_brain.h"
 #include "swarm_transport/ros/conversions.h"
 
@@ -28,7 +29,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
   const int orders = in.ConsumeIntegralInRange<int>(1, 4);
   for (int k = 0; k < orders && in.remaining_bytes() > 0; ++k) {
-    const New_Mission msg = fuzz::AnyOrder(&in);
+    New_Mission msg = fuzz::AnyOrder(&in);
+    msg.recruit = in.ConsumeBool();
     const core::MissionSpec spec = ToMissionSpec(msg);
     // The dispatcher's pick of a count-only order (robot_count): all or nothing.
     std::map<std::uint16_t, core::PlannerRobot> idle;
@@ -42,6 +44,25 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       fuzz::Require(picked.robot_ids.size() == spec.robot_count && picked.robot_count == 0);
     } else {
       fuzz::Require(picked.robot_ids == spec.robot_ids && picked.robot_count == spec.robot_count);
+    }
+    // The dispatcher's recruit (statist as dispatcher): once enough are inside, the order it
+    // sends names them and is valid.
+    core::MissionContext recruit_context;
+    recruit_context.world_size_m = config.flocking.world_size_m;
+    recruit_context.known_robots = known;
+    std::set<std::uint16_t> idle_ids;
+    std::map<std::uint16_t, core::Vec2> idle_at;
+    for (const auto& kv : idle) {
+      idle_ids.insert(kv.first);
+      idle_at[kv.first] = kv.second.position;
+    }
+    if (spec.recruit && core::ValidateRecruit(spec, idle_ids, recruit_context).empty()) {
+      core::RecruitWatch watch(spec);
+      if (watch.Observe(idle_at)) {
+        const core::MissionSpec order = core::RecruitedOrder(spec, watch.Recruits());
+        fuzz::Require(order.robot_ids.size() == spec.robot_count);
+        fuzz::Require(core::ValidateMission(order, recruit_context).empty());
+      }
     }
     // The dispatcher.
     const core::MissionBook::Verdict verdict =

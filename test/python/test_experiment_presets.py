@@ -52,6 +52,45 @@ class Presets(unittest.TestCase):
             presets.load_preset('no_such_preset')
         self.assertIn('smoke', str(cm.exception))  # it lists what there is
 
+    def test_dispersion_metrics_join_a_preset_whose_table_names_them(self):
+        plain = presets.validate(copy.deepcopy(GOOD), 'good')
+        self.assertEqual(presets.metrics_of(plain), presets.METRICS['flocking'])
+        p = copy.deepcopy(GOOD)
+        p['table'] = ['nn_spacing_cv', 'final_swarm_count', 'coverage_fraction']
+        p = presets.validate(p, 'good')
+        self.assertEqual(presets.metrics_of(p), presets.METRICS['flocking'] +
+                         ['coverage_fraction', 'nn_spacing_cv'])
+        # The shipped balloon preset reports them; a dispersion metric may carry an expectation.
+        balloon = presets.load_preset('balloon_dispersion')
+        self.assertIn('coverage_fraction', presets.metrics_of(balloon))
+        self.assertIn('coverage_fraction', [e['metric'] for e in balloon['expect']])
+        q = copy.deepcopy(GOOD)
+        q['expect'] = [{'metric': 'coverage_fraction', 'trend': 'increasing'}]
+        with self.assertRaises(presets.PresetError):
+            presets.validate(q, 'bad')  # not in its table: not among its metrics
+
+    def test_high_at_last_needs_the_last_setting_clearly_above_every_other(self):
+        from swarm_transport import experiment_report as report
+        p = presets.load_preset('leader_group_cohesion')
+        names = ['p25_c000', 'p25_c005', 'p25_c010', 'p25_c020', 'p25_c040']
+
+        def line(values):
+            summary = {(n, 'leader_swarm_at_arrival'): {'trimmed_mean': v}
+                       for n, v in zip(names, values)}
+            return [x for x in report.trend_lines(p, summary)
+                    if x.startswith('25 passive, leader swarm')]
+
+        self.assertTrue(report.high_at_last([11.4, 4.55, 9.09, 4.55, 22.7]))
+        self.assertFalse(report.high_at_last([11.4, 4.55, 9.09, 21.0, 22.7]))  # not clearly
+        self.assertFalse(report.high_at_last([22.7, 4.55, 9.09, 4.55, 11.4]))
+        self.assertIn('thesis high at last: agrees', line([11.4, 4.55, 9.09, 4.55, 22.7])[0])
+        self.assertIn('differs', line([11.4, 4.55, 9.09, 21.0, 22.7])[0])
+        self.assertIn('differs', line([25.0, 20.0, 15.0, 10.0, 5.0])[0])
+        bad = copy.deepcopy(GOOD)
+        bad['expect'] = [{'metric': 'final_swarm_count', 'trend': 'upwards'}]
+        with self.assertRaises(presets.PresetError):
+            presets.validate(bad, 'bad')
+
     def test_the_thesis_measured_table_is_checked_and_rendered(self):
         from swarm_transport import experiment_report as report
         p = copy.deepcopy(GOOD)

@@ -53,6 +53,16 @@ class Format(unittest.TestCase):
         self.assertTrue(msg.startswith('bad.yaml:%d: ' % line), msg)
         self.assertIn(words, msg)
 
+    def test_a_recruiting_mission_names_no_robots(self):
+        recruit = MINIMAL.replace('    robots_from: 0\n    robots_to: 4\n', '    recruit: 3\n')
+        m = fmt.parse(recruit, 'r.yaml')['missions'][0]
+        self.assertEqual((m['recruit'], m['robot_ids']), (3, []))
+        self.expect_error(MINIMAL.replace('    robots_from: 0\n', '    recruit: 3\n'
+                                          '    robots_from: 0\n'), 6,
+                          'missions[0].recruit: names no robots')
+        self.expect_error(recruit.replace('leaders: 1', 'leaders: 4'), 7,
+                          'missions[0].leaders: more leaders than recruit')
+
     def test_a_malformed_scenario_names_the_line_and_the_key(self):
         self.expect_error(MINIMAL.replace('max_ticks: 100', 'max_tick: 100'), 3,
                           'max_tick: unknown key')
@@ -273,6 +283,18 @@ class Checks(unittest.TestCase):
         self.assertIn('centroid (2.00, 1.00)', measured)
         self.assertTrue(self.run_check('  - centroid_near: {at_tick: 5, x: 8, y: 8, min_m: 5}\n',
                                        log)[0])
+
+    def test_spacing_bounds_the_nearest_neighbour_distances_and_their_spread(self):
+        # Nearest neighbours 1, 1 and 2 m: mean 4/3, cv sqrt(2/9) / (4/3) = 0.354.
+        log = log_of({5: {0: (1.0, 1.0, 0), 1: (2.0, 1.0, 0), 2: (4.0, 1.0, 0)}})
+        ok, measured = self.run_check('  - spacing: {at_tick: 5, min_nn_m: 0.9, max_nn_m: 2.1}\n',
+                                      log)
+        self.assertTrue(ok, measured)
+        self.assertIn('1.000-2.000 m', measured)
+        self.assertIn('cv 0.3536', measured)
+        for bad in ('{at_tick: 5, min_nn_m: 1.1}', '{at_tick: 5, max_nn_m: 1.9}',
+                    '{at_tick: 5, max_cv: 0.3}', '{at_tick: 6}'):
+            self.assertFalse(self.run_check('  - spacing: %s\n' % bad, log)[0], bad)
 
     def test_robot_near_and_swarm_of_at_a_tick_or_a_state(self):
         # robot 4 leads to (5, 5): at DONE (tick 6) it is 0.1 m from it with robots 0 and 1 in

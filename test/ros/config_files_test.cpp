@@ -95,6 +95,8 @@ TEST(ConfigValidation, RejectsBadValuesAndKeepsTheOldConfig) {
       {"planner_turn_deg_per_tick", XmlRpc::XmlRpcValue(0.0)},
       {"leaders_bound", XmlRpc::XmlRpcValue(std::string("yes"))},
       {"formation_speed_fraction", XmlRpc::XmlRpcValue(1.5)},
+      {"standby", XmlRpc::XmlRpcValue(std::string("spread"))},
+      {"balloon_growth_m_per_tick", XmlRpc::XmlRpcValue(0.0)},
       {"local_range_m", XmlRpc::XmlRpcValue(std::string("far"))},
   };
   for (Case c : cases) {
@@ -106,6 +108,17 @@ TEST(ConfigValidation, RejectsBadValuesAndKeepsTheOldConfig) {
     EXPECT_NE(error.find(c.key), std::string::npos) << "message '" << error << "' names no key";
     EXPECT_DOUBLE_EQ(config.flocking.local_range_m, range_before);
   }
+}
+
+TEST(ConfigValidation, StandbyBalloonIsReadWithItsGrowth) {
+  XmlRpc::XmlRpcValue d = Dict("standby", XmlRpc::XmlRpcValue(std::string("balloon")));
+  d["balloon_growth_m_per_tick"] = XmlRpc::XmlRpcValue(0.05);
+  SwarmConfig config;
+  EXPECT_EQ(config.standby, swarm_transport::core::StandbyMode::kFlock);
+  std::string error;
+  ASSERT_TRUE(ConfigFromXmlRpc(d, &config, &error)) << error;
+  EXPECT_EQ(config.standby, swarm_transport::core::StandbyMode::kBalloon);
+  EXPECT_DOUBLE_EQ(config.balloon.growth_m_per_tick, 0.05);
 }
 
 TEST(ConfigValidation, IntegersAreAcceptedWhereNumbersAreExpected) {

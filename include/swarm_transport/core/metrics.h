@@ -43,6 +43,21 @@ class SwarmComponents {
   std::vector<std::size_t> sizes_;
 };
 
+// How a swarm spreads over the arena [SPEC 9.5, balloon dispersion], from one frame.
+struct Dispersion {
+  // Fraction of the arena's square cells (side cell_m) whose centre lies within
+  // cover_radius_m of a robot: the area the swarm covers, 0 for no robots.
+  double coverage_fraction = 0.0;
+  // Mean distance from each robot to its nearest other robot (m), and the coefficient of
+  // variation of those distances (standard deviation / mean: 0 = evenly spaced); NaN for fewer
+  // than two robots.
+  double nn_mean_m = 0.0;
+  double nn_cv = 0.0;
+};
+// Non-finite positions are left out.
+Dispersion DispersionOf(const std::vector<Vec2>& positions, double world_size_m,
+                        double cover_radius_m, double cell_m);
+
 // Plain mean; NaN for no values.
 double Mean(const std::vector<double>& values);
 // Median (mean of the two middle values for an even count); NaN for no values.

@@ -45,6 +45,10 @@ struct MissionSpec {
   // (ext) > 0 with no range and no ids: the dispatcher picks this many robots
   // (PickRobotsByCount) and sends the order with their ids and robot_count 0.
   std::uint16_t robot_count = 0;
+  // (ext) Statist as dispatcher (SPEC 9.4, core/recruit.h): with robot_count and no robots
+  // named, the dispatcher places a statist at the object and the first robot_count idle robots
+  // to enter the object take the mission; the order then goes out with their ids.
+  bool recruit = false;
   // Finite-ness of every float of the original message (a NaN cannot live in a Vec2 check).
   bool all_finite = true;
 

@@ -132,8 +132,11 @@ class MissionBook {
   // Arena, known robots and live ids for a validation (`ignore_id` not counted as live).
   MissionContext Context(const std::set<std::uint16_t>& known_robots, int ignore_id = -1) const;
 
- private:
+  // An id no tracked mission has, taken (the next call gives another): a recruiting order's
+  // id before it is submitted (SPEC 9.4).
   std::uint16_t NextFreeId();
+
+ private:
   void EnterPhase(std::uint16_t id, Entry* entry, MissionPhase phase, double now_s,
                   std::vector<DueSignal>* signals);
   void Forget();

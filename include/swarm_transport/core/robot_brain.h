@@ -74,6 +74,8 @@ class RobotBrain {
   const MissionPlan& last_plan() const { return last_plan_; }
   const MoveDecision& last_move() const { return last_move_; }
   std::size_t last_heard() const { return last_heard_; }
+  // Its balloon's radius (m): the robot's radius unless it is in balloon standby.
+  double balloon_radius_m() const { return balloon_radius_m_; }
   // The flocking parameters it uses now (its configuration's until a tuning came).
   FlockingTuning tuning() const { return FlockingTuning::Of(params_.flocking); }
 
@@ -90,6 +92,8 @@ class RobotBrain {
   MissionPlan last_plan_;
   MoveDecision last_move_;
   std::size_t last_heard_ = 0;
+  // Balloon standby (SPEC 9.5): its balloon's radius, reset whenever it is not in standby.
+  double balloon_radius_m_ = 0.0;
 };
 
 }  // namespace core

@@ -48,6 +48,11 @@ struct RunMetricsParams {
   double local_range_m = 0.5;     // swarms and leader contact
   double goal_tolerance_m = 0.1;  // a leader-only mission's arrival
   double sample_period_s = 10.0;  // sim time between swarm samples
+  // The run row's dispersion of the last frame (SPEC 9.5): the arena, and how far around a
+  // robot counts as covered (m), on cells of coverage_cell_m.
+  double world_size_m = 11.088889;
+  double coverage_radius_m = 1.0;
+  double coverage_cell_m = 0.1;
 };
 
 class RunMetrics {

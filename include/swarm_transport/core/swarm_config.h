@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "swarm_transport/core/balloon.h"
 #include "swarm_transport/core/flocking.h"
 #include "swarm_transport/core/geometry.h"
 #include "swarm_transport/core/leader.h"
@@ -57,6 +58,9 @@ struct SwarmConfig {
   Admission admission = Admission::kDispatcher;
   // At most this many live missions; more orders are REJECTED (dispatcher) or refused (robots).
   int max_live_missions = 64;
+  // How a robot on no mission behaves (SPEC 9.5): flock (the default) or balloon dispersion.
+  StandbyMode standby = StandbyMode::kFlock;
+  BalloonParams balloon;  // balloon mode's growth
 
   // Empty when valid, else one sentence naming the bad key.
   std::string Validate() const;

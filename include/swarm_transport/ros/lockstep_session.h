@@ -18,12 +18,14 @@
 
 #include <cstdint>
 #include <functional>
+#include <set>
 #include <utility>
 #include <vector>
 
 #include "swarm_transport/Mission_Schedule.h"
 #include "swarm_transport/Mission_Status.h"
 #include "swarm_transport/Neighbors.h"
+#include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/New_Mission.h"
 #include "swarm_transport/Tick_Answer.h"
 #include "swarm_transport/core/kinematics.h"
@@ -61,8 +63,10 @@ class LockstepSession {
   void Inject(const Robot_Continue& msg);
   void Inject(const Update_Object& msg);
   void Inject(const Mission_Event& msg);
-  void AddRobot(std::uint16_t id) { barrier_.Add(id); }
-  void RemoveRobot(std::uint16_t id) { barrier_.Remove(id); }
+  // A robot enters the barrier; after the start, one whose process already runs is waited for
+  // when the next tick begins (see WaitForJoining).
+  void AddRobot(std::uint16_t id);
+  void RemoveRobot(std::uint16_t id);
   bool Live(std::uint16_t id) const { return barrier_.Live(id); }
   std::size_t LiveCount() const { return barrier_.LiveCount(); }
 
@@ -71,6 +75,9 @@ class LockstepSession {
   void WaitForStart(const ros::Publisher& positions, const ros::Publisher& robot_list);
   // Tick `tick` begins: liveness, then the dispatcher's awaited events and orders.
   void BeginTick(std::uint64_t tick);
+  // Statist as dispatcher (SPEC 9.4): the statists of the dispatcher's recruiting missions that
+  // stand at tick `tick` (from its schedule; the simulator relays them).
+  std::vector<Robot_Position> RecruitStatists(std::uint64_t tick) const;
   // The held orders due by `tick` (they enter this tick's relay; the simulator's books too).
   std::vector<New_Mission> ReleaseOrders(std::uint64_t tick) { return relay_.ReleaseOrders(tick); }
   // Round of tick `tick`: StartRound, then per live robot FillRound, its delivery, Asked;
@@ -95,6 +102,9 @@ class LockstepSession {
   void NoteStatus(const Mission_Status& status);
   void OnSchedule(const Mission_Schedule::ConstPtr& msg);
   bool RelaysConnected(const ros::Publisher& robot_list) const;
+  // Robots spawned since the last tick whose process already runs (it publishes their answer
+  // topic, idling until listed): waits until they are connected, as at the start.
+  void WaitForJoining(std::uint64_t tick);
   void UpdateLiveness(std::uint64_t tick);
   void WaitForDispatcher(std::uint64_t tick);
   // Once a tick's answers are in: their mission messages, by robot id, into the next relay,
@@ -110,8 +120,11 @@ class LockstepSession {
   MissionRelay relay_;
   std::vector<std::pair<std::uint16_t, Tick_Answer>> answers_;  // not taken yet
   bool finished_ = false;
+  bool started_ = false;             // WaitForStart is done
+  std::set<std::uint16_t> joining_;  // added since the last tick began (after the start)
   std::vector<ros::Subscriber> relay_subs_;
   ros::Subscriber schedule_sub_;
+  std::vector<std::pair<std::uint64_t, Robot_Position>> recruit_statists_;  // (first tick, statist)
   // The answers' mission messages for observers (robots in lock-step publish no mission topic).
   ros::Publisher status_pub_;
   ros::Publisher progress_pub_;

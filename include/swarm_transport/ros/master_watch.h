@@ -1,10 +1,11 @@
 // Watches the ROS master from a thread of its own (issue 11). ROS 1 nodes do not register
 // again after a master restart: the new master knows none of them, and their topics, services
-// and parameters are gone for anyone who asks it. A node with a MasterWatch notices within two
-// periods, says so in one line and stops (ros::requestShutdown), so that it does not run on
-// unreachable; restarted() tells its main to exit non-zero (roslaunch respawn="true" restarts a
-// node, but a swarm needs its /swarm parameters loaded again: relaunch it). A master that was
-// only unreachable for a while (it still knows this node) changes nothing.
+// and parameters are gone for anyone who asks it. A node with a MasterWatch tells the new
+// master by its process id (getPid), notices within two periods, says so in one line and stops
+// (ros::requestShutdown), so that it does not run on unreachable; restarted() tells its main to
+// exit non-zero (roslaunch respawn="true" restarts a node, but a swarm needs its /swarm parameters
+// loaded again: relaunch it). A master that was only unreachable for a while (it still knows this
+// node) changes nothing.
 #ifndef SWARM_TRANSPORT_ROS_MASTER_WATCH_H_
 #define SWARM_TRANSPORT_ROS_MASTER_WATCH_H_
 
@@ -17,7 +18,8 @@ namespace swarm_transport {
 
 class MasterWatch {
  public:
-  // After ros::init and the node's set-up; checks every `period_s` of wall time.
+  // Right after ros::init, before the node's set-up (a restart during a set-up that waits for
+  // the master is caught too); checks every `period_s` of wall time.
   explicit MasterWatch(double period_s = 5.0);
   ~MasterWatch();
   MasterWatch(const MasterWatch&) = delete;
@@ -32,6 +34,7 @@ class MasterWatch {
   void Run(double period_s);
 
   std::atomic<bool> restarted_{false};
+  int master_pid_;  // the master's pid when the watch began (0: it did not answer); Run's own
   std::mutex mutex_;
   std::condition_variable wake_;
   bool stop_ = false;

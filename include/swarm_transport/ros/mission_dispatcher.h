@@ -23,6 +23,7 @@
 #include "swarm_transport/core/assignment.h"
 #include "swarm_transport/core/mission.h"
 #include "swarm_transport/core/mission_book.h"
+#include "swarm_transport/core/recruit.h"
 #include "swarm_transport/ros/diagnostics.h"
 #include "swarm_transport/ros/dispatcher_options.h"
 #include "swarm_transport/ros/params.h"
@@ -68,6 +69,18 @@ class MissionDispatcher {
   // Of those, the robots on no live mission with their poses: the candidates of a count-only
   // mission (New_Mission.robot_count).
   std::map<std::uint16_t, core::PlannerRobot> IdleRobots() const;
+  // Statist as dispatcher (SPEC 9.4): validates a recruiting order (core::ValidateRecruit) and,
+  // accepted, places its statist at the object centre (real time: on /flock/position; lock-step:
+  // the schedule tells the simulator, from `start_tick`) and watches /flock/positions.
+  core::MissionBook::Verdict StartRecruit(core::MissionSpec spec, const std::string& source,
+                                          bool auto_id, std::uint64_t start_tick);
+  // A /flock/positions for the recruiting missions: the first robot_count idle robots inside
+  // an object take its mission (its order goes out with their ids, from the next tick), its
+  // statist is deleted. Lock-step: the schedule then says which tick was watched.
+  void WatchRecruits(const Robot_Positions& positions);
+  // Lock-step: the recruiting missions, the tick watched and the orders of `due` (id, tick).
+  void PublishRecruitSchedule(std::uint64_t checked_tick,
+                              const std::vector<std::pair<std::uint16_t, std::uint64_t>>& due);
   void PublishStatus(const core::MissionSpec& spec, core::MissionPhase phase,
                      const std::string& reason, std::uint64_t tick = 0);
   // Before a new order: waits (at most kListenerWaitS) until every registered subscriber of
@@ -119,6 +132,17 @@ class MissionDispatcher {
   ros::Publisher delete_pub_;
 
   Robot_Positions::ConstPtr positions_;
+  // A mission gathering its robots with a statist: no robots named yet, not in the book.
+  struct Recruiting {
+    core::MissionSpec spec;
+    core::RecruitWatch watch;
+    std::string source;
+    std::uint64_t start_tick = 0;  // lock-step: its statist stands from this tick
+    std::uint16_t statist_id = 0;  // its statist (stacked: sub_ids 0 .. kRecruitStatistCopies-1)
+  };
+  std::map<std::uint16_t, Recruiting> recruiting_;
+  ros::Publisher statist_pub_;         // real time: /flock/position
+  ros::Publisher statist_delete_pub_;  // real time: /flock/robot/delete
   std::unique_ptr<core::MissionBook> book_;  // made by LoadOptions
 };
 

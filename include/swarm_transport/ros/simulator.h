@@ -10,12 +10,12 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <set>
 #include <string>
 #include <thread>
 #include <utility>
 #include <vector>
 
-#include "swarm_transport/Hold.h"
 #include "swarm_transport/Neighbors.h"
 #include "swarm_transport/TeleportAbsolute.h"
 #include "swarm_transport/TeleportRelative.h"
@@ -24,8 +24,9 @@
 #include "swarm_transport/core/random.h"
 #include "swarm_transport/ros/diagnostics.h"
 #include "swarm_transport/ros/direct_link.h"
-#include "swarm_transport/ros/event_schedule.h"
-#include "swarm_transport/ros/flocking_tuning.h"
+#include "swarm_transport/ros/event_player.h"
+#include "swarm_transport/ros/live_tuning.h"
+#include "swarm_transport/ros/lockstep_hold.h"
 #include "swarm_transport/ros/lockstep_session.h"
 #include "swarm_transport/ros/mission_mirror.h"
 #include "swarm_transport/ros/robot_links.h"
@@ -107,13 +108,9 @@ class Simulator : public RobotOutlet {
   void OnCmdVel(std::uint16_t id, const geometry_msgs::Twist& msg);
   // Runs `call` now on the simulator's thread, or queues it for its loop from another one.
   void OnSimulatorThread(std::function<void()> call);
-  // ~hold (lock-step): stand before a stated tick until released.
-  bool OnHold(Hold::Request& req, Hold::Response& res);
-  // Lock-step, before tick tick_ begins: stands while a hold asks for it (markers, tf and
-  // services go on); returns the wall time it stood.
-  ros::WallDuration HoldIfAsked();
-  // The scenario's timed events due at this tick (~events_file).
-  void ApplyDueEvents();
+  // Lock-step: the statists of the dispatcher's recruiting missions (SPEC 9.4) that stand at
+  // this tick are relayed, those of missions that found their robots no more.
+  void ApplyRecruitStatists();
 
   static volatile std::sig_atomic_t stop_requested_;
 
@@ -132,31 +129,23 @@ class Simulator : public RobotOutlet {
   ros::CallbackQueue cmd_queue_;
   std::unique_ptr<RobotLinks> links_;
   // Live tuning of the flocking parameters (dynamic_reconfigure on the private handle).
-  std::unique_ptr<TuningRelay> tuning_;
-  std::unique_ptr<FlockingTuningServer> tuning_server_;
-  ros::Publisher tuning_pub_;
+  std::unique_ptr<LiveTuning> tuning_;
   bool radio_follows_range_ = true;  // ~radio_range_m unset: the radio's range is the local range
   std::unique_ptr<RobotRoster> roster_;      // spawn, kill, teleports, copies and statists
   std::unique_ptr<MissionMirror> missions_;  // what the robots act on, for radio and markers
 
   ros::Publisher positions_pub_;
   std::unique_ptr<LockstepSession> session_;  // lock-step only
-  std::unique_ptr<EventSchedule> events_;     // with ~events_file only
-  ros::Publisher event_freeze_pub_;           // real time: the timed events' messages
-  ros::Publisher event_continue_pub_;
-  ros::Publisher event_update_pub_;
-  ros::Publisher event_signal_pub_;
+  std::unique_ptr<EventPlayer> events_;       // with ~events_file only
   ros::Publisher clock_pub_;
   std::unique_ptr<sim::Visuals> visuals_;
   std::unique_ptr<NodeDiagnostics> diagnostics_;
-  ros::ServiceServer hold_srv_;
-  std::uint64_t hold_at_ = 0;  // lock-step: hold before this tick (0: none)
-  bool holding_ = false;
-  bool tick_begun_ = false;    // lock-step: tick tick_ is under way
+  std::unique_ptr<LockstepHold> hold_;        // ~hold
 
   std::uint64_t tick_ = 0;    // radio rounds so far (lock-step: ticks)
   bool finished_ = false;     // lock-step: max ticks reached, the world is frozen
   ros::WallTime start_wall_;
+  std::set<std::pair<std::uint16_t, std::uint8_t>> recruit_statists_;  // relayed now
   ros::WallTime last_bad_cmd_warning_wall_;  // wall-clock throttles of repeated warnings
   ros::WallTime last_unsolicited_warning_wall_;
 };

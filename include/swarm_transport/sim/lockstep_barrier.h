@@ -71,6 +71,14 @@ class LockstepBarrier {
   // Stops waiting for what OrdersMissing(tick) waits for; returns the orders given up.
   std::vector<std::uint16_t> GiveUpOrders(std::uint64_t tick);
   bool ScheduleMissing() const { return expect_schedule_ && !have_schedule_; }
+  // Statist as dispatcher (SPEC 9.4): the missions recruiting now (id, the tick their statist
+  // stands from) and the last tick whose positions the dispatcher has watched. Tick t waits
+  // while a recruit started before t and the dispatcher has not watched tick t - 1 (its order
+  // may enter at t); GiveUpRecruits(t) stops waiting for that.
+  void OnRecruits(std::uint64_t checked_tick,
+                  const std::vector<std::pair<std::uint16_t, std::uint64_t>>& recruiting);
+  bool RecruitsUnchecked(std::uint64_t tick) const;
+  void GiveUpRecruits(std::uint64_t tick);
 
   // Every live robot asked this tick answered it.
   bool AllAnswered() const { return awaiting_ == 0; }
@@ -99,6 +107,8 @@ class LockstepBarrier {
   std::map<std::uint16_t, std::uint64_t> orders_due_;  // scheduled, not arrived: start tick
   std::set<std::uint16_t> orders_early_;  // arrived before the schedule named them
   std::set<EventKey> events_awaited_;
+  std::map<std::uint16_t, std::uint64_t> recruits_;  // recruiting mission: statist's first tick
+  std::uint64_t recruit_checked_ = 0;
   std::set<EventKey> events_seen_;
 };
 
