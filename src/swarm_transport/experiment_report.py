@@ -146,7 +146,10 @@ def measured_table(preset):
              '| thesis setting | ' + ' | '.join(TITLES.get(c, c) for c in cols) + ' |',
              '|---|' + '---:|' * len(cols)]
     for row in m['rows']:
-        lines.append('| %s | %s |' % (row['label'], ' | '.join(_num(row[c]) for c in cols)))
+        # Whole numbers as the file gives them (a count of runs is 1, not 1.00).
+        lines.append('| %s | %s |' % (row['label'], ' | '.join(
+            str(row[c]) if isinstance(row[c], int) and not isinstance(row[c], bool)
+            else _num(row[c]) for c in cols)))
     lines.append('')
     return lines
 
