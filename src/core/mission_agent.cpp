@@ -178,7 +178,11 @@ std::vector<std::uint16_t> MissionAgent::Left(const Live& live) const {
 
 std::vector<std::uint16_t> MissionAgent::LeadersNow(const Live& live) const {
   if (live.lost.empty()) return live.spec.Leaders();
-  std::vector<std::uint16_t> leaders = Left(live);
+  // In the order they lead (the named leaders first): a lost leader's place goes to the next.
+  std::vector<std::uint16_t> leaders;
+  for (std::uint16_t id : live.spec.LeadOrder()) {
+    if (live.lost.count(id) == 0) leaders.push_back(id);
+  }
   if (live.spec.leader_number >= 0 &&
       static_cast<std::size_t>(live.spec.leader_number) < leaders.size()) {
     leaders.resize(static_cast<std::size_t>(live.spec.leader_number));
@@ -188,8 +192,10 @@ std::vector<std::uint16_t> MissionAgent::LeadersNow(const Live& live) const {
 
 bool MissionAgent::LeadsFirst(const Live& live) const {
   if (live.lost.empty()) return live.spec.FirstLeader() == self_id_;
-  const std::vector<std::uint16_t> left = Left(live);
-  return !left.empty() && left.front() == self_id_;
+  for (std::uint16_t id : live.spec.LeadOrder()) {
+    if (live.lost.count(id) == 0) return id == self_id_;
+  }
+  return false;
 }
 
 bool MissionAgent::Heartbeats(Live* live, const std::vector<Neighbour>& heard,

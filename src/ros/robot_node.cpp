@@ -326,7 +326,7 @@ Robot_State::Response RobotNode::State() const {
   state.ticks = ticks_;
   state.listed = listed_;
   state.frozen = brain.frozen();
-  state.leader = plan.lead;
+  state.leader = plan.lead || (plan.carry && plan.carry->leader);  // alone or of a transport
   state.has_active = plan.active.has_value();
   state.active_mission = plan.active.value_or(0);
   for (std::uint16_t m : brain.missions().LiveIds()) {

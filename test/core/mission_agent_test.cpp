@@ -617,6 +617,42 @@ TEST(MissionAgentTest, LostLeadersAreReplacedInOrderAndAFirstLeaderToBeKeepsTheS
   EXPECT_EQ(out.resume.size(), 1u);
 }
 
+TEST(MissionAgentTest, NamedLeadersLeadAndALostOneIsReplacedByTheNextInLeadOrder) {
+  MissionAgentParams params;
+  params.lost_after_ticks = 5;
+  MissionSpec spec = Thesis();
+  spec.range_to = 4;
+  spec.leader_number = 2;
+  spec.leader_ids = {3, 2};  // named (a count-only mission's front robots): 0 and 1 passive
+  MissionAgent robot0(0, params);
+  MissionAgent robot3(3, params);
+  std::string why;
+  ASSERT_TRUE(robot0.OnNewMission(spec, &why)) << why;
+  ASSERT_TRUE(robot3.OnNewMission(spec, &why)) << why;
+  robot0.OnStatus(7, MissionPhase::kGathering);
+  robot3.OnStatus(7, MissionPhase::kGathering);
+  MissionOutbox out;
+  MissionPlan plan =
+      robot0.Tick(PoseAt(6.5, 6.5), {At(1, 7.5, 7.5), At(2, 7.0, 7.0), At(3, 7.0, 7.5)}, 1, &out);
+  ASSERT_TRUE(plan.carry.has_value());
+  EXPECT_EQ(plan.carry->leaders, (std::vector<std::uint16_t>{2, 3}));
+  EXPECT_FALSE(plan.carry->leader);
+  EXPECT_FALSE(robot0.IsFirstLeaderOfAny());  // robot 2 is: the lowest named leader
+  EXPECT_FALSE(robot3.IsFirstLeaderOfAny());
+  // Robot 2 falls silent: robot 3 leads first, robot 0 (the next in LeadOrder) leads too.
+  for (std::uint64_t t = 2; t <= 8; ++t) {
+    out = MissionOutbox();
+    plan = robot0.Tick(PoseAt(6.5, 6.5), {At(1, 7.5, 7.5), At(3, 7.0, 7.5)}, t, &out);
+    robot3.Tick(PoseAt(7.0, 7.5), {At(0, 6.5, 6.5), At(1, 7.5, 7.5)}, t, nullptr);
+  }
+  EXPECT_EQ(robot0.LostOf(7), (std::set<std::uint16_t>{2}));
+  ASSERT_TRUE(plan.carry.has_value());
+  EXPECT_EQ(plan.carry->leaders, (std::vector<std::uint16_t>{0, 3}));
+  EXPECT_TRUE(plan.carry->leader);
+  EXPECT_FALSE(robot0.IsFirstLeaderOfAny());
+  EXPECT_TRUE(robot3.IsFirstLeaderOfAny());
+}
+
 TEST(MissionAgentTest, AFirstLeaderDropsAMemberLostInLoadingAndCarriesOn) {
   MissionAgentParams params;
   params.lost_after_ticks = 5;

@@ -36,8 +36,9 @@ struct MissionAgentParams {
   // mission (its radio is silent: a dead, hung or deleted robot) [SPEC 9.7]. Every member is
   // heard every tick over the mission channel while it answers its ticks, so every member
   // loses it at the same tick. The mission goes on without it: its leaders are the first
-  // leader_number assigned robots not lost (a lost leader is replaced by the next assigned
-  // robot, a lost first leader by the lowest of them, which announces itself with a status),
+  // leader_number assigned robots not lost in MissionSpec::LeadOrder (its leader_ids first, if
+  // named; a lost leader is replaced by the next assigned robot, a lost first leader by the
+  // first of them in that order, which announces itself with a status),
   // and it ends ABORTED when fewer robots than leaders are left. Until it is lost a silent
   // member counts where it was last heard; in transport the object is re-anchored when one is
   // lost, so that it does not jump. Robots take it from /swarm/lost_after_s.
@@ -193,7 +194,8 @@ class MissionAgent {
     std::optional<Vec2> slot;  // planned gathering: its own slot under the object
   };
   // Of a live mission, with its lost robots: the robots left (ascending), its leaders now (the
-  // first leader_number of them) and its first leader now (the lowest; 0 when none is left).
+  // first leader_number of them in MissionSpec::LeadOrder) and its first leader now (the first
+  // of them; 0 when none is left).
   std::vector<std::uint16_t> Left(const Live& live) const;
   std::vector<std::uint16_t> LeadersNow(const Live& live) const;
   bool LeadsFirst(const Live& live) const;
