@@ -34,6 +34,7 @@ TITLES = {
     'coverage_fraction': 'area covered (%)',
     'nn_spacing_mean_m': 'nearest neighbour (m)',
     'nn_spacing_cv': 'nearest-neighbour spread (CV)',
+    'loading_nn_cv': 'spacing spread at transport start (CV)',
 }
 PERCENT = {'path_fraction_attached', 'leader_contact', 'aborted', 'coverage_fraction'}   # stored as fractions, shown in %
 PANELS = {   # the metrics drawn as bars, in the thesis's order of diagrams

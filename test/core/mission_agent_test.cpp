@@ -109,6 +109,44 @@ void IntoTransport(MissionAgent* leader) {
   ASSERT_EQ(Phases(out), std::vector<std::string>{"TRANSPORT"});
 }
 
+TEST(MissionAgentTest, ABalloonLoadingFreezesAfterTheSpreadAndTransportsOnlyAfterTheFreeze) {
+  MissionAgentParams params;
+  params.loading_spread = LoadingSpread::kBalloon;
+  params.loading_spread_ticks = 5;
+  MissionAgent leader(0, params);
+  std::string why;
+  ASSERT_TRUE(leader.OnNewMission(Thesis(), &why));
+  const std::vector<Neighbour> inside{At(1, 7.5, 7.5), At(2, 6.5, 6.5)};
+  MissionOutbox out;
+  leader.Tick(PoseAt(7.0, 7.0), {At(1, 7.5, 7.5), At(2, 1.0, 1.0)}, 1, &out);
+  // Everyone inside at tick 2: LOADING, but no freeze yet - the robots spread first.
+  out = MissionOutbox();
+  MissionPlan plan = leader.Tick(PoseAt(7.0, 7.0), inside, 2, &out);
+  EXPECT_EQ(Phases(out), std::vector<std::string>{"LOADING"});
+  EXPECT_TRUE(out.freeze.empty());
+  ASSERT_TRUE(plan.carry.has_value());
+  EXPECT_TRUE(plan.carry->loading);
+  // LOADED takes effect at tick 3 already: the spread still holds the transport back.
+  ASSERT_TRUE(leader.OnEvent(7, MissionEventKind::kLoaded, 3, &why)) << why;
+  for (std::uint64_t tick = 3; tick < 7; ++tick) {
+    out = MissionOutbox();
+    leader.Tick(PoseAt(7.0, 7.0), inside, tick, &out);
+    EXPECT_TRUE(out.freeze.empty()) << tick;
+    EXPECT_TRUE(Phases(out).empty()) << tick;
+  }
+  // Tick 2 + 5: the freeze goes out; the transport starts at the tick after it.
+  out = MissionOutbox();
+  leader.Tick(PoseAt(7.0, 7.0), inside, 7, &out);
+  ASSERT_EQ(out.freeze.size(), 1u);
+  EXPECT_EQ(out.freeze[0], std::make_pair(std::uint16_t{0}, std::uint16_t{3}));
+  EXPECT_TRUE(Phases(out).empty());
+  out = MissionOutbox();
+  leader.Tick(PoseAt(7.0, 7.0), inside, 8, &out);
+  EXPECT_EQ(Phases(out), std::vector<std::string>{"TRANSPORT"});
+  EXPECT_EQ(out.resume.size(), 1u);
+  EXPECT_TRUE(out.freeze.empty());
+}
+
 TEST(MissionAgentTest, TheObjectMovesWithTheCurrentCentroidOfItsRobots) {
   MissionAgent leader(0, MissionAgentParams());
   IntoTransport(&leader);

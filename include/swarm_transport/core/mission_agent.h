@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "swarm_transport/core/balloon.h"
 #include "swarm_transport/core/flocking.h"
 #include "swarm_transport/core/leader.h"
 #include "swarm_transport/core/mission.h"
@@ -55,6 +56,11 @@ struct MissionAgentParams {
   // Planned gathering (transport.gather_planner): a robot within this distance of another's
   // straight path blocks it (the flocking's minimum separation).
   double corridor_m = 0.11;
+  // (ext, SPEC 9.5) Balloon spreading under the object while LOADING: the first leader sends
+  // the freeze loading_spread_ticks after LOADING began (not at once) and starts the transport
+  // no earlier than the tick after it; until the freeze the robots spread (RobotBrain).
+  LoadingSpread loading_spread = LoadingSpread::kNone;
+  int loading_spread_ticks = 10;
 };
 
 // How far an object may move in `ticks` ticks when its robots drive at most `speed_m_per_tick`:
@@ -179,6 +185,9 @@ class MissionAgent {
     std::uint64_t transport_ticks = 0;
     bool loaded = false;       // first-leader: LOADED arrived during LOADING
     bool unloaded = false;     // first-leader: UNLOADED arrived during UNLOADING
+    // first-leader, loading_spread balloon: the tick the freeze goes out, and whether it did
+    std::uint64_t spread_end_tick = 0;
+    bool spread_frozen = false;
     std::uint64_t signal_tick = 0;  // ... and takes effect at this tick
     bool self_arrived = false; // this leader reached its leader-only goal
     std::map<std::uint16_t, std::uint64_t> heard_tick;  // each member's last tick heard
