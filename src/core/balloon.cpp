@@ -20,15 +20,6 @@ constexpr int kMaxBalloonSwerveDeg = 90;
 // Two contact directions at least this close to 180 degrees apart leave a free side.
 constexpr double kHalfTurnDeg = 180.0 - 1e-9;
 
-MoveDecision Stand(const Perception& in, Angle desired) {
-  MoveDecision d;
-  d.desired_heading = desired;
-  d.heading = in.self.heading;
-  d.distance_m = 0.0;
-  d.outcome = MoveOutcome::kStand;
-  return d;
-}
-
 }  // namespace
 
 bool ParseStandbyMode(const std::string& name, StandbyMode* out) {
@@ -134,7 +125,7 @@ MoveDecision BalloonStep(const Perception& in, const FlockingParams& p, const Ba
   const Vec2 push = BalloonPush(contacts, *radius_m);
   const double length = Norm(push);
   const Angle along = length > 0.0 ? Bearing({0.0, 0.0}, push) : in.self.heading;
-  MoveDecision d = Stand(in, along);
+  MoveDecision d = StandStill(along, in.self.heading);
   if (length >= kStillM) {
     FlockingParams reach = p;
     reach.speed_m_per_tick = std::min(p.speed_m_per_tick, length);
@@ -182,7 +173,7 @@ MoveDecision LoadingBalloonStep(const Perception& in, const FlockingParams& p,
   const double length = Norm(push);
   const Angle along = length > 0.0 ? Bearing({0.0, 0.0}, push) : in.self.heading;
   const Shape inside = Shape::FromRect(object.centre, object.size);
-  MoveDecision d = Stand(in, along);
+  MoveDecision d = StandStill(along, in.self.heading);
   if (length >= kStillM) {
     FlockingParams reach = p;
     reach.speed_m_per_tick = std::min(p.speed_m_per_tick, length);
