@@ -437,7 +437,10 @@ def cmd_report(dirs, out_md):
             lines.extend('- %s' % t for t in trends)
             lines.append('')
         if preset.get('note'):
-            lines.append('**Why it differs:** %s' % ' '.join(preset['note'].split()))
+            # "Why it differs" only above a section with a trend line that differs.
+            differs = any(t.endswith(': differs') for t in trends)
+            lines.append('**%s:** %s' % ('Why it differs' if differs else 'Note',
+                                         ' '.join(preset['note'].split())))
             lines.append('')
     with open(out_md, 'w') as f:
         f.write('\n'.join(lines))
