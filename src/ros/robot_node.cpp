@@ -608,8 +608,11 @@ void RobotNode::Tick() {
   }
   // Its position for those who listen to robots (broadcast comm, observers in real time). In
   // lock-step with the radio, /flock/positions carries every robot's true pose each tick and the
-  // simulator keeps only virtual copies and statists from /flock/position: not published.
-  if (!lockstep || options_.comm == core::Comm::kBroadcast) {
+  // simulator keeps only virtual copies and statists from /flock/position: not published. The
+  // same with the simulator in this process (deploy host_sim): it has the robot's true pose, and
+  // every publication would be a callback for it to discard - one per robot and tick.
+  const bool for_observers = !lockstep && options_.direct == nullptr;
+  if (for_observers || options_.comm == core::Comm::kBroadcast) {
     const core::Pose2 after = core::TurnThenDrive(before, command, config_.tick_period_s);
     // By shared pointer: roscpp hands it to subscribers in this process (the simulator of a
     // robot_host) without serialising it and without waking its poll thread; a message
