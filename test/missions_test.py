@@ -10,7 +10,7 @@ import unittest
 import rospy
 import rostest
 from swarm_transport.msg import New_Mission
-from swarm_transport.srv import Submit_Mission
+from swarm_transport.srv import Hold, Submit_Mission
 
 import swarm_testing as st
 
@@ -78,10 +78,28 @@ class Missions(unittest.TestCase):
 
     def test_a_count_only_mission_gets_its_robots_picked_and_completes(self):
         """New_Mission.robot_count (ext, SPEC 9.10): no range, no ids; the dispatcher picks the
-        robots by the selection matrix and sends the order with their ids."""
+        robots by the selection matrix and sends the order with their ids, and the leaders among
+        them (issue 12): those whose slots lie furthest toward the target, in leader_ids."""
         g = lambda k: rospy.get_param('~count/' + k)  # noqa: E731
-        robots, count = g('robots'), g('count')
+        robots, count, leaders = g('robots'), g('count'), g('leaders')
         self.start(robots=robots, seed=g('seed'))
+        # The run stands at tick `at` while the robots are picked: the dispatcher picks from the
+        # poses of tick at - 1, which the seed decides, so that the pick is always the same.
+        hold = rospy.ServiceProxy('/simulator/hold', Hold)
+        hold.wait_for_service(self.timeout)
+        at = g('pick_at_tick')
+        answer = hold(at)
+        self.assertEqual(answer.code, Hold._response_class.OK, answer.message)
+        self.assertTrue(st.wait_for(lambda: hold(at).holding, self.timeout), 'it never held')
+        rospy.sleep(1.0)  # the dispatcher has the poses of tick at - 1 too
+        orders = []
+        sub = rospy.Subscriber('/flock/mission/new', New_Mission,
+                               lambda o: orders.append(o) if o.mission_id == 51 else None)
+        named = st.mission(54, 0, 0, 1, (7.0, 7.0, 2.0, 2.0), (3.0, 3.0))
+        named.robot_count, named.leader_ids = 2, [0]
+        answer = self.submit(named)
+        self.assertNotEqual(answer.code, 0, 'leader_ids besides robot_count was accepted')
+        self.assertIn('leader_ids', answer.message)
         too_many = st.mission(52, 0, 0, 1, (7.0, 7.0, 2.0, 2.0), (3.0, 3.0))
         too_many.robot_count = robots + 1
         answer = self.submit(too_many)
@@ -90,10 +108,39 @@ class Missions(unittest.TestCase):
         both = st.mission(53, 0, 2, 1, (7.0, 7.0, 2.0, 2.0), (3.0, 3.0))
         both.robot_count = 2
         self.assertNotEqual(self.submit(both).code, 0, 'a count besides a range was accepted')
-        m = st.mission(51, 0, 0, g('leaders'), (7.0, 7.0, 2.0, 2.0), (3.0, 3.0))
+        m = st.mission(51, 0, 0, leaders, (7.0, 7.0, 2.0, 2.0), tuple(g('target')))
         m.robot_count = count
         answer = self.submit(m)
         self.assertEqual(answer.code, 0, answer.message)
+        self.assertTrue(st.wait_for(lambda: orders, self.timeout), 'no order of mission 51')
+        order = orders[-1]
+        sub.unregister()
+        self.assertEqual(len(order.robot_ids), count)
+        self.assertEqual(order.robot_count, 0)
+        # The leaders: leader_number of the picked robots, the plan's front ones - not the
+        # lowest ids, as in an order that names none.
+        picked = sorted(order.robot_ids)
+        self.assertEqual(len(order.leader_ids), leaders)
+        self.assertTrue(set(order.leader_ids) <= set(picked), (order.leader_ids, picked))
+        self.assertEqual(sorted(order.leader_ids), g('front_leaders'),
+                         'picked %s, leaders %s' % (picked, list(order.leader_ids)))
+        self.assertNotEqual(sorted(order.leader_ids), picked[:leaders])
+        # The robots lead as the order says: the hold moves on 5 ticks at a time until the
+        # mission gathers, then they are asked.
+        for _ in range(40):
+            if self.status.first(51, 1) is not None or self.status.final(51):
+                break
+            at += 5
+            self.assertEqual(hold(at).code, Hold._response_class.OK)
+            self.assertTrue(st.wait_for(lambda: hold(at).holding, self.timeout), 'never held')
+            rospy.sleep(0.5)  # the statuses of tick at - 1
+        self.assertIsNotNone(self.status.first(51, 1), self.status.states(51))
+        self.assertFalse(self.status.final(51), self.status.states(51))
+        states = self.states(robots)
+        self.assertEqual(hold(0).code, Hold._response_class.OK)
+        leading = sorted(rid for rid, state in states.items()
+                         if state.leader and state.has_active and state.active_mission == 51)
+        self.assertEqual(leading, sorted(order.leader_ids), states)
         self.assertTrue(st.wait_for(lambda: self.status.final(51), self.timeout),
                         'count-only mission did not finish: %s' % self.status.states(51))
         done = self.status.first(51, 5)

@@ -24,7 +24,7 @@ MISSIONS_HEADER = [
     'mission_id', 'kind', 'assigned', 'leaders', 'final_state', 'queued_tick', 'gathering_tick',
     'loading_tick', 'transport_tick', 'unloading_tick', 'done_tick', 'transport_ticks',
     'slip_per_robot_m', 'distance_per_robot_m', 'leader_waits', 'path_fraction_attached',
-    'leader_swarm_at_arrival', 'object_error_m', 'leader_contact']
+    'leader_swarm_at_arrival', 'object_error_m', 'leader_contact', 'loading_nn_cv']
 RUN_HEADER = ['run_name', 'seed', 'robots', 'ticks', 'sim_time_s', 'samples',
               'mean_swarm_count', 'final_swarm_count', 'missions_done', 'missions_aborted',
               'coverage_fraction', 'nn_spacing_mean_m', 'nn_spacing_cv']

@@ -7,6 +7,8 @@
   its answers, each once and in order;
 - a relayed Robot_Freeze for it: ~state says frozen and its command is zero; a relayed freeze
   with an inverted range is refused (state unchanged), and the continue after it takes effect.
+- in lock-step the robot takes its time from the rounds: it does not subscribe to /clock
+  (robot.launch), and its statuses carry their round's sim_time.
 Counts and typed fields only (no ~describe text)."""
 
 import math
@@ -90,8 +92,11 @@ class RobotInterface(unittest.TestCase):
         order = st.mission(9, self.rid, self.rid + 2, 1, (6.0, 6.0, 1.0, 1.0), (3.0, 6.0))
         states = []
         for k in range(6):
-            a = self.answered(self.round(missions=[order] if k == 0 else []))
+            tick = self.round(missions=[order] if k == 0 else [])
+            a = self.answered(tick)
             states += [s.state for s in a.statuses if s.mission_id == 9]
+            for s in a.statuses:  # stamped with its round's simulated time, not a /clock
+                self.assertAlmostEqual(s.stamp.to_sec(), 0.1 * tick, places=6)
         self.assertEqual(states[:2], [0, 1], states)  # QUEUED, GATHERING
         self.assertEqual(len(states), len(set(states)), 'a phase said twice: %s' % states)
 
@@ -108,6 +113,15 @@ class RobotInterface(unittest.TestCase):
                                                            robot_index_to=self.rid + 1)]))
         self.assertFalse(st.robot_state(self.rid, self.timeout).frozen)
 
+
+    def test_4_no_clock_subscription_in_lock_step(self):
+        import rosgraph
+        _, subscribers, _ = rosgraph.Master('/robot_interface_test').getSystemState()
+        on_clock = [nodes for topic, nodes in subscribers if topic == '/clock']
+        robot = '/robot_%d/robot' % self.rid
+        self.assertTrue(any(robot == n for _, nodes in subscribers for n in nodes),
+                        'the robot subscribes to nothing?')
+        self.assertNotIn(robot, on_clock[0] if on_clock else [], 'the robot hears /clock')
 
 if __name__ == '__main__':
     rospy.init_node('robot_interface_test')

@@ -9,6 +9,7 @@ import rospkg
 import rospy
 import roslaunch
 from swarm_transport.msg import Mission_Status, New_Mission, Robot_Positions
+from swarm_transport.st_ros import process_alive  # noqa: F401 (the tests' helper)
 
 
 def launch_swarm(**args):
@@ -56,19 +57,6 @@ def stop_process_groups(procs, timeout=15):
         except subprocess.TimeoutExpired:
             os.killpg(proc.pid, signal.SIGKILL)
             proc.wait()
-
-
-def process_alive(pid):
-    """True while process `pid` runs (a zombie that exited but was not reaped yet counts as
-    gone)."""
-    try:
-        with open('/proc/%d/status' % pid) as f:
-            for line in f:
-                if line.startswith('State:'):
-                    return 'Z' not in line.split()[1]
-    except OSError:
-        return False
-    return True
 
 
 class PositionLog(object):

@@ -370,6 +370,9 @@ std::string PickRobotsByCount(MissionSpec* spec, const std::map<std::uint16_t, P
   const std::size_t count = spec->robot_count;
   if (count == 0 || !spec->robot_ids.empty() || spec->range_from < spec->range_to) {
     os << "robot_count picks robots only for a mission with robot_count > 0 and no range or ids";
+  } else if (!spec->leader_ids.empty()) {
+    os << "robot_count " << count
+       << " picks the leaders too: give it without leader_ids (the dispatcher names them)";
   } else if (spec->LeaderOnly()) {
     os << "robot_count needs an object (a leader-only mission names its leader)";
   } else if (!spec->all_finite) {
@@ -405,11 +408,37 @@ std::string PickRobotsByCount(MissionSpec* spec, const std::map<std::uint16_t, P
   for (const Vec2& s : slots) targets.push_back({s, 0.0});
   const SelectionPlan plan = PlanSelection(robots, targets, p);
   std::vector<std::uint16_t> picked;
+  // The leaders: the picked robots whose slots lie furthest toward the target (the front of the
+  // object on its course), ties (to 1e-9 m) by the matrix's time X, then by id.
+  const CostMatrix x = SelectionMatrix(robots, targets, p);
+  const Vec2 course = spec->target - centre;
+  struct Front {
+    double ahead;  // slot - centre projected onto the course, rounded to 1e-9
+    double time;   // X of the robot to its slot
+    std::uint16_t id;
+  };
+  std::vector<Front> front;
   for (std::size_t r = 0; r < ids.size(); ++r) {
-    if (plan.target_of[r] >= 0) picked.push_back(ids[r]);
+    if (plan.target_of[r] < 0) continue;
+    picked.push_back(ids[r]);
+    const std::size_t n = static_cast<std::size_t>(plan.target_of[r]);
+    const Vec2 off = slots[n] - centre;
+    front.push_back(
+        {std::round((off.x * course.x + off.y * course.y) * 1e9) / 1e9, x.at(r, n), ids[r]});
   }
+  std::stable_sort(front.begin(), front.end(), [](const Front& a, const Front& b) {
+    if (a.ahead != b.ahead) return a.ahead > b.ahead;
+    if (a.time != b.time) return a.time < b.time;
+    return a.id < b.id;
+  });
   spec->robot_ids = picked;  // ascending: `usable` is ordered by id
   spec->robot_count = 0;
+  // A leader_number outside [1, count] is left to ValidateMission (no leader_ids then).
+  spec->leader_ids.clear();
+  if (spec->leader_number >= 1 && static_cast<std::size_t>(spec->leader_number) <= front.size()) {
+    for (int i = 0; i < spec->leader_number; ++i) spec->leader_ids.push_back(front[i].id);
+    std::sort(spec->leader_ids.begin(), spec->leader_ids.end());
+  }
   return "";
 }
 

@@ -20,15 +20,6 @@ constexpr int kMaxBalloonSwerveDeg = 90;
 // Two contact directions at least this close to 180 degrees apart leave a free side.
 constexpr double kHalfTurnDeg = 180.0 - 1e-9;
 
-MoveDecision Stand(const Perception& in, Angle desired) {
-  MoveDecision d;
-  d.desired_heading = desired;
-  d.heading = in.self.heading;
-  d.distance_m = 0.0;
-  d.outcome = MoveOutcome::kStand;
-  return d;
-}
-
 }  // namespace
 
 bool ParseStandbyMode(const std::string& name, StandbyMode* out) {
@@ -54,6 +45,12 @@ std::string BalloonParams::Validate() const {
 }
 
 std::vector<BalloonContact> BalloonContacts(const Perception& in, const FlockingParams& p) {
+  const double w = p.world_size_m;
+  return BalloonContacts(in, p, Rect{{w / 2.0, w / 2.0}, {w, w}}, true);
+}
+
+std::vector<BalloonContact> BalloonContacts(const Perception& in, const FlockingParams& p,
+                                            const Rect& borders, bool zones) {
   const Vec2 at = in.self.position;
   std::vector<BalloonContact> contacts;
   for (const Neighbour& other : in.others) {
@@ -66,13 +63,14 @@ std::vector<BalloonContact> BalloonContacts(const Perception& in, const Flocking
                               : UnitVector(Angle(137.5 * in.self_id));
     contacts.push_back(c);
   }
-  const double w = p.world_size_m;
-  contacts.push_back({std::max(0.0, at.x), {1.0, 0.0}});
-  contacts.push_back({std::max(0.0, w - at.x), {-1.0, 0.0}});
-  contacts.push_back({std::max(0.0, at.y), {0.0, 1.0}});
-  contacts.push_back({std::max(0.0, w - at.y), {0.0, -1.0}});
+  const Vec2 lo = borders.centre - borders.size * 0.5;
+  const Vec2 hi = borders.centre + borders.size * 0.5;
+  contacts.push_back({std::max(0.0, at.x - lo.x), {1.0, 0.0}});
+  contacts.push_back({std::max(0.0, hi.x - at.x), {-1.0, 0.0}});
+  contacts.push_back({std::max(0.0, at.y - lo.y), {0.0, 1.0}});
+  contacts.push_back({std::max(0.0, hi.y - at.y), {0.0, -1.0}});
   for (const Zone& zone : in.zones) {
-    if (zone.inverted || zone.shape.empty() || zone.Forbids(at)) continue;
+    if (!zones || zone.inverted || zone.shape.empty() || zone.Forbids(at)) continue;
     const Vec2 nearest = zone.shape.NearestPoint(at);
     const double d = Distance(at, nearest);
     if (d <= kCoincidentM) continue;
@@ -127,7 +125,7 @@ MoveDecision BalloonStep(const Perception& in, const FlockingParams& p, const Ba
   const Vec2 push = BalloonPush(contacts, *radius_m);
   const double length = Norm(push);
   const Angle along = length > 0.0 ? Bearing({0.0, 0.0}, push) : in.self.heading;
-  MoveDecision d = Stand(in, along);
+  MoveDecision d = StandStill(along, in.self.heading);
   if (length >= kStillM) {
     FlockingParams reach = p;
     reach.speed_m_per_tick = std::min(p.speed_m_per_tick, length);
@@ -139,6 +137,56 @@ MoveDecision BalloonStep(const Perception& in, const FlockingParams& p, const Ba
     }
   }
   d.neighbours_in_range = NeighbourhoodSize(NeighbourhoodOf(in, p));
+  return d;
+}
+
+bool ParseLoadingSpread(const std::string& name, LoadingSpread* out) {
+  if (name == "none") {
+    *out = LoadingSpread::kNone;
+  } else if (name == "balloon") {
+    *out = LoadingSpread::kBalloon;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+const char* LoadingSpreadName(LoadingSpread spread) {
+  return spread == LoadingSpread::kBalloon ? "balloon" : "none";
+}
+
+MoveDecision LoadingBalloonStep(const Perception& in, const FlockingParams& p,
+                                const BalloonParams& bp, const Rect& object,
+                                const std::vector<std::uint16_t>& peers, bool face, Angle course,
+                                Rng& rng, double duration_s, double* radius_m) {
+  // No free will under the object: draw the sample CarryStep draws.
+  rng.Uniform(-p.free_will_deg / 2.0, p.free_will_deg / 2.0);
+  Perception mine;
+  mine.self_id = in.self_id;
+  mine.self = in.self;
+  for (const Neighbour& n : in.others) {
+    if (std::binary_search(peers.begin(), peers.end(), n.id)) mine.others.push_back(n);
+  }
+  const std::vector<BalloonContact> contacts = BalloonContacts(mine, p, object, false);
+  *radius_m = GrowBalloon(*radius_m, contacts, p, bp);
+  const Vec2 push = BalloonPush(contacts, *radius_m);
+  const double length = Norm(push);
+  const Angle along = length > 0.0 ? Bearing({0.0, 0.0}, push) : in.self.heading;
+  const Shape inside = Shape::FromRect(object.centre, object.size);
+  MoveDecision d = StandStill(along, in.self.heading);
+  if (length >= kStillM) {
+    FlockingParams reach = p;
+    reach.speed_m_per_tick = std::min(p.speed_m_per_tick, length);
+    // Collisions against every robot heard; the move must end under the object.
+    const MoveDecision tried = AvoidCollisions(in, reach, along, duration_s);
+    if (tried.distance_m > 0.0 &&
+        std::abs(Angle::SignedDifference(tried.heading, along)) <= kMaxBalloonSwerveDeg &&
+        inside.Contains(in.self.position + UnitVector(tried.heading) * tried.distance_m)) {
+      d = tried;
+    }
+  }
+  if (d.distance_m == 0.0 && face) d.heading = course;
+  d.neighbours_in_range = static_cast<int>(mine.others.size()) + 1;
   return d;
 }
 

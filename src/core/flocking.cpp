@@ -302,5 +302,14 @@ Perception StackLeaders(const Perception& in, const std::vector<std::uint16_t>& 
   return stacked;
 }
 
+MoveDecision StandStill(Angle desired, Angle heading) {
+  MoveDecision d;
+  d.desired_heading = desired;
+  d.heading = heading;
+  d.distance_m = 0.0;
+  d.outcome = MoveOutcome::kStand;
+  return d;
+}
+
 }  // namespace core
 }  // namespace swarm_transport

@@ -13,15 +13,6 @@ constexpr std::uint8_t kTypePhysical = 0;
 // Steering this close to the goal's bearing means heading for the goal: do not overshoot it.
 constexpr double kAtGoalBearingDeg = 1.0;
 
-MoveDecision Stand(const Perception& in, Angle desired) {
-  MoveDecision move;
-  move.desired_heading = desired;
-  move.heading = in.self.heading;
-  move.distance_m = 0.0;
-  move.outcome = MoveOutcome::kStand;
-  return move;
-}
-
 }  // namespace
 
 std::string LeaderParams::Validate() const {
@@ -50,7 +41,7 @@ LeaderDecision LeaderStep(const Perception& in, const FlockingParams& p, const L
   const std::vector<Neighbour> neighbourhood = NeighbourhoodOf(in, p);
   const Vec2 position = in.self.position;
   LeaderDecision decision;
-  decision.move = Stand(in, steer);
+  decision.move = StandStill(steer, in.self.heading);
   decision.move.neighbours_in_range = NeighbourhoodSize(neighbourhood);
 
   const double to_goal = Distance(position, goal);
@@ -74,9 +65,8 @@ LeaderDecision LeaderStep(const Perception& in, const FlockingParams& p, const L
     } else {
       const Vec2 centroid = sum * (1.0 / swarm_size);
       const bool far = Distance(position, centroid) > lp.wait_fraction * p.local_range_m;
-      const bool behind =
-          !lp.wait_behind ||
-          std::fabs(Angle::SignedDifference(Bearing(position, centroid), steer)) > 90.0;
+      const bool behind = !lp.wait_behind || std::fabs(Angle::SignedDifference(
+                                                 Bearing(position, centroid), steer)) > 90.0;
       if (far && behind) {
         ++memory->swarm_waits;
         return decision;

@@ -41,6 +41,12 @@ bool MissionSpec::Assigns(std::uint16_t robot) const {
 }
 
 std::vector<std::uint16_t> MissionSpec::Leaders() const {
+  if (!leader_ids.empty()) {
+    std::vector<std::uint16_t> ids = leader_ids;
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    return ids;
+  }
   std::vector<std::uint16_t> ids = Assigned();
   if (leader_number >= 0 && static_cast<std::size_t>(leader_number) < ids.size()) {
     ids.resize(static_cast<std::size_t>(leader_number));
@@ -54,8 +60,18 @@ bool MissionSpec::IsLeader(std::uint16_t robot) const {
 }
 
 std::uint16_t MissionSpec::FirstLeader() const {
-  const std::vector<std::uint16_t> ids = Assigned();
+  const std::vector<std::uint16_t> ids = leader_ids.empty() ? Assigned() : Leaders();
   return ids.empty() ? 0 : ids.front();
+}
+
+std::vector<std::uint16_t> MissionSpec::LeadOrder() const {
+  std::vector<std::uint16_t> order = Assigned();
+  if (leader_ids.empty()) return order;
+  const std::vector<std::uint16_t> leaders = Leaders();
+  std::stable_partition(order.begin(), order.end(), [&leaders](std::uint16_t id) {
+    return std::binary_search(leaders.begin(), leaders.end(), id);
+  });
+  return order;
 }
 
 bool MissionSpec::LeaderOnly() const { return object_size.x == 0.0 && object_size.y == 0.0; }
@@ -74,12 +90,40 @@ std::vector<std::pair<std::uint16_t, std::uint16_t>> MissionSpec::AssignedRuns()
   return runs;
 }
 
+namespace {
+
+// Why leader_ids, when given, does not name leader_number distinct assigned robots; empty if it
+// does or is empty (the lowest leader_number assigned ids lead).
+std::string LeaderIdsProblem(const MissionSpec& m, const std::vector<std::uint16_t>& assigned) {
+  if (m.leader_ids.empty()) return "";
+  std::ostringstream os;
+  std::set<std::uint16_t> seen;
+  for (std::uint16_t id : m.leader_ids) {
+    if (!seen.insert(id).second) {
+      os << "leader_ids names robot " << id << " twice";
+      return os.str();
+    }
+    if (!std::binary_search(assigned.begin(), assigned.end(), id)) {
+      os << "leader_ids names robot " << id << ", which the mission does not assign";
+      return os.str();
+    }
+  }
+  if (m.leader_ids.size() != static_cast<std::size_t>(m.leader_number)) {
+    os << "leader_ids names " << m.leader_ids.size() << " robots but leader_number is "
+       << m.leader_number;
+  }
+  return os.str();
+}
+
+}  // namespace
+
 std::string ValidateMission(const MissionSpec& m, const MissionContext& ctx) {
   std::ostringstream os;
   const auto inside = [&ctx](Vec2 p) {
     return p.x >= 0.0 && p.y >= 0.0 && p.x <= ctx.world_size_m && p.y <= ctx.world_size_m;
   };
   const std::vector<std::uint16_t> assigned = m.Assigned();
+  const std::string leader_ids_problem = LeaderIdsProblem(m, assigned);
   if (!m.all_finite) {
     os << "a field is not a finite number (NaN or inf)";
   } else if (m.recruit) {
@@ -98,6 +142,8 @@ std::string ValidateMission(const MissionSpec& m, const MissionContext& ctx) {
   } else if (static_cast<std::size_t>(m.leader_number) > assigned.size()) {
     os << "leader_number " << m.leader_number << " is larger than the group of "
        << assigned.size() << " robots";
+  } else if (!leader_ids_problem.empty()) {
+    os << leader_ids_problem;
   } else if (m.transport_mode > 1) {
     os << "transport_mode must be 0 (swarm) or 1 (formation) but is "
        << static_cast<int>(m.transport_mode);

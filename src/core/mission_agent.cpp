@@ -178,7 +178,11 @@ std::vector<std::uint16_t> MissionAgent::Left(const Live& live) const {
 
 std::vector<std::uint16_t> MissionAgent::LeadersNow(const Live& live) const {
   if (live.lost.empty()) return live.spec.Leaders();
-  std::vector<std::uint16_t> leaders = Left(live);
+  // In the order they lead (the named leaders first): a lost leader's place goes to the next.
+  std::vector<std::uint16_t> leaders;
+  for (std::uint16_t id : live.spec.LeadOrder()) {
+    if (live.lost.count(id) == 0) leaders.push_back(id);
+  }
   if (live.spec.leader_number >= 0 &&
       static_cast<std::size_t>(live.spec.leader_number) < leaders.size()) {
     leaders.resize(static_cast<std::size_t>(live.spec.leader_number));
@@ -188,8 +192,10 @@ std::vector<std::uint16_t> MissionAgent::LeadersNow(const Live& live) const {
 
 bool MissionAgent::LeadsFirst(const Live& live) const {
   if (live.lost.empty()) return live.spec.FirstLeader() == self_id_;
-  const std::vector<std::uint16_t> left = Left(live);
-  return !left.empty() && left.front() == self_id_;
+  for (std::uint16_t id : live.spec.LeadOrder()) {
+    if (live.lost.count(id) == 0) return id == self_id_;
+  }
+  return false;
 }
 
 bool MissionAgent::Heartbeats(Live* live, const std::vector<Neighbour>& heard,
@@ -416,7 +422,10 @@ void MissionAgent::RunFirstLeader(Live* live, const Pose2& self, const Group& gr
     case MissionPhase::kGathering: {
       if (inside == left &&
           (!params_.transport.gather_one_chain || group.OneChain(params_.local_range_m))) {
-        outbox->freeze = spec.AssignedRuns();
+        // Balloon spreading: the robots spread under the object first, frozen later.
+        live->spread_frozen = params_.loading_spread == LoadingSpread::kNone;
+        live->spread_end_tick = tick + static_cast<std::uint64_t>(params_.loading_spread_ticks);
+        if (live->spread_frozen) outbox->freeze = spec.AssignedRuns();
         EnterPhase(live, MissionPhase::kLoading, tick, inside, outbox);
         if (!live->lost.empty()) {
           outbox->statuses.back().reason =
@@ -430,7 +439,17 @@ void MissionAgent::RunFirstLeader(Live* live, const Pose2& self, const Group& gr
     }
     case MissionPhase::kLoading:
       if (periodic) outbox->statuses.push_back(Report(*live, inside));
-      if (live->loaded && tick >= live->signal_tick) {
+      if (!live->spread_frozen) {
+        // Spread done: everyone stands from the next tick on; the transport starts after it,
+        // so every robot anchors the object to positions that no longer change.
+        if (tick >= live->spread_end_tick) {
+          live->spread_frozen = true;
+          outbox->freeze = spec.AssignedRuns();
+        }
+        break;
+      }
+      if (live->loaded && tick >= live->signal_tick &&
+          (params_.loading_spread == LoadingSpread::kNone || tick > live->spread_end_tick)) {
         outbox->resume = spec.AssignedRuns();
         live->transport_ticks = 0;
         EnterPhase(live, MissionPhase::kTransport, tick, inside, outbox);

@@ -32,7 +32,14 @@ std::string DescribeMission(const MissionSpec& m) {
     }
     os << (assigned.size() > kShown ? ", ...}" : "}");
   }
-  os << ", " << m.leader_number << " leader(s), first leader " << m.FirstLeader() << ", ";
+  os << ", " << m.leader_number << " leader(s)";
+  if (!m.leader_ids.empty()) {  // named (a count-only mission's: the front ones)
+    const std::vector<std::uint16_t> leaders = m.Leaders();
+    os << " {";
+    for (std::size_t i = 0; i < leaders.size(); ++i) os << (i > 0 ? ", " : "") << leaders[i];
+    os << "}";
+  }
+  os << ", first leader " << m.FirstLeader() << ", ";
   if (m.LeaderOnly()) {
     os << "leader-only to (" << m.target.x << ", " << m.target.y << ")";
   } else {

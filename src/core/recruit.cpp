@@ -18,6 +18,9 @@ std::string ValidateRecruit(const MissionSpec& spec, const std::set<std::uint16_
     os << "recruit needs robot_count > 0 (how many robots the statist gathers)";
   } else if (!spec.robot_ids.empty() || spec.range_from < spec.range_to) {
     os << "recruit names no robots: give robot_count without a robot range or robot_ids";
+  } else if (!spec.leader_ids.empty()) {
+    os << "recruit names no robots: give it without leader_ids (the lowest leader_number of the "
+          "recruits lead)";
   } else if (spec.LeaderOnly()) {
     os << "recruit needs an object (object size > 0): the robots are those that enter it";
   } else if (spec.leader_number < 1 || static_cast<std::size_t>(spec.leader_number) > count) {

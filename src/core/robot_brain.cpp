@@ -19,6 +19,8 @@ MissionAgentParams MissionParams(const SwarmConfig& p) {
   m.static_zones = p.danger_zones;
   m.corridor_m = p.flocking.MinSeparation();
   m.min_robots = p.mission_min_robots;
+  m.loading_spread = p.loading_spread;
+  m.loading_spread_ticks = p.loading_spread_ticks;
   m.lost_after_ticks = static_cast<std::uint64_t>(
       std::max(1.0, std::ceil(p.lost_after_s / p.tick_period_s - 1e-9)));
   return m;
@@ -133,9 +135,21 @@ BrainTick RobotBrain::Tick(Perception in, std::uint64_t tick, bool publish) {
   const double dt = params_.tick_period_s;
   const bool balloon = params_.standby == StandbyMode::kBalloon && !plan.active &&
                        !plan.carry && !plan.lead;
-  // A balloon grows anew each time its robot returns to standby.
-  if (!balloon) balloon_radius_m_ = params_.flocking.robot_radius_m;
-  if (plan.carry) {
+  // Loading spread (SPEC 9.5): until the first leader's freeze, a mission robot in LOADING
+  // spreads under its object.
+  const bool spreading = params_.loading_spread == LoadingSpread::kBalloon && plan.carry &&
+                         plan.carry->loading && !frozen_;
+  // A balloon grows anew each time its robot returns to standby (or starts to spread).
+  if (!balloon && !spreading) balloon_radius_m_ = params_.flocking.robot_radius_m;
+  if (spreading) {
+    const Carry& carry = *plan.carry;
+    const Vec2 size =
+        carry.object.parts().empty() ? Vec2{} : carry.object.parts().front().rect.size;
+    out.move =
+        LoadingBalloonStep(in, params_.flocking, params_.balloon, Rect{carry.centre, size},
+                           carry.peers, carry.leader && params_.transport.leaders_face_course,
+                           Bearing(carry.centre, carry.target), rng_, dt, &balloon_radius_m_);
+  } else if (plan.carry) {
     out.move = CarryStep(in, params_.flocking, params_.transport, *plan.carry, rng_, dt);
   } else if (plan.lead) {
     if (leader_memory_mission_ != plan.active) {

@@ -41,7 +41,7 @@ const char RunMetrics::kMissionsHeader[] =
     "mission_id,kind,assigned,leaders,final_state,queued_tick,gathering_tick,loading_tick,"
     "transport_tick,unloading_tick,done_tick,transport_ticks,slip_per_robot_m,"
     "distance_per_robot_m,leader_waits,path_fraction_attached,leader_swarm_at_arrival,"
-    "object_error_m,leader_contact";
+    "object_error_m,leader_contact,loading_nn_cv";
 const char RunMetrics::kRunHeader[] =
     "run_name,seed,robots,ticks,sim_time_s,samples,mean_swarm_count,final_swarm_count,"
     "missions_done,missions_aborted,coverage_fraction,nn_spacing_mean_m,nn_spacing_cv";
@@ -304,7 +304,13 @@ void RunMetrics::Feed(std::uint16_t id, MissionRecord* m, const MetricsFrame& fr
     }
     if (complete) {
       // Contact = within the local range, where a passive robot can align with a leader.
-      if (!m->transport.started()) m->transport = TransportTracker(params_.local_range_m);
+      if (!m->transport.started()) {
+        m->transport = TransportTracker(params_.local_range_m);
+        // How evenly loading left them (SPEC 9.5 loading_spread): at the transport's first frame.
+        m->loading_nn_cv = DispersionOf(positions, params_.world_size_m, params_.coverage_radius_m,
+                                        params_.coverage_cell_m)
+                               .nn_cv;
+      }
       m->transport.Feed(frame.tick, positions, leaders);
     }
   }
@@ -350,7 +356,7 @@ std::string RunMetrics::MissionRow(std::uint16_t id, const MissionRecord& m) con
   const bool done = m.final_state && *m.final_state == MissionPhase::kDone;
   const bool leader_only = m.has_spec && m.spec.LeaderOnly();
   const char* kind = !m.has_spec ? "unknown" : leader_only ? "leader" : "transport";
-  std::string transport_ticks, slip, distance, waits, fraction, swarm, error, contact;
+  std::string transport_ticks, slip, distance, waits, fraction, swarm, error, contact, spacing;
   if (m.has_spec && !leader_only) {
     if (m.transport.started()) {
       transport_ticks = Num(m.transport.ticks());
@@ -358,6 +364,7 @@ std::string RunMetrics::MissionRow(std::uint16_t id, const MissionRecord& m) con
       distance = Num(m.transport.DistancePerRobot());
       waits = Num(m.transport.LeaderWaits());
       if (const auto c = m.transport.LeaderContact()) contact = Num(*c);
+      if (m.loading_nn_cv) spacing = Num(*m.loading_nn_cv);
     }
     if (m.object) error = Num(Distance(*m.object, m.spec.target));
   } else if (leader_only && m.leader) {
@@ -381,7 +388,7 @@ std::string RunMetrics::MissionRow(std::uint16_t id, const MissionRecord& m) con
       << Opt(e[PhaseIndex(MissionPhase::kUnloading)]) << ","
       << Opt(e[PhaseIndex(MissionPhase::kDone)]) << "," << transport_ticks << "," << slip << ","
       << distance << "," << waits << "," << fraction << "," << swarm << "," << error << ","
-      << contact;
+      << contact << "," << spacing;
   return row.str();
 }
 

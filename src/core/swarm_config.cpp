@@ -51,6 +51,10 @@ std::string SwarmConfig::Validate() const {
     os << "mission_min_robots must be in [0, 65535] but is " << mission_min_robots;
   } else if (max_live_missions < 1 || max_live_missions > 65535) {
     os << "max_live_missions must be in [1, 65535] but is " << max_live_missions;
+  } else if (loading_spread != LoadingSpread::kNone && loading_spread != LoadingSpread::kBalloon) {
+    os << "loading_spread must be none or balloon but is " << static_cast<int>(loading_spread);
+  } else if (loading_spread_ticks < 1 || loading_spread_ticks > 10000) {
+    os << "loading_spread_ticks must be in [1, 10000] but is " << loading_spread_ticks;
   }
   return os.str();
 }

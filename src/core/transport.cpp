@@ -16,15 +16,6 @@ constexpr double kInPlaceM = 1e-6;
 // Virtual copies are told apart by their one-byte sub_id.
 constexpr int kMaxLeaderWeight = 255;
 
-MoveDecision Stand(Angle desired, Angle heading) {
-  MoveDecision d;
-  d.desired_heading = desired;
-  d.heading = heading;
-  d.distance_m = 0.0;
-  d.outcome = MoveOutcome::kStand;
-  return d;
-}
-
 MoveDecision Drive(Angle desired, Angle heading, double distance, MoveOutcome outcome) {
   MoveDecision d;
   d.desired_heading = desired;
@@ -55,7 +46,7 @@ MoveDecision BoundedSearch(const Perception& in, const FlockingParams& p, const 
     }
     speed *= tp.passive_slowdown;
   }
-  return Stand(desired, in.self.heading);
+  return StandStill(desired, in.self.heading);
 }
 
 // A leader in transport: never swerves; slower on each blocked try; else turns and holds.
@@ -76,7 +67,7 @@ MoveDecision LeaderCarry(const Perception& in, const FlockingParams& p, const Tr
     speed *= tp.leader_slowdown;
   }
   // It faces the course while it holds, so that its heading still counts for its swarm.
-  return Stand(steer, steer);
+  return StandStill(steer, steer);
 }
 
 // Formation: every robot drives to its place in the body; the body moves along object centre
@@ -96,7 +87,7 @@ MoveDecision FormationCarry(const Perception& in, const FlockingParams& p,
   if (Distance(at + step, place) <= tp.formation_slack_m) {
     const double length = Norm(step);
     const Angle heading = length > kInPlaceM ? Bearing(at, at + step) : in.self.heading;
-    if (length <= kInPlaceM) return Stand(heading, in.self.heading);
+    if (length <= kInPlaceM) return StandStill(heading, in.self.heading);
     Perception others = in;
     others.others.erase(std::remove_if(others.others.begin(), others.others.end(),
                                        [&](const Neighbour& n) {
@@ -112,7 +103,7 @@ MoveDecision FormationCarry(const Perception& in, const FlockingParams& p,
   // members are checked where they will be after this tick's body step.
   const double gap = Distance(at, place);
   const Angle heading = Bearing(at, place);
-  if (gap < kInPlaceM) return Stand(heading, in.self.heading);
+  if (gap < kInPlaceM) return StandStill(heading, in.self.heading);
   Perception moved = in;
   for (Neighbour& n : moved.others) {
     if (std::binary_search(carry.peers.begin(), carry.peers.end(), n.id)) {
@@ -132,10 +123,11 @@ MoveDecision ToSlot(const Perception& in, const FlockingParams& p, const Transpo
   const Vec2 position = in.self.position;
   const Angle course = Bearing(carry.centre, carry.target);
   const bool face = carry.leader && tp.leaders_face_course;
-  if (face && carry.loading) return Stand(course, course);
+  if (face && carry.loading) return StandStill(course, course);
   const double gap = Distance(position, *carry.slot);
   const Angle toward = Bearing(position, *carry.slot);
-  if (gap <= kInPlaceM) return face ? Stand(course, course) : Stand(toward, in.self.heading);
+  if (gap <= kInPlaceM)
+    return face ? StandStill(course, course) : StandStill(toward, in.self.heading);
   FlockingParams reach = p;
   reach.speed_m_per_tick = std::min(gap, p.speed_m_per_tick);
   if (IsMoveValid(in, reach, toward, reach.speed_m_per_tick, duration_s)) {
@@ -145,7 +137,7 @@ MoveDecision ToSlot(const Perception& in, const FlockingParams& p, const Transpo
   const bool inside = carry.object.Contains(position);
   if (inside && d.distance_m > 0.0 &&
       !carry.object.Contains(position + UnitVector(d.heading) * d.distance_m)) {
-    return face ? Stand(course, course) : Stand(toward, in.self.heading);
+    return face ? StandStill(course, course) : StandStill(toward, in.self.heading);
   }
   return d;
 }
@@ -235,7 +227,7 @@ MoveDecision CarryStep(const Perception& in, const FlockingParams& p, const Tran
     // The branches below use no free will: draw the sample the others draw.
     rng.Uniform(-p.free_will_deg / 2.0, p.free_will_deg / 2.0);
   }
-  if (carry.Arrived()) return Stand(in.self.heading, in.self.heading);
+  if (carry.Arrived()) return StandStill(in.self.heading, in.self.heading);
   if (carry.transport && carry.mode == TransportMode::kFormation) {
     return FormationCarry(in, p, tp, carry, duration_s);
   }
@@ -258,7 +250,7 @@ MoveDecision CarryStep(const Perception& in, const FlockingParams& p, const Tran
     }
     const Angle course = Bearing(carry.centre, carry.target);
     const bool face = carry.leader && tp.leaders_face_course;
-    if (face && carry.loading) return Stand(course, course);
+    if (face && carry.loading) return StandStill(course, course);
     // Hold: inside, it goes on straight for the centre while nothing is in its way and stands
     // once something is, so that robots do not wall off the rim against late-comers.
     const double to_centre = Distance(position, carry.centre);
@@ -267,8 +259,8 @@ MoveDecision CarryStep(const Perception& in, const FlockingParams& p, const Tran
     if (step > kInPlaceM && IsMoveValid(in, p, inward, step, duration_s)) {
       return Drive(inward, inward, step, MoveOutcome::kStraight);
     }
-    if (face) return Stand(course, course);
-    return Stand(in.self.heading, in.self.heading);
+    if (face) return StandStill(course, course);
+    return StandStill(in.self.heading, in.self.heading);
   }
   FlockingParams approach = p;
   const double to_go = Distance(carry.centre, carry.target);

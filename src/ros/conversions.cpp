@@ -82,6 +82,7 @@ core::MissionSpec ToMissionSpec(const New_Mission& msg) {
   spec.transport_mode = msg.transport_mode;
   spec.robot_count = msg.robot_count;
   spec.recruit = msg.recruit;
+  spec.leader_ids = msg.leader_ids;
   spec.all_finite = std::isfinite(msg.object_position_x) && std::isfinite(msg.object_position_y) &&
                     std::isfinite(msg.object_size_x) && std::isfinite(msg.object_size_y) &&
                     std::isfinite(msg.target_x) && std::isfinite(msg.target_y);
@@ -105,6 +106,7 @@ New_Mission ToNewMission(const core::MissionSpec& spec) {
   msg.transport_mode = spec.transport_mode;
   msg.robot_count = spec.robot_count;
   msg.recruit = spec.recruit;
+  msg.leader_ids = spec.leader_ids;
   return msg;
 }
 

@@ -194,7 +194,10 @@ bool ConfigFromXmlRpc(XmlRpc::XmlRpcValue& dict, SwarmConfig* config, std::strin
                        error) &&
             ReadChoice(dict, "standby", "flock or balloon", &c.standby, error,
                        core::ParseStandbyMode) &&
-            ReadDouble(dict, "balloon_growth_m_per_tick", &c.balloon.growth_m_per_tick, error);
+            ReadDouble(dict, "balloon_growth_m_per_tick", &c.balloon.growth_m_per_tick, error) &&
+            ReadChoice(dict, "loading_spread", "none or balloon", &c.loading_spread, error,
+                       core::ParseLoadingSpread) &&
+            ReadInt(dict, "loading_spread_ticks", &c.loading_spread_ticks, error);
   if (!ok) return false;
   if (seed < 0) {
     *error = "parameter 'seed' must be >= 0";

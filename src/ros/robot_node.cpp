@@ -91,19 +91,19 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
     continue_sub_ = nh_.subscribe(names::kContinue, 20, &RobotNode::OnContinue, this);
     // Up to a dispatcher's whole table of live orders at once (a flood of hand-made ones is
     // the dispatcher's to refuse: the robots take only the orders it admitted).
-    mission_sub_ = nh_.subscribe(names::kMissionNew, kMissionQueue,
-                                 &RobotNode::FromTopic<New_Mission, &RobotNode::OnNewMission>,
-                                 this);
-    update_sub_ = nh_.subscribe(names::kObjectUpdate, 20,
-                                &RobotNode::FromTopic<Update_Object, &RobotNode::OnObjectUpdate>,
-                                this);
-    delete_sub_ = nh_.subscribe(names::kObjectDelete, 20,
-                                &RobotNode::FromTopic<Delete_Object, &RobotNode::OnObjectDelete>,
-                                this);
+    mission_sub_ =
+        nh_.subscribe(names::kMissionNew, kMissionQueue,
+                      &RobotNode::FromTopic<New_Mission, &RobotNode::OnNewMission>, this);
+    update_sub_ =
+        nh_.subscribe(names::kObjectUpdate, 20,
+                      &RobotNode::FromTopic<Update_Object, &RobotNode::OnObjectUpdate>, this);
+    delete_sub_ =
+        nh_.subscribe(names::kObjectDelete, 20,
+                      &RobotNode::FromTopic<Delete_Object, &RobotNode::OnObjectDelete>, this);
     event_sub_ = nh_.subscribe(names::kMissionEvent, 20, &RobotNode::OnMissionEvent, this);
-    status_sub_ = nh_.subscribe(
-        names::kMissionStatus, 50,
-        &RobotNode::FromTopic<Mission_Status, &RobotNode::OnMissionStatus>, this);
+    status_sub_ =
+        nh_.subscribe(names::kMissionStatus, 50,
+                      &RobotNode::FromTopic<Mission_Status, &RobotNode::OnMissionStatus>, this);
   }
   robots_sub_ = nh_.subscribe(names::kRobots, 2, &RobotNode::OnRobots, this);
   if (options_.comm == core::Comm::kBroadcast) {
@@ -111,18 +111,19 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
                                   ros::TransportHints().tcpNoDelay());
   }
   if (options_.diagnostics) {
-    stats_ = std::make_unique<core::TickStats>(config_.tick_period_s, options_.clock == core::Clock::kRealtime);
+    stats_ = std::make_unique<core::TickStats>(config_.tick_period_s,
+                                               options_.clock == core::Clock::kRealtime);
     stats_pub_ = nh_.advertise<std_msgs::String>(kStatsTopic, kStatsQueue);
   }
   describe_srv_ = private_nh_.advertiseService("describe", &RobotNode::OnDescribe, this);
   state_srv_ = private_nh_.advertiseService("state", &RobotNode::OnState, this);
   if (options_.status) {
-    diagnostics_ = std::make_unique<NodeDiagnostics>(
-        nh_, "swarm_transport: robot " + std::to_string(id_));
+    diagnostics_ =
+        std::make_unique<NodeDiagnostics>(nh_, "swarm_transport: robot " + std::to_string(id_));
   }
   if (options_.clock == core::Clock::kRealtime && !options_.external_timer) {
-    timer_ = nh_.createWallTimer(ros::WallDuration(config_.tick_period_s), &RobotNode::OnTimer,
-                                 this);
+    timer_ =
+        nh_.createWallTimer(ros::WallDuration(config_.tick_period_s), &RobotNode::OnTimer, this);
   }
   ROS_INFO("robot %u: up (%s clock, tick %.3f s, range %.3f m, speed %.3f m/tick)", id_,
            core::ClockName(options_.clock), config_.tick_period_s, config_.flocking.local_range_m,
@@ -167,6 +168,14 @@ void RobotNode::OnNeighbors(const Neighbors::ConstPtr& msg) {
     return;
   }
   perception_ = msg;
+  // Lock-step: the round carries its tick's simulated time, so a robot process needs no /clock
+  // (robot.launch remaps it away: one message less per robot and tick); its log lines and
+  // anything else on ros::Time see the tick it is in.
+  if (options_.clock == core::Clock::kLockstep && ros::Time::isSimTime() &&
+      std::isfinite(msg->sim_time) && msg->sim_time >= 0.0 && msg->sim_time < 4.0e9 &&
+      ros::Time(msg->sim_time) > ros::Time::now()) {
+    ros::Time::setNow(ros::Time(msg->sim_time));
+  }
   ApplyTuning(*msg);
   if (options_.clock == core::Clock::kLockstep) ApplyRelayed(*msg);
   if (stats_) RecordRound(*msg);
@@ -269,8 +278,7 @@ void RobotNode::RecordTick() {
   os.setf(std::ios::fixed);
   os.precision(6);
   os << "id=" << id_ << " clock=" << core::ClockName(options_.clock)
-     << " comm=" << core::CommName(options_.comm) << " wall=" << now
-     << " " << stats_->TakeLine();
+     << " comm=" << core::CommName(options_.comm) << " wall=" << now << " " << stats_->TakeLine();
   std_msgs::String line;
   line.data = os.str();
   stats_pub_.publish(line);
@@ -297,8 +305,8 @@ void RobotNode::PublishStatusIfDue() {
       s->message = "tick " + std::to_string(perception_ ? perception_->tick : 0);
       if (st.frozen) s->message += ", frozen";
       if (st.has_active) {
-        s->message += ", mission " + std::to_string(st.active_mission) +
-                      (st.leader ? " (leader)" : "");
+        s->message +=
+            ", mission " + std::to_string(st.active_mission) + (st.leader ? " (leader)" : "");
       }
     }
     s->Add("ticks", st.ticks);
@@ -318,7 +326,7 @@ Robot_State::Response RobotNode::State() const {
   state.ticks = ticks_;
   state.listed = listed_;
   state.frozen = brain.frozen();
-  state.leader = plan.lead;
+  state.leader = plan.lead || (plan.carry && plan.carry->leader);  // alone or of a transport
   state.has_active = plan.active.has_value();
   state.active_mission = plan.active.value_or(0);
   for (std::uint16_t m : brain.missions().LiveIds()) {
@@ -349,8 +357,7 @@ bool RobotNode::OnState(Robot_State::Request& /*req*/, Robot_State::Response& re
   return true;
 }
 
-bool RobotNode::OnDescribe(std_srvs::Trigger::Request& /*req*/,
-                           std_srvs::Trigger::Response& res) {
+bool RobotNode::OnDescribe(std_srvs::Trigger::Request& /*req*/, std_srvs::Trigger::Response& res) {
   const Robot_State::Response s = State();
   std::ostringstream os;
   os << "id=" << s.robot_id << " ticks=" << s.ticks << " frozen=" << (s.frozen ? 1 : 0)
@@ -396,9 +403,10 @@ void RobotNode::OnRobots(const Robot_Positions::ConstPtr& msg) {
     if (options_.exit_when_removed) ros::requestShutdown();
   } else if (!said_unlisted_) {
     said_unlisted_ = true;
-    ROS_WARN("robot %u: not in the swarm (%s has no robot %u): it idles until the simulator "
-             "spawns it (rosservice call /spawn, or a New_Robot on %s)",
-             id_, names::kRobots, id_, names::kRobotNew);
+    ROS_WARN(
+        "robot %u: not in the swarm (%s has no robot %u): it idles until the simulator "
+        "spawns it (rosservice call /spawn, or a New_Robot on %s)",
+        id_, names::kRobots, id_, names::kRobotNew);
   }
 }
 
@@ -470,8 +478,8 @@ void RobotNode::Rejected(const std::string& kind, const std::string& why) {
     return;
   }
   if (log.suppressed > 0) {
-    ROS_WARN("robot %u: rejected %s (and %llu more %s since the last such line)", id_,
-             why.c_str(), static_cast<unsigned long long>(log.suppressed), kind.c_str());
+    ROS_WARN("robot %u: rejected %s (and %llu more %s since the last such line)", id_, why.c_str(),
+             static_cast<unsigned long long>(log.suppressed), kind.c_str());
   } else {
     ROS_WARN("robot %u: rejected %s", id_, why.c_str());
   }
@@ -522,7 +530,12 @@ Tick_Answer RobotNode::MissionMessages(const core::MissionOutbox& outbox,
   for (const core::StatusReport& r : outbox.statuses) {
     ROS_INFO("robot %u: mission %u %s", id_, r.mission_id, core::PhaseName(r.phase));
   }
-  return ToAnswerMessages(outbox, progress, perception_->tick, ros::Time::now());
+  // Lock-step: stamped with the tick's own simulated time (as the batch engine does), not with
+  // whatever /clock this process has seen by now.
+  const ros::Time stamp = options_.clock == core::Clock::kLockstep
+                              ? ros::Time(perception_->sim_time)
+                              : ros::Time::now();
+  return ToAnswerMessages(outbox, progress, perception_->tick, stamp);
 }
 
 void RobotNode::Publish(const Tick_Answer& m) {
@@ -595,8 +608,11 @@ void RobotNode::Tick() {
   }
   // Its position for those who listen to robots (broadcast comm, observers in real time). In
   // lock-step with the radio, /flock/positions carries every robot's true pose each tick and the
-  // simulator keeps only virtual copies and statists from /flock/position: not published.
-  if (!lockstep || options_.comm == core::Comm::kBroadcast) {
+  // simulator keeps only virtual copies and statists from /flock/position: not published. The
+  // same with the simulator in this process (deploy host_sim): it has the robot's true pose, and
+  // every publication would be a callback for it to discard - one per robot and tick.
+  const bool for_observers = !lockstep && options_.direct == nullptr;
+  if (for_observers || options_.comm == core::Comm::kBroadcast) {
     const core::Pose2 after = core::TurnThenDrive(before, command, config_.tick_period_s);
     // By shared pointer: roscpp hands it to subscribers in this process (the simulator of a
     // robot_host) without serialising it and without waking its poll thread; a message

@@ -219,7 +219,7 @@ bool World2D::SetCommand(std::uint16_t id, core::Velocity velocity, std::string*
   return true;
 }
 
-void World2D::Step(double dt_s) {
+void World2D::Step(double dt_s, bool resolve_contacts) {
   if (!std::isfinite(dt_s) || dt_s < 0.0) return;
   if (dt_s > 0.0) {
     const int substeps =
@@ -246,6 +246,10 @@ void World2D::Step(double dt_s) {
     }
   }
   ClampAll();
+  if (resolve_contacts) ResolveContacts();
+}
+
+void World2D::ResolveContacts() {
   if (!params_.push_apart) return;
   for (int i = 0; i < kPushIterations; ++i) {
     const bool pushed = PushApartOnce();

@@ -396,13 +396,13 @@ def stop_run(ros, launch_pid):
     for pid in nodes:
         _signal(pid, signal.SIGINT)
     deadline = time.time() + 20
-    while time.time() < deadline and any(_alive(pid) for pid in nodes):
+    while time.time() < deadline and any(st_ros.process_alive(pid) for pid in nodes):
         time.sleep(0.1)
     ros.stop()
     deadline = time.time() + 10
-    while time.time() < deadline and any(_alive(pid) for pid in everything):
+    while time.time() < deadline and any(st_ros.process_alive(pid) for pid in everything):
         time.sleep(0.1)
-    left = [pid for pid in everything if _alive(pid)]
+    left = [pid for pid in everything if st_ros.process_alive(pid)]
     for pid in left:
         _signal(pid, signal.SIGKILL)
     if left:
@@ -414,20 +414,6 @@ def _signal(pid, sig):
         os.kill(pid, sig)
     except OSError:
         pass
-
-
-def _alive(pid):
-    st = proc_stat(pid)
-    if st is None:
-        return False
-    try:
-        with open('/proc/%d/status' % pid) as f:
-            for line in f:
-                if line.startswith('State:'):
-                    return 'Z' not in line.split()[1]
-    except OSError:
-        return False
-    return True
 
 
 # ---------------------------------------------------------------- driver

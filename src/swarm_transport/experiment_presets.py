@@ -33,6 +33,10 @@ METRICS = {
 # (ext, SPEC 9.5) How the swarm spreads at a run's end (the recorder's run.csv, from its last
 # frame): any preset may name them in its `table:`; they then join its runs.csv and summary.
 DISPERSION_METRICS = ['coverage_fraction', 'nn_spacing_mean_m', 'nn_spacing_cv']
+# (ext, SPEC 9.5) Metrics of a kind that join a preset's runs.csv and summary only when its
+# `table:` names them: loading_nn_cv, the mission robots' nearest-neighbour spacing CV at the
+# transport's first frame (the recorder's missions.csv; loading_spread).
+OPTIONAL_METRICS = {'transport': ['loading_nn_cv']}
 TOP_KEYS = {'description', 'kind', 'order', 'section', 'figures', 'runs', 'seed_base',
             'base_config', 'config', 'robots', 'placement', 'cluster', 'max_ticks',
             'trim_each_end', 'x_label', 'group_label', 'thesis', 'note', 'expect', 'mission',
@@ -53,8 +57,9 @@ class PresetError(ValueError):
 def metrics_of(preset):
     """The metrics of a preset's runs.csv and summary: its kind's, then the dispersion metrics
     its table names."""
-    return METRICS[preset['kind']] + [m for m in DISPERSION_METRICS
-                                      if m in (preset.get('table') or [])]
+    table = preset.get('table') or []
+    return METRICS[preset['kind']] + [
+        m for m in OPTIONAL_METRICS.get(preset['kind'], []) + DISPERSION_METRICS if m in table]
 
 
 def preset_path(name):
@@ -98,7 +103,7 @@ def validate(preset, name):
         fail('runs must be an integer >= 1')
     if 'table' in p:
         # The metrics of the preset's table on the results page (default: its kind's).
-        known = METRICS[p['kind']] + DISPERSION_METRICS
+        known = METRICS[p['kind']] + OPTIONAL_METRICS.get(p['kind'], []) + DISPERSION_METRICS
         if (not isinstance(p['table'], list) or not p['table'] or
                 any(m not in known for m in p['table'])):
             fail('table must be a non-empty list of %s metrics (%s)'

@@ -34,6 +34,7 @@ TITLES = {
     'coverage_fraction': 'area covered (%)',
     'nn_spacing_mean_m': 'nearest neighbour (m)',
     'nn_spacing_cv': 'nearest-neighbour spread (CV)',
+    'loading_nn_cv': 'spacing spread at transport start (CV)',
 }
 PERCENT = {'path_fraction_attached', 'leader_contact', 'aborted', 'coverage_fraction'}   # stored as fractions, shown in %
 PANELS = {   # the metrics drawn as bars, in the thesis's order of diagrams
@@ -146,7 +147,10 @@ def measured_table(preset):
              '| thesis setting | ' + ' | '.join(TITLES.get(c, c) for c in cols) + ' |',
              '|---|' + '---:|' * len(cols)]
     for row in m['rows']:
-        lines.append('| %s | %s |' % (row['label'], ' | '.join(_num(row[c]) for c in cols)))
+        # Whole numbers as the file gives them (a count of runs is 1, not 1.00).
+        lines.append('| %s | %s |' % (row['label'], ' | '.join(
+            str(row[c]) if isinstance(row[c], int) and not isinstance(row[c], bool)
+            else _num(row[c]) for c in cols)))
     lines.append('')
     return lines
 
@@ -433,7 +437,10 @@ def cmd_report(dirs, out_md):
             lines.extend('- %s' % t for t in trends)
             lines.append('')
         if preset.get('note'):
-            lines.append('**Why it differs:** %s' % ' '.join(preset['note'].split()))
+            # "Why it differs" only above a section with a trend line that differs.
+            differs = any(t.endswith(': differs') for t in trends)
+            lines.append('**%s:** %s' % ('Why it differs' if differs else 'Note',
+                                         ' '.join(preset['note'].split())))
             lines.append('')
     with open(out_md, 'w') as f:
         f.write('\n'.join(lines))

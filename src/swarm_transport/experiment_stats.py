@@ -123,7 +123,7 @@ def _slope(xs, ys):
 
 
 def _mission(kind, run_dir, info):
-    names = presets.METRICS[kind]
+    names = presets.METRICS[kind] + presets.OPTIONAL_METRICS.get(kind, [])
     metrics = {name: None for name in names}
     end = info.get('end')
     mid = str(info.get('mission_id', ''))
@@ -145,7 +145,8 @@ def _mission(kind, run_dir, info):
             metrics['leader_ticks'] = number(row.get('done_tick'))
         else:
             for name in ('transport_ticks', 'slip_per_robot_m', 'distance_per_robot_m',
-                         'leader_waits', 'object_error_m', 'leader_contact'):
+                         'leader_waits', 'object_error_m', 'leader_contact',
+                         'loading_nn_cv'):
                 metrics[name] = number(row.get(name))
             start, stop = number(row.get('gathering_tick')), number(row.get('loading_tick'))
             metrics['gathering_ticks'] = (stop - start if start is not None and

@@ -118,6 +118,19 @@ def _terminate(signum, _frame):
     raise SystemExit(128 + signum)
 
 
+def process_alive(pid):
+    """True while process `pid` runs (a zombie that exited but was not reaped yet counts as
+    gone)."""
+    try:
+        with open('/proc/%d/status' % pid) as f:
+            for line in f:
+                if line.startswith('State:'):
+                    return 'Z' not in line.split()[1]
+    except OSError:
+        return False
+    return True
+
+
 def log(msg):
     sys.stdout.write(msg + '\n')
     sys.stdout.flush()

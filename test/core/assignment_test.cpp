@@ -359,6 +359,80 @@ TEST(PickRobotsByCountTest, BadCountsAreRefusedAndChangeNothing) {
   EXPECT_EQ(spec.robot_ids, (std::vector<std::uint16_t>{0}));
 }
 
+// The leaders of a count-only mission are the picked robots at the front of the object on its
+// course (issue 12), not the lowest ids: the 2 x 2 object at (7, 7) goes east to (10, 7); its 4
+// slots are (6.5 | 7.5, 6.5 | 7.5). Robots 0 and 1 stand west of it (at the back), 2 and 3 east
+// (at the front), each facing its nearest slot; robot 5 is far away.
+std::map<std::uint16_t, PlannerRobot> BackAndFront() {
+  return {{0, Robot(5.5, 6.5, 0)},
+          {1, Robot(5.5, 7.5, 0)},
+          {2, Robot(8.5, 6.5, 180)},
+          {3, Robot(8.5, 7.5, 180)},
+          {5, Robot(1, 10, 0)}};
+}
+
+MissionSpec EastBound(int leaders) {
+  MissionSpec spec = CountOnly(4);
+  spec.leader_number = leaders;
+  spec.target = {10.0, 7.0};
+  return spec;
+}
+
+TEST(PickRobotsByCountTest, TheLeadersAreTheRobotsAtTheFrontTowardTheTarget) {
+  MissionSpec spec = EastBound(2);
+  ASSERT_EQ(PickRobotsByCount(&spec, BackAndFront(), Round()), "");
+  EXPECT_EQ(spec.robot_ids, (std::vector<std::uint16_t>{0, 1, 2, 3}));
+  EXPECT_EQ(spec.leader_ids, (std::vector<std::uint16_t>{2, 3}));
+  EXPECT_EQ(spec.Leaders(), (std::vector<std::uint16_t>{2, 3}));  // not the lowest, 0 and 1
+  EXPECT_EQ(spec.FirstLeader(), 2);
+  EXPECT_FALSE(spec.IsLeader(0));
+  EXPECT_EQ(spec.LeadOrder(), (std::vector<std::uint16_t>{2, 3, 0, 1}));
+  EXPECT_EQ(ValidateMission(spec, MissionContext()), "");
+  // Westward the same robots pick the same slots, and 0 and 1 are at the front.
+  spec = EastBound(2);
+  spec.target = {2.0, 7.0};
+  ASSERT_EQ(PickRobotsByCount(&spec, BackAndFront(), Round()), "");
+  EXPECT_EQ(spec.leader_ids, (std::vector<std::uint16_t>{0, 1}));
+  // Three leaders: the two front ones, then of the back ones the one whose slot lies ahead on a
+  // course slightly north of east: robot 1 at y 7.5.
+  spec = EastBound(3);
+  spec.target = {10.0, 7.5};
+  ASSERT_EQ(PickRobotsByCount(&spec, BackAndFront(), Round()), "");
+  EXPECT_EQ(spec.leader_ids, (std::vector<std::uint16_t>{1, 2, 3}));
+}
+
+TEST(PickRobotsByCountTest, FrontTiesGoToTheShorterTimeThenTheLowerId) {
+  // Due east, robots 2 and 3 are level at the front: the one with the shorter time X to its
+  // slot leads - robot 3, 1 m from its slot, before robot 2, 1.5 m from its.
+  std::map<std::uint16_t, PlannerRobot> idle = BackAndFront();
+  idle[2] = Robot(9.0, 6.5, 180);
+  MissionSpec spec = EastBound(1);
+  ASSERT_EQ(PickRobotsByCount(&spec, idle, Round()), "");
+  EXPECT_EQ(spec.leader_ids, (std::vector<std::uint16_t>{3}));
+  // Level and equally far: the lower id.
+  spec = EastBound(1);
+  ASSERT_EQ(PickRobotsByCount(&spec, BackAndFront(), Round()), "");
+  EXPECT_EQ(spec.leader_ids, (std::vector<std::uint16_t>{2}));
+  // Target at the centre: no course, every slot level; the shortest time, then the lowest id.
+  spec = EastBound(1);
+  spec.target = spec.object_centre;
+  ASSERT_EQ(PickRobotsByCount(&spec, idle, Round()), "");
+  EXPECT_EQ(spec.leader_ids, (std::vector<std::uint16_t>{0}));
+}
+
+TEST(PickRobotsByCountTest, LeaderIdsAreTheDispatchersToName) {
+  MissionSpec spec = EastBound(1);
+  spec.leader_ids = {2};
+  const std::string why = PickRobotsByCount(&spec, BackAndFront(), Round());
+  EXPECT_NE(why.find("without leader_ids"), std::string::npos) << why;
+  EXPECT_TRUE(spec.robot_ids.empty());
+  // leader_number outside [1, robot_count]: no leaders named; the validation refuses the order.
+  spec = EastBound(5);
+  ASSERT_EQ(PickRobotsByCount(&spec, BackAndFront(), Round()), "");
+  EXPECT_TRUE(spec.leader_ids.empty());
+  EXPECT_NE(ValidateMission(spec, MissionContext()).find("larger than the group of 4"),
+            std::string::npos);
+}
 
 TEST(SlotsInTest, SlotsSpreadOverTheObjectOnePerRobotAtLeast) {
   const Shape object = Shape::FromRect({7, 7}, {2, 2});

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -161,6 +162,136 @@ TEST(BalloonTest, AClusterSpreadsAndKeepsItsDistances) {
     }
     EXPECT_GT(nearest, 1.5) << "robot " << i;
   }
+}
+
+// Nearest-neighbour spacing CV of `at` (population standard deviation / mean).
+double SpacingCv(const std::vector<Vec2>& at) {
+  std::vector<double> nearest;
+  for (std::size_t i = 0; i < at.size(); ++i) {
+    double n = 1e9;
+    for (std::size_t j = 0; j < at.size(); ++j) {
+      if (j != i) n = std::min(n, Distance(at[i], at[j]));
+    }
+    nearest.push_back(n);
+  }
+  double mean = 0.0;
+  for (const double v : nearest) mean += v / static_cast<double>(nearest.size());
+  double squares = 0.0;
+  for (const double v : nearest) squares += (v - mean) * (v - mean);
+  return std::sqrt(squares / static_cast<double>(nearest.size())) / mean;
+}
+
+// `ticks` ticks of LoadingBalloonStep (or, with `spread` false, of standing) for robots 0..n-1
+// under a 2 x 2 object at (7, 7), robot 0 a leader facing 225 degrees; every robot hears every
+// other (mission peers) and also robot 99, a bystander outside the object.
+std::vector<Vec2> SpreadUnder(std::vector<Vec2> at, int ticks, bool spread, bool* left) {
+  const FlockingParams p = fixtures::Quiet();
+  BalloonParams bp;
+  const Rect object{{7.0, 7.0}, {2.0, 2.0}};
+  const Shape shape = Shape::FromRect(object.centre, object.size);
+  std::vector<double> radius(at.size(), p.robot_radius_m);
+  std::vector<std::uint16_t> ids;
+  for (std::uint16_t i = 0; i < at.size(); ++i) ids.push_back(i);
+  Rng rng(1, 1);
+  *left = false;
+  for (int tick = 0; tick < ticks && spread; ++tick) {
+    std::vector<Vec2> next = at;
+    for (std::uint16_t i = 0; i < at.size(); ++i) {
+      std::vector<Neighbour> others{At(99, 8.3, 7.0)};
+      std::vector<std::uint16_t> peers;
+      for (std::uint16_t j = 0; j < at.size(); ++j) {
+        if (j == i) continue;
+        others.push_back(At(j, at[j].x, at[j].y));
+        peers.push_back(j);
+      }
+      const MoveDecision d = LoadingBalloonStep(Self(i, at[i], others), p, bp, object, peers,
+                                                i == 0, Angle(225.0), rng, kTick, &radius[i]);
+      next[i] = at[i] + UnitVector(d.heading) * d.distance_m;
+      if (!shape.Contains(next[i])) *left = true;
+    }
+    at = next;
+  }
+  return at;
+}
+
+TEST(BalloonTest, ParsesTheLoadingSpread) {
+  LoadingSpread spread = LoadingSpread::kNone;
+  EXPECT_TRUE(ParseLoadingSpread("balloon", &spread));
+  EXPECT_EQ(spread, LoadingSpread::kBalloon);
+  EXPECT_STREQ(LoadingSpreadName(spread), "balloon");
+  EXPECT_TRUE(ParseLoadingSpread("none", &spread));
+  EXPECT_EQ(spread, LoadingSpread::kNone);
+  EXPECT_STREQ(LoadingSpreadName(spread), "none");
+  EXPECT_FALSE(ParseLoadingSpread("flock", &spread));
+  EXPECT_FALSE(ParseLoadingSpread("", &spread));
+  EXPECT_EQ(spread, LoadingSpread::kNone);
+}
+
+TEST(BalloonTest, ObjectBordersReplaceTheArenasAndZonesAreLeftOut) {
+  const FlockingParams p = Small();
+  Perception in = Self(1, {6.5, 7.0}, {});
+  Zone danger;
+  danger.shape = Shape::FromRect({6.5, 7.6}, {0.2, 0.2});
+  in.zones.push_back(danger);
+  const std::vector<BalloonContact> c = BalloonContacts(in, p, Rect{{7.0, 7.0}, {2.0, 2.0}}, false);
+  ASSERT_EQ(c.size(), 4u);                 // the object's four sides, no zone
+  EXPECT_DOUBLE_EQ(c[0].distance_m, 0.5);  // left side at x = 6
+  EXPECT_DOUBLE_EQ(c[1].distance_m, 1.0);  // bottom and top
+  EXPECT_DOUBLE_EQ(c[2].distance_m, 1.0);
+  EXPECT_DOUBLE_EQ(c[3].distance_m, 1.5);  // right
+  EXPECT_EQ(BalloonContacts(in, p, Rect{{7.0, 7.0}, {2.0, 2.0}}, true).size(), 5u);
+}
+
+TEST(BalloonTest, RobotsBunchedInACornerOfTheirObjectSpreadUnderIt) {
+  // Eight robots 0.15 m apart bunched in the object's lower-left corner and one in the opposite
+  // corner: very uneven spacing (nearest neighbours 0.15 m and ~2 m).
+  std::vector<Vec2> at;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      if (i + j < 4) at.push_back({6.1 + 0.15 * i, 6.1 + 0.15 * j});
+    }
+  }
+  at.push_back({7.9, 7.9});
+  ASSERT_EQ(at.size(), 9u);
+  const double before = SpacingCv(at);
+  bool left = false;
+  const std::vector<Vec2> stood = SpreadUnder(at, 200, false, &left);
+  ASSERT_EQ(stood.size(), at.size());  // none: nothing moves
+  for (std::size_t i = 0; i < at.size(); ++i) EXPECT_EQ(Distance(stood[i], at[i]), 0.0);
+  const std::vector<Vec2> spread = SpreadUnder(at, 200, true, &left);
+  EXPECT_FALSE(left) << "a robot left the object";
+  const double after = SpacingCv(spread);
+  EXPECT_LT(after, before / 2.0) << "before " << before << ", after " << after;
+  double nearest = 1e9;
+  for (std::size_t i = 0; i < spread.size(); ++i) {
+    for (std::size_t j = i + 1; j < spread.size(); ++j) {
+      nearest = std::min(nearest, Distance(spread[i], spread[j]));
+    }
+  }
+  EXPECT_GT(nearest, 0.4);  // from 0.15 m to well apart under the 2 x 2 object
+  for (const Vec2& a : spread) {
+    EXPECT_GE(a.x, 6.0);
+    EXPECT_LE(a.x, 8.0);
+    EXPECT_GE(a.y, 6.0);
+    EXPECT_LE(a.y, 8.0);
+  }
+}
+
+TEST(BalloonTest, LoadingStepDrawsOneSampleAndALeaderStandingFacesItsCourse) {
+  const FlockingParams p = fixtures::Quiet();
+  BalloonParams bp;
+  Rng a(3, 1);
+  Rng b(3, 1);
+  double r = p.robot_radius_m;
+  // Alone in the middle of its object: its balloon grows, touches nothing yet: it stands.
+  const MoveDecision d =
+      LoadingBalloonStep(Self(0, {7.0, 7.0}, {}), p, bp, Rect{{7.0, 7.0}, {2.0, 2.0}}, {}, true,
+                         Angle(225.0), a, kTick, &r);
+  b.Uniform(0.0, 1.0);
+  EXPECT_EQ(a.Next(), b.Next());
+  EXPECT_EQ(d.distance_m, 0.0);
+  EXPECT_NEAR(d.heading.degrees(), 225.0, 1e-9);
+  EXPECT_NEAR(r, p.robot_radius_m + bp.growth_m_per_tick, 1e-12);
 }
 
 TEST(BalloonTest, StepDrawsOneSampleAndFleesFromAForbiddenPlace) {

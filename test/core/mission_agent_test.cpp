@@ -109,6 +109,44 @@ void IntoTransport(MissionAgent* leader) {
   ASSERT_EQ(Phases(out), std::vector<std::string>{"TRANSPORT"});
 }
 
+TEST(MissionAgentTest, ABalloonLoadingFreezesAfterTheSpreadAndTransportsOnlyAfterTheFreeze) {
+  MissionAgentParams params;
+  params.loading_spread = LoadingSpread::kBalloon;
+  params.loading_spread_ticks = 5;
+  MissionAgent leader(0, params);
+  std::string why;
+  ASSERT_TRUE(leader.OnNewMission(Thesis(), &why));
+  const std::vector<Neighbour> inside{At(1, 7.5, 7.5), At(2, 6.5, 6.5)};
+  MissionOutbox out;
+  leader.Tick(PoseAt(7.0, 7.0), {At(1, 7.5, 7.5), At(2, 1.0, 1.0)}, 1, &out);
+  // Everyone inside at tick 2: LOADING, but no freeze yet - the robots spread first.
+  out = MissionOutbox();
+  MissionPlan plan = leader.Tick(PoseAt(7.0, 7.0), inside, 2, &out);
+  EXPECT_EQ(Phases(out), std::vector<std::string>{"LOADING"});
+  EXPECT_TRUE(out.freeze.empty());
+  ASSERT_TRUE(plan.carry.has_value());
+  EXPECT_TRUE(plan.carry->loading);
+  // LOADED takes effect at tick 3 already: the spread still holds the transport back.
+  ASSERT_TRUE(leader.OnEvent(7, MissionEventKind::kLoaded, 3, &why)) << why;
+  for (std::uint64_t tick = 3; tick < 7; ++tick) {
+    out = MissionOutbox();
+    leader.Tick(PoseAt(7.0, 7.0), inside, tick, &out);
+    EXPECT_TRUE(out.freeze.empty()) << tick;
+    EXPECT_TRUE(Phases(out).empty()) << tick;
+  }
+  // Tick 2 + 5: the freeze goes out; the transport starts at the tick after it.
+  out = MissionOutbox();
+  leader.Tick(PoseAt(7.0, 7.0), inside, 7, &out);
+  ASSERT_EQ(out.freeze.size(), 1u);
+  EXPECT_EQ(out.freeze[0], std::make_pair(std::uint16_t{0}, std::uint16_t{3}));
+  EXPECT_TRUE(Phases(out).empty());
+  out = MissionOutbox();
+  leader.Tick(PoseAt(7.0, 7.0), inside, 8, &out);
+  EXPECT_EQ(Phases(out), std::vector<std::string>{"TRANSPORT"});
+  EXPECT_EQ(out.resume.size(), 1u);
+  EXPECT_TRUE(out.freeze.empty());
+}
+
 TEST(MissionAgentTest, TheObjectMovesWithTheCurrentCentroidOfItsRobots) {
   MissionAgent leader(0, MissionAgentParams());
   IntoTransport(&leader);
@@ -615,6 +653,42 @@ TEST(MissionAgentTest, LostLeadersAreReplacedInOrderAndAFirstLeaderToBeKeepsTheS
   robot2.Tick(self, {At(3, 7.0, 7.5)}, 12, &out);
   EXPECT_EQ(Phases(out), std::vector<std::string>{"TRANSPORT"});
   EXPECT_EQ(out.resume.size(), 1u);
+}
+
+TEST(MissionAgentTest, NamedLeadersLeadAndALostOneIsReplacedByTheNextInLeadOrder) {
+  MissionAgentParams params;
+  params.lost_after_ticks = 5;
+  MissionSpec spec = Thesis();
+  spec.range_to = 4;
+  spec.leader_number = 2;
+  spec.leader_ids = {3, 2};  // named (a count-only mission's front robots): 0 and 1 passive
+  MissionAgent robot0(0, params);
+  MissionAgent robot3(3, params);
+  std::string why;
+  ASSERT_TRUE(robot0.OnNewMission(spec, &why)) << why;
+  ASSERT_TRUE(robot3.OnNewMission(spec, &why)) << why;
+  robot0.OnStatus(7, MissionPhase::kGathering);
+  robot3.OnStatus(7, MissionPhase::kGathering);
+  MissionOutbox out;
+  MissionPlan plan =
+      robot0.Tick(PoseAt(6.5, 6.5), {At(1, 7.5, 7.5), At(2, 7.0, 7.0), At(3, 7.0, 7.5)}, 1, &out);
+  ASSERT_TRUE(plan.carry.has_value());
+  EXPECT_EQ(plan.carry->leaders, (std::vector<std::uint16_t>{2, 3}));
+  EXPECT_FALSE(plan.carry->leader);
+  EXPECT_FALSE(robot0.IsFirstLeaderOfAny());  // robot 2 is: the lowest named leader
+  EXPECT_FALSE(robot3.IsFirstLeaderOfAny());
+  // Robot 2 falls silent: robot 3 leads first, robot 0 (the next in LeadOrder) leads too.
+  for (std::uint64_t t = 2; t <= 8; ++t) {
+    out = MissionOutbox();
+    plan = robot0.Tick(PoseAt(6.5, 6.5), {At(1, 7.5, 7.5), At(3, 7.0, 7.5)}, t, &out);
+    robot3.Tick(PoseAt(7.0, 7.5), {At(0, 6.5, 6.5), At(1, 7.5, 7.5)}, t, nullptr);
+  }
+  EXPECT_EQ(robot0.LostOf(7), (std::set<std::uint16_t>{2}));
+  ASSERT_TRUE(plan.carry.has_value());
+  EXPECT_EQ(plan.carry->leaders, (std::vector<std::uint16_t>{0, 3}));
+  EXPECT_TRUE(plan.carry->leader);
+  EXPECT_FALSE(robot0.IsFirstLeaderOfAny());
+  EXPECT_TRUE(robot3.IsFirstLeaderOfAny());
 }
 
 TEST(MissionAgentTest, AFirstLeaderDropsAMemberLostInLoadingAndCarriesOn) {

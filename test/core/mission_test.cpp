@@ -181,6 +181,39 @@ TEST(ValidateMissionTest, RejectsMoreLeadersThanRobots) {
   ExpectRejected(m, Context(), "larger than the group of 2");
 }
 
+TEST(MissionSpecTest, LeaderIdsNameTheLeaders) {
+  MissionSpec m = ThesisMission();
+  m.robot_ids = {8, 3, 7, 1};
+  m.leader_number = 2;
+  m.leader_ids = {8, 3};  // any order
+  EXPECT_EQ(m.Leaders(), (Ids{3, 8}));
+  EXPECT_EQ(m.FirstLeader(), 3);
+  EXPECT_TRUE(m.IsLeader(8));
+  EXPECT_FALSE(m.IsLeader(1));
+  EXPECT_EQ(m.LeadOrder(), (Ids{3, 8, 1, 7}));
+  EXPECT_EQ(ValidateMission(m, Context()), "");
+  m.leader_ids.clear();  // the old rule: the lowest
+  EXPECT_EQ(m.Leaders(), (Ids{1, 3}));
+  EXPECT_EQ(m.LeadOrder(), (Ids{1, 3, 7, 8}));
+}
+
+TEST(ValidateMissionTest, RejectsLeaderIdsThatAreNotLeaderNumberAssignedRobots) {
+  MissionSpec m = ThesisMission();  // robots [0, 12), 3 leaders
+  m.leader_ids = {4, 9, 11};
+  EXPECT_EQ(ValidateMission(m, Context()), "");
+  m.leader_ids = {4, 9};
+  ExpectRejected(m, Context(), "leader_ids names 2 robots but leader_number is 3");
+  m.leader_ids = {4, 9, 11, 2};
+  ExpectRejected(m, Context(), "leader_ids names 4 robots but leader_number is 3");
+  m.leader_ids = {4, 9, 4};
+  ExpectRejected(m, Context(), "leader_ids names robot 4 twice");
+  m.leader_ids = {4, 9, 12};
+  ExpectRejected(m, Context(), "leader_ids names robot 12, which the mission does not assign");
+  m.robot_ids = {1, 2, 3};
+  m.leader_ids = {1, 2, 7};
+  ExpectRejected(m, Context(), "robot 7, which the mission does not assign");
+}
+
 TEST(ValidateMissionTest, RejectsAnUnknownTransportMode) {
   MissionSpec m = ThesisMission();
   m.transport_mode = 2;

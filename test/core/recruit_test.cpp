@@ -87,6 +87,9 @@ TEST(ValidateRecruit, AcceptsAndRejectsWithReasons) {
   MissionSpec named = Recruit(3);
   named.robot_ids = {1};
   EXPECT_NE(ValidateRecruit(named, idle, ctx).find("names no robots"), std::string::npos);
+  MissionSpec named_leader = Recruit(3);
+  named_leader.leader_ids = {1};
+  EXPECT_NE(ValidateRecruit(named_leader, idle, ctx).find("without leader_ids"), std::string::npos);
   MissionSpec leader_only = Recruit(1);
   leader_only.object_size = {0.0, 0.0};
   EXPECT_NE(ValidateRecruit(leader_only, idle, ctx).find("needs an object"), std::string::npos);

@@ -81,6 +81,40 @@ TEST(RobotBrainTest, BalloonStandbyDrivesOffANeighbourUntilAMissionComes) {
   EXPECT_DOUBLE_EQ(brain.balloon_radius_m(), 0.05);
 }
 
+TEST(RobotBrainTest, ABalloonLoadingMemberSpreadsUnderItsObjectUntilTheFreeze) {
+  // Member 1 of the thesis mission, 0.2 m from member 2 inside the object, learns LOADING.
+  SwarmConfig config = Params();
+  config.loading_spread = LoadingSpread::kBalloon;
+  RobotBrain spreading(1, config);
+  RobotBrain standing(1, Params());
+  MissionTaken taken;
+  for (RobotBrain* brain : {&spreading, &standing}) {
+    ASSERT_EQ(brain->OnNewMission(Thesis(), {0, 1, 2}, &taken), "");
+    brain->OnStatus(7, MissionPhase::kLoading);
+  }
+  // none: the first leader froze the group at LOADING.
+  ASSERT_EQ(standing.OnFreeze(0, 3), "");
+  const Perception in = Sees(7.0, 7.0, 90.0, {At(0, 6.0, 6.5), At(2, 7.2, 7.0, 90.0)});
+  BrainTick a, b;
+  for (std::uint64_t k = 0; k < 8; ++k) {
+    a = spreading.Tick(in, k, true);
+    b = standing.Tick(in, k, true);
+  }
+  ASSERT_TRUE(spreading.last_plan().carry.has_value());
+  EXPECT_TRUE(spreading.last_plan().carry->loading);
+  // Its balloon passed 0.1 m (half the way to member 2): it drives off to the left.
+  EXPECT_GT(spreading.balloon_radius_m(), 0.1);
+  EXPECT_NEAR(a.move.heading.degrees(), 180.0, 1e-6);
+  EXPECT_GT(a.command.linear, 0.0);
+  EXPECT_EQ(b.command.linear, 0.0);  // none: frozen, nothing moves
+  EXPECT_DOUBLE_EQ(standing.balloon_radius_m(), 0.05);
+  // The first leader's freeze ends the spread: it stands.
+  ASSERT_EQ(spreading.OnFreeze(0, 3), "");
+  a = spreading.Tick(in, 8, true);
+  EXPECT_EQ(a.command.linear, 0.0);
+  EXPECT_DOUBLE_EQ(spreading.balloon_radius_m(), 0.05);
+}
+
 TEST(RobotBrainTest, AnEmptyOrInvertedRangeIsRejectedAndChangesNothing) {
   RobotBrain brain(4, Params());
   EXPECT_EQ(brain.OnFreeze(5, 3), "Robot_Freeze [5, 3): the range is empty or inverted");

@@ -166,7 +166,7 @@ TEST(RunMetricsTest, TransportRowHasItsPhasesAndItsWindowEndsAtTheUnloadingTick)
   const std::vector<std::string> rows = metrics.TakeMissionRows();
   // Fed ticks 5..8 (not up to 12): 3 ticks of 0.125 m for every robot, no slip, no leader
   // wait; robot 1 always in the leader's range, robot 2 never; the object 0.04 m off.
-  const std::string row = "7,transport,3,1,DONE,0,2,4,5,8,9,3,0,0.375,0,,,0.04,0.5";
+  const std::string row = "7,transport,3,1,DONE,0,2,4,5,8,9,3,0,0.375,0,,,0.04,0.5,0.353553391";
   ASSERT_EQ(rows, std::vector<std::string>{row});
   EXPECT_TRUE(log.Has("I mission 7 DONE: " + row));
   EXPECT_TRUE(metrics.TakeMissionRows().empty());
@@ -227,7 +227,7 @@ TEST(RunMetricsTest, LeaderOnlyArrivalWithinGoalToleranceIsDoneWithoutADoneStatu
   // Fed at the end: 0.2 m off at tick 3, 0.1 m at tick 4 - arrived; ticks 5..7 (beyond the
   // target) are not its.
   metrics.Drain();
-  const std::string row = "8,leader,1,1,DONE,0,,,,,4,,,,0,1,1,0.1,";
+  const std::string row = "8,leader,1,1,DONE,0,,,,,4,,,,0,1,1,0.1,,";
   EXPECT_EQ(metrics.TakeMissionRows(), std::vector<std::string>{row});
   EXPECT_EQ(log.lines, (std::vector<std::string>{
                            "I mission 8: leader 4 within 0.150 m of its target at tick 4: done",
@@ -252,7 +252,7 @@ TEST(RunMetricsTest, LeaderOnlyArrivalCutsTheWindowOfAnAbortedMission) {
   EXPECT_TRUE(metrics.TakeMissionRows().empty());
   metrics.AddStatus(8, MissionPhase::kAborted, 7, {5.0, 5.0});
   EXPECT_EQ(metrics.TakeMissionRows(),
-            std::vector<std::string>{"8,leader,1,1,ABORTED,,6,,,,,,,,0,,,0.1,"});
+            std::vector<std::string>{"8,leader,1,1,ABORTED,,6,,,,,,,,0,,,0.1,,"});
   EXPECT_EQ(metrics.missions_done(), 0u);
   EXPECT_EQ(metrics.missions_aborted(), 1u);
 }
@@ -282,7 +282,7 @@ TEST(RunMetricsTest, LateNewsOfAWrittenMissionIsIgnoredAndItsIdIsUsedAgainWithQu
   metrics.AddStatus(9, MissionPhase::kQueued, 1, {7.0, 7.0});
   metrics.AddStatus(9, MissionPhase::kDone, 3, {3.0, 3.0});
   EXPECT_EQ(metrics.TakeMissionRows(),
-            std::vector<std::string>{"9,unknown,,,DONE,1,,,,,3,,,,,,,,"});
+            std::vector<std::string>{"9,unknown,,,DONE,1,,,,,3,,,,,,,,,"});
   // An end with nothing before it leaves nothing.
   metrics.AddStatus(10, MissionPhase::kDone, 3, {3.0, 3.0});
   // Late news of mission 9.
@@ -295,7 +295,7 @@ TEST(RunMetricsTest, LateNewsOfAWrittenMissionIsIgnoredAndItsIdIsUsedAgainWithQu
   EXPECT_EQ(metrics.missions_unfinished(), 1u);
   metrics.AddStatus(9, MissionPhase::kAborted, 12, {6.0, 6.0});
   EXPECT_EQ(metrics.TakeMissionRows(),
-            std::vector<std::string>{"9,unknown,,,ABORTED,10,,,,,,,,,,,,,"});
+            std::vector<std::string>{"9,unknown,,,ABORTED,10,,,,,,,,,,,,,,"});
   // An order reuses a written id too.
   metrics.AddOrder(fixtures::Thesis(9), 0);
   EXPECT_EQ(metrics.missions_unfinished(), 1u);

@@ -29,6 +29,10 @@ TEST(SwarmConfigTest, DefaultsAreValidAndEachBadKeyIsNamed) {
       {[](SwarmConfig* c) { c->flocking.local_range_m = -1.0; }, "local_range_m"},
       {[](SwarmConfig* c) { c->balloon.growth_m_per_tick = 0.0; },
        "balloon_growth_m_per_tick must be finite and > 0 but is 0"},
+      {[](SwarmConfig* c) { c->loading_spread = static_cast<LoadingSpread>(7); },
+       "loading_spread must be none or balloon but is 7"},
+      {[](SwarmConfig* c) { c->loading_spread_ticks = 0; },
+       "loading_spread_ticks must be in [1, 10000] but is 0"},
   };
   for (const Case& c : cases) {
     SwarmConfig config;

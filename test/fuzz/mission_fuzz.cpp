@@ -31,6 +31,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (int k = 0; k < orders && in.remaining_bytes() > 0; ++k) {
     New_Mission msg = fuzz::AnyOrder(&in);
     msg.recruit = in.ConsumeBool();
+    if (in.ConsumeBool()) {  // (ext) leaders named: any ids, duplicates, unassigned ones
+      const int named = in.ConsumeIntegralInRange<int>(1, 4);
+      for (int i = 0; i < named; ++i) {
+        msg.leader_ids.push_back(in.ConsumeIntegralInRange<std::uint16_t>(0, 40));
+      }
+    }
     const core::MissionSpec spec = ToMissionSpec(msg);
     // The dispatcher's pick of a count-only order (robot_count): all or nothing.
     std::map<std::uint16_t, core::PlannerRobot> idle;
@@ -42,8 +48,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     core::MissionSpec picked = spec;
     if (core::PickRobotsByCount(&picked, idle, core::SelectionParams()).empty()) {
       fuzz::Require(picked.robot_ids.size() == spec.robot_count && picked.robot_count == 0);
+      // Its leaders: leader_number of the picked robots (none named when it is out of range).
+      const bool named = spec.leader_number >= 1 && spec.leader_number <= spec.robot_count;
+      fuzz::Require(picked.leader_ids.size() ==
+                    (named ? static_cast<std::size_t>(spec.leader_number) : 0u));
+      for (std::uint16_t id : picked.leader_ids) fuzz::Require(picked.Assigns(id));
     } else {
-      fuzz::Require(picked.robot_ids == spec.robot_ids && picked.robot_count == spec.robot_count);
+      fuzz::Require(picked.robot_ids == spec.robot_ids && picked.robot_count == spec.robot_count &&
+                    picked.leader_ids == spec.leader_ids);
     }
     // The dispatcher's recruit (statist as dispatcher): once enough are inside, the order it
     // sends names them and is valid.

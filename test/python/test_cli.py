@@ -1,4 +1,4 @@
-"""The experiment, benchmark and demo command lines without ROS (issue 10): they list what
+"""The experiment, benchmark, demo and mission command lines without ROS (issue 10): they list what
 there is and refuse bad arguments with one clear message and a non-zero exit, before starting
 anything. The entry points are run directly (scripts/* would build first)."""
 import os
@@ -49,6 +49,20 @@ class CommandLines(unittest.TestCase):
         code, out = run('demo.py', '--robots', '5', '--group', '3', '--leaders', '4')
         self.assertEqual(code, 2, out)
         self.assertIn('--leaders', out)
+
+    def test_mission_refuses_bad_orders_before_sending(self):
+        mission = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..',
+                               'scripts', 'nodes', 'mission')
+        order = ['transport', '--object', '7', '7', '2', '2', '--target', '3', '3']
+        for bad, words in ((['--count', '3', '--leader-ids', '1'], '--leader-ids'),
+                           (['--robots', '0:4', '--leader-ids', 'x'], '--leader-ids'),
+                           ([], '--robots'),
+                           (['--robots', '0:4', '--recruit'], '--recruit')):
+            proc = subprocess.run([PY, mission] + order + bad, stdout=subprocess.PIPE,
+                                  stderr=subprocess.STDOUT, timeout=60,
+                                  universal_newlines=True)
+            self.assertEqual(proc.returncode, 2, (bad, proc.stdout))
+            self.assertIn(words, proc.stdout, bad)
 
 
 if __name__ == '__main__':

@@ -99,6 +99,9 @@ class Presets(unittest.TestCase):
         lines = report.measured_table(presets.validate(p, 'good'))
         self.assertIn('a file', lines[0])
         self.assertIn('| 10R 2L | 60.7 |', lines)
+        p['thesis_measured']['metrics'] = ['transport_ticks', 'runs_over_2x_median']
+        p['thesis_measured']['rows'][0]['runs_over_2x_median'] = 1
+        self.assertIn('| 10R 2L | 60.7 | 1 |', report.measured_table(presets.validate(p, 'good')))
         self.assertEqual(report.measured_table(copy.deepcopy(GOOD)), [])
         for bad in ({'rows': []}, {'source': 'x', 'metrics': ['transport_ticks'],
                                    'rows': [{'label': 'a'}]},

@@ -97,6 +97,8 @@ TEST(ConfigValidation, RejectsBadValuesAndKeepsTheOldConfig) {
       {"formation_speed_fraction", XmlRpc::XmlRpcValue(1.5)},
       {"standby", XmlRpc::XmlRpcValue(std::string("spread"))},
       {"balloon_growth_m_per_tick", XmlRpc::XmlRpcValue(0.0)},
+      {"loading_spread", XmlRpc::XmlRpcValue(std::string("flock"))},
+      {"loading_spread_ticks", XmlRpc::XmlRpcValue(0)},
       {"local_range_m", XmlRpc::XmlRpcValue(std::string("far"))},
   };
   for (Case c : cases) {
@@ -119,6 +121,17 @@ TEST(ConfigValidation, StandbyBalloonIsReadWithItsGrowth) {
   ASSERT_TRUE(ConfigFromXmlRpc(d, &config, &error)) << error;
   EXPECT_EQ(config.standby, swarm_transport::core::StandbyMode::kBalloon);
   EXPECT_DOUBLE_EQ(config.balloon.growth_m_per_tick, 0.05);
+}
+
+TEST(ConfigValidation, LoadingSpreadIsReadWithItsTicks) {
+  XmlRpc::XmlRpcValue d = Dict("loading_spread", XmlRpc::XmlRpcValue(std::string("balloon")));
+  d["loading_spread_ticks"] = XmlRpc::XmlRpcValue(12);
+  SwarmConfig config;
+  EXPECT_EQ(config.loading_spread, swarm_transport::core::LoadingSpread::kNone);
+  std::string error;
+  ASSERT_TRUE(ConfigFromXmlRpc(d, &config, &error)) << error;
+  EXPECT_EQ(config.loading_spread, swarm_transport::core::LoadingSpread::kBalloon);
+  EXPECT_EQ(config.loading_spread_ticks, 12);
 }
 
 TEST(ConfigValidation, IntegersAreAcceptedWhereNumbersAreExpected) {

@@ -94,6 +94,11 @@ TEST(ConversionsTest, MissionRoundTripKeepsTheOrder) {
   EXPECT_TRUE(back.all_finite);
   spec.robot_ids = {9, 4, 4};
   EXPECT_EQ(ToMissionSpec(ToNewMission(spec)).Assigned(), (std::vector<std::uint16_t>{4, 9}));
+  EXPECT_TRUE(msg.leader_ids.empty());  // none named: the lowest lead, as before
+  spec.leader_number = 1;
+  spec.leader_ids = {9};  // (ext) named leaders, e.g. a count-only mission's front robot
+  EXPECT_EQ(ToNewMission(spec).leader_ids, (std::vector<std::uint16_t>{9}));
+  EXPECT_EQ(ToMissionSpec(ToNewMission(spec)).Leaders(), (std::vector<std::uint16_t>{9}));
 }
 
 TEST(ConversionsTest, AMissionWithANonFiniteFloatIsMarked) {

@@ -132,9 +132,11 @@ std::vector<Vec2> SlotsIn(const Shape& object, std::size_t count);
 // (ext) A count-only transport mission (robot_count > 0, no range, no ids): its robots are the
 // ones the selection matrix (PlanSelection) gives the robot_count slots of its object nearest
 // the object's centre (of SlotsIn's), out of `idle` (the candidates: robots on no live mission,
-// with their poses). On success it fills spec->robot_ids (ascending; its leaders are, as for
-// every mission, the lowest leader_number of them) and sets robot_count to 0; else it returns
-// why and changes nothing.
+// with their poses). On success it fills spec->robot_ids (ascending) and spec->leader_ids (the
+// leader_number picked robots whose slots lie furthest toward the target: largest projection of
+// slot - object centre onto target - object centre; ties by X, then by id; ascending; left empty
+// when leader_number is outside [1, robot_count], which ValidateMission refuses) and sets
+// robot_count to 0; else (also with leader_ids given) it returns why and changes nothing.
 std::string PickRobotsByCount(MissionSpec* spec, const std::map<std::uint16_t, PlannerRobot>& idle,
                               const SelectionParams& p);
 

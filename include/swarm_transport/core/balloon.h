@@ -5,6 +5,7 @@
 #ifndef SWARM_TRANSPORT_CORE_BALLOON_H_
 #define SWARM_TRANSPORT_CORE_BALLOON_H_
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,11 @@ struct BalloonContact {
 // Voronoi-like rule), the four borders of the arena, and each danger zone that applies to it
 // (the nearest point of its shape; inverted zones are not borders of a standby robot).
 std::vector<BalloonContact> BalloonContacts(const Perception& in, const FlockingParams& p);
+// The same with `borders` (an axis-aligned rectangle) in place of the arena's, and the danger
+// zones only when `zones` (BalloonContacts(in, p) is this with the arena [0, world_size_m]^2
+// and zones).
+std::vector<BalloonContact> BalloonContacts(const Perception& in, const FlockingParams& p,
+                                            const Rect& borders, bool zones);
 
 // True when the contacts within `radius_m` enclose the robot: they leave no free side, i.e.
 // every open half-plane of directions holds one of them (at least three are needed).
@@ -65,6 +71,25 @@ Vec2 BalloonPush(const std::vector<BalloonContact>& contacts, double radius_m);
 // the mode.
 MoveDecision BalloonStep(const Perception& in, const FlockingParams& p, const BalloonParams& bp,
                          Rng& rng, double duration_s, double* radius_m);
+
+// (ext, SPEC 9.5) How a transport mission's robots spend LOADING: none (they stand, frozen, as
+// in the thesis) or balloon (the first leader holds the freeze back for loading_spread_ticks
+// while every mission robot spreads under the object by LoadingBalloonStep: even spacing before
+// the transport).
+enum class LoadingSpread { kNone, kBalloon };
+// "none" / "balloon"; false for anything else.
+bool ParseLoadingSpread(const std::string& name, LoadingSpread* out);
+const char* LoadingSpreadName(LoadingSpread spread);
+
+// A mission robot's tick of balloon spreading under its object while LOADING: BalloonStep with
+// the object's rectangle `object` as its borders and only its mission peers (`peers`, ids
+// ascending) as the others; no danger zones. A move must end inside `object` (else it stands):
+// it never leaves the object. A standing robot with `face` set turns to `course` (a leader
+// showing its way). Draws exactly one free-will sample from `rng`, like CarryStep.
+MoveDecision LoadingBalloonStep(const Perception& in, const FlockingParams& p,
+                                const BalloonParams& bp, const Rect& object,
+                                const std::vector<std::uint16_t>& peers, bool face, Angle course,
+                                Rng& rng, double duration_s, double* radius_m);
 
 }  // namespace core
 }  // namespace swarm_transport

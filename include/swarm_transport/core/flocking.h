@@ -86,6 +86,9 @@ struct MoveDecision {
   int neighbours_in_range = 0;  // its neighbourhood's robots and statists, itself included
 };
 
+// A move that stays where it is: it wants `desired` and ends facing `heading`.
+MoveDecision StandStill(Angle desired, Angle heading);
+
 // The robots (and copies / statists) alignment and cohesion run over, itself first: the
 // candidates `in.group` admits, linked to itself within local range - directly (disc) or hop
 // by hop (chain) - and every statist regardless of range.

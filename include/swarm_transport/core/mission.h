@@ -49,16 +49,24 @@ struct MissionSpec {
   // named, the dispatcher places a statist at the object and the first robot_count idle robots
   // to enter the object take the mission; the order then goes out with their ids.
   bool recruit = false;
+  // (ext) If non-empty, the leaders (exactly leader_number assigned ids, in any order) instead of
+  // the lowest leader_number assigned ids; the dispatcher fills it for a count-only mission
+  // (PickRobotsByCount: the robots at the front of the object toward the target).
+  std::vector<std::uint16_t> leader_ids;
   // Finite-ness of every float of the original message (a NaN cannot live in a Vec2 check).
   bool all_finite = true;
 
   // Assigned ids, ascending, without duplicates.
   std::vector<std::uint16_t> Assigned() const;
   bool Assigns(std::uint16_t robot) const;
-  // The first leader_number assigned ids; the first leader is the lowest.
+  // The first leader_number assigned ids, or leader_ids (ascending) when given; the first
+  // leader is the lowest of them.
   std::vector<std::uint16_t> Leaders() const;
   bool IsLeader(std::uint16_t robot) const;
   std::uint16_t FirstLeader() const;
+  // The order in which assigned robots lead: Leaders(), then the other assigned ids ascending (a
+  // lost leader is replaced by the next one). Without leader_ids it is Assigned().
+  std::vector<std::uint16_t> LeadOrder() const;
   // A leader-only mission [T5.3]: object size 0 x 0 (the target is the leader's goal).
   bool LeaderOnly() const;
   // The object as a shape at `centre` (a rectangle of object_size).
@@ -82,6 +90,7 @@ struct MissionContext {
 
 // Empty when the mission is acceptable, else the reason (one sentence) [SPEC 10]: non-finite
 // fields; from >= to (when robot_ids is empty); leader_number 0 or larger than the group;
+// leader_ids (when given) not leader_number distinct assigned ids;
 // transport: object size <= 0 on an axis (only 0 x 0 means leader-only); leader-only with more
 // than leader_number robots; object centre or target outside the arena; duplicate live id;
 // unknown robot id; transport_mode not 0 or 1.

@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "swarm_transport/core/balloon.h"
 #include "swarm_transport/core/flocking.h"
 #include "swarm_transport/core/leader.h"
 #include "swarm_transport/core/mission.h"
@@ -36,8 +37,9 @@ struct MissionAgentParams {
   // mission (its radio is silent: a dead, hung or deleted robot) [SPEC 9.7]. Every member is
   // heard every tick over the mission channel while it answers its ticks, so every member
   // loses it at the same tick. The mission goes on without it: its leaders are the first
-  // leader_number assigned robots not lost (a lost leader is replaced by the next assigned
-  // robot, a lost first leader by the lowest of them, which announces itself with a status),
+  // leader_number assigned robots not lost in MissionSpec::LeadOrder (its leader_ids first, if
+  // named; a lost leader is replaced by the next assigned robot, a lost first leader by the
+  // first of them in that order, which announces itself with a status),
   // and it ends ABORTED when fewer robots than leaders are left. Until it is lost a silent
   // member counts where it was last heard; in transport the object is re-anchored when one is
   // lost, so that it does not jump. Robots take it from /swarm/lost_after_s.
@@ -54,6 +56,11 @@ struct MissionAgentParams {
   // Planned gathering (transport.gather_planner): a robot within this distance of another's
   // straight path blocks it (the flocking's minimum separation).
   double corridor_m = 0.11;
+  // (ext, SPEC 9.5) Balloon spreading under the object while LOADING: the first leader sends
+  // the freeze loading_spread_ticks after LOADING began (not at once) and starts the transport
+  // no earlier than the tick after it; until the freeze the robots spread (RobotBrain).
+  LoadingSpread loading_spread = LoadingSpread::kNone;
+  int loading_spread_ticks = 10;
 };
 
 // How far an object may move in `ticks` ticks when its robots drive at most `speed_m_per_tick`:
@@ -178,6 +185,9 @@ class MissionAgent {
     std::uint64_t transport_ticks = 0;
     bool loaded = false;       // first-leader: LOADED arrived during LOADING
     bool unloaded = false;     // first-leader: UNLOADED arrived during UNLOADING
+    // first-leader, loading_spread balloon: the tick the freeze goes out, and whether it did
+    std::uint64_t spread_end_tick = 0;
+    bool spread_frozen = false;
     std::uint64_t signal_tick = 0;  // ... and takes effect at this tick
     bool self_arrived = false; // this leader reached its leader-only goal
     std::map<std::uint16_t, std::uint64_t> heard_tick;  // each member's last tick heard
@@ -193,7 +203,8 @@ class MissionAgent {
     std::optional<Vec2> slot;  // planned gathering: its own slot under the object
   };
   // Of a live mission, with its lost robots: the robots left (ascending), its leaders now (the
-  // first leader_number of them) and its first leader now (the lowest; 0 when none is left).
+  // first leader_number of them in MissionSpec::LeadOrder) and its first leader now (the first
+  // of them; 0 when none is left).
   std::vector<std::uint16_t> Left(const Live& live) const;
   std::vector<std::uint16_t> LeadersNow(const Live& live) const;
   bool LeadsFirst(const Live& live) const;

@@ -17,9 +17,9 @@ namespace swarm_transport {
 namespace core {
 
 // Empty when a recruiting order (`recruit`, robot_count N > 0) is acceptable, else the reason:
-// it names robots besides (a range or ids), is leader-only, has leader_number outside [1, N],
-// N above the `idle` robots, or fails ValidateMission as an order of N of them would (object
-// or target outside the arena, a live id, ...).
+// it names robots besides (a range, ids or leader_ids), is leader-only, has leader_number outside
+// [1, N], N above the `idle` robots, or fails ValidateMission as an order of N of them would
+// (object or target outside the arena, a live id, ...).
 std::string ValidateRecruit(const MissionSpec& spec, const std::set<std::uint16_t>& idle,
                             const MissionContext& context);
 

@@ -116,6 +116,8 @@ class RunMetrics {
     std::optional<Vec2> object;                     // last reported object centre
     std::optional<std::uint64_t> fed_through;       // last frame fed to the trackers
     TransportTracker transport;
+    // Transport: the nearest-neighbour spacing CV of its robots at the transport's first frame.
+    std::optional<double> loading_nn_cv;
     std::optional<LeaderTracker> leader;
     bool warned_missing = false;
     bool warned_history = false;

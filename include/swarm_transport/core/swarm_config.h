@@ -61,6 +61,10 @@ struct SwarmConfig {
   // How a robot on no mission behaves (SPEC 9.5): flock (the default) or balloon dispersion.
   StandbyMode standby = StandbyMode::kFlock;
   BalloonParams balloon;  // balloon mode's growth
+  // (ext, SPEC 9.5) How a transport mission's robots spend LOADING: none (frozen, the thesis)
+  // or balloon (they spread under the object for loading_spread_ticks before the freeze).
+  LoadingSpread loading_spread = LoadingSpread::kNone;
+  int loading_spread_ticks = 10;
 
   // Empty when valid, else one sentence naming the bad key.
   std::string Validate() const;

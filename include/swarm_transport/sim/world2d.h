@@ -64,9 +64,11 @@ class World2D {
 
   // Advances every robot by `dt_s` (>= 0) in equal sub-steps of at most integration_step_s;
   // within a sub-step a robot drives the exact arc of its command for as long as the command
-  // is still held. Afterwards centres are clamped into the arena and overlapping robots are
-  // pushed apart (pairs in id order, then clamped again).
-  void Step(double dt_s);
+  // is still held. Afterwards centres are clamped into the arena and, unless
+  // `resolve_contacts` is false, overlapping robots are pushed apart (ResolveContacts).
+  void Step(double dt_s, bool resolve_contacts = true);
+  // Overlapping robots pushed apart (pairs in id order, then clamped again; up to 5 passes).
+  void ResolveContacts();
   // Every robot back to its spawn pose, commands cleared.
   void Reset();
 
@@ -97,7 +99,7 @@ class World2D {
 
   WorldParams params_;
   std::map<std::uint16_t, Robot> robots_;
-  // PushApartOnce's scratch, kept between calls (it runs up to 5 times per integration step).
+  // PushApartOnce's scratch, kept between calls (it runs up to 5 times per ResolveContacts).
   std::vector<Robot*> push_order_;
   std::vector<core::Vec2> push_points_;
   std::vector<std::pair<std::size_t, std::size_t>> push_pairs_;
