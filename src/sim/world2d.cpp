@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <sstream>
 #include <utility>
@@ -20,8 +21,8 @@ constexpr double kInsideToleranceM = 1e-9;
 constexpr double kCoincidentM = 1e-12;
 // Push-apart passes per Step (each pass resolves every overlapping pair once).
 constexpr int kPushIterations = 5;
-// The range grid never has more cells than this per side (tiny ranges stay cheap).
-constexpr double kMaxCellsPerSide = 1024.0;
+// The grid's cells are at least arena / this wide (a zero or tiny search distance stays finite).
+constexpr double kMaxCellsPerSide = 1.0e6;
 // Random placement keeps centres this many times the separation apart [thesis 10% margin,
 // times 1.5 so that robots start with room to move].
 constexpr double kPlacementMargin = 1.1 * 1.5;
@@ -39,45 +40,51 @@ void SetError(std::string* error, const std::string& text) {
   if (error != nullptr) *error = text;
 }
 
-// A uniform grid over the arena in compressed rows: the points of cell c are
-// order_[start_[c] .. start_[c + 1]), ascending.
+// A hashed uniform grid: cells of `cell_m` (the search distance itself, however big the
+// arena), hashed into about twice as many buckets as points and stored in compressed rows (the
+// points of bucket b are order_[start_[b] .. start_[b + 1]), ascending). Memory and set-up are
+// O(points) for any arena and cell size; a bucket may also hold points of other cells, which
+// the callers' distance checks drop. Until 2026-11-25 the cells were at least arena / sqrt(N)
+// wide, so that a flock crowded into a few cells made every search scan the whole crowd (at
+// 2,000 robots the push-apart search was 18 % of a real-time host_sim process).
 class Grid {
  public:
   Grid(const std::vector<core::Vec2>& points, double world_size_m, double cell_m)
       : points_(points),
-        // No more cells than points: building the grid clears every cell, and a big sparse
-        // arena (2,000 robots at the thesis's density: 99 m, 1e6 cells of 0.1 m) would spend
-        // its time there instead of on the robots.
-        cell_m_(std::max({cell_m, world_size_m / kMaxCellsPerSide,
-                          world_size_m / std::max(1.0, std::ceil(std::sqrt(
-                                                           static_cast<double>(points.size()))))})),
+        cell_m_(std::max(cell_m, world_size_m / kMaxCellsPerSide)),
         side_(std::max(1, static_cast<int>(std::ceil(world_size_m / cell_m_)))) {
-    std::vector<int> count(static_cast<std::size_t>(side_ * side_) + 1, 0);
-    std::vector<int> cell_of(points.size());
+    std::size_t buckets = 16;
+    while (buckets < 2 * points.size()) buckets *= 2;
+    mask_ = buckets - 1;
+    std::vector<int> count(buckets + 1, 0);
+    std::vector<std::uint32_t> bucket_of(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
-      cell_of[i] = Index(CellX(points[i].x), CellX(points[i].y));
-      ++count[static_cast<std::size_t>(cell_of[i]) + 1];
+      bucket_of[i] = Bucket(CellX(points[i].x), CellX(points[i].y));
+      ++count[bucket_of[i] + 1];
     }
-    for (std::size_t c = 1; c < count.size(); ++c) count[c] += count[c - 1];
+    for (std::size_t b = 1; b < count.size(); ++b) count[b] += count[b - 1];
     start_ = count;
     order_.resize(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) {
-      order_[static_cast<std::size_t>(count[static_cast<std::size_t>(cell_of[i])]++)] =
-          static_cast<int>(i);
+      order_[static_cast<std::size_t>(count[bucket_of[i]]++)] = static_cast<int>(i);
     }
   }
 
-  // Calls f(j) for every point j in the 3x3 cells around point i (j may equal i). Every point
-  // within cell_m of point i is among them.
+  // Calls f(j) once for every point j in the buckets of the 3x3 cells around point i (j may
+  // equal i). Every point within cell_m of point i is among them.
   template <typename F>
   void ForNearby(std::size_t i, F f) const {
     const int cx = CellX(points_[i].x);
     const int cy = CellX(points_[i].y);
+    std::uint32_t seen[9];
+    int n_seen = 0;
     for (int y = std::max(0, cy - 1); y <= std::min(side_ - 1, cy + 1); ++y) {
       for (int x = std::max(0, cx - 1); x <= std::min(side_ - 1, cx + 1); ++x) {
-        const int c = Index(x, y);
-        for (int k = start_[static_cast<std::size_t>(c)];
-             k < start_[static_cast<std::size_t>(c) + 1]; ++k) {
+        const std::uint32_t b = Bucket(x, y);
+        // Two of the nine cells in one bucket: its points once.
+        if (std::find(seen, seen + n_seen, b) != seen + n_seen) continue;
+        seen[n_seen++] = b;
+        for (int k = start_[b]; k < start_[b + 1]; ++k) {
           f(static_cast<std::size_t>(order_[static_cast<std::size_t>(k)]));
         }
       }
@@ -89,11 +96,18 @@ class Grid {
     const int c = static_cast<int>(std::floor(v / cell_m_));
     return std::min(side_ - 1, std::max(0, c));
   }
-  int Index(int x, int y) const { return y * side_ + x; }
+  std::uint32_t Bucket(int x, int y) const {
+    const std::uint64_t h = (static_cast<std::uint64_t>(static_cast<std::uint32_t>(x)) *
+                             0x9E3779B97F4A7C15ULL) ^
+                            (static_cast<std::uint64_t>(static_cast<std::uint32_t>(y)) *
+                             0xC2B2AE3D27D4EB4FULL);
+    return static_cast<std::uint32_t>((h ^ (h >> 29)) & mask_);
+  }
 
   const std::vector<core::Vec2>& points_;
   double cell_m_;
   int side_;
+  std::uint64_t mask_ = 0;
   std::vector<int> start_;
   std::vector<int> order_;
 };
