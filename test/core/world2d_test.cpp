@@ -353,6 +353,35 @@ TEST(NeighbourListsTest, EqualsBruteForceOnRandomRobots) {
   for (const auto& list : world.NeighbourLists(0.0)) EXPECT_TRUE(list.empty());
 }
 
+// A crowd in a corner of a big arena (the hashed grid's cells are the range, not arena / sqrt(N),
+// and many cells share a bucket): still exactly the robots within range, each once.
+TEST(NeighbourListsTest, EqualsBruteForceOnACrowdInABigArena) {
+  WorldParams params;
+  params.push_apart = false;
+  params.world_size_m = 200.0;
+  World2D world(params);
+  core::Rng rng(5, 2);
+  for (std::uint16_t id = 0; id < 500; ++id) {
+    const core::Pose2 pose =
+        MakePose(rng.Uniform(0.05, 2.5), rng.Uniform(0.05, 2.5), rng.Uniform(0.0, 360.0));
+    ASSERT_TRUE(world.Spawn(id, pose, nullptr));
+  }
+  for (double range : {0.1, 0.35, 1.0}) {
+    const auto lists = world.NeighbourLists(range);
+    std::size_t i = 0;
+    for (const auto& a : world.robots()) {
+      std::vector<std::uint16_t> expected;
+      for (const auto& b : world.robots()) {
+        if (b.first != a.first && Dist(a.second.pose.position, b.second.pose.position) <= range) {
+          expected.push_back(b.first);
+        }
+      }
+      EXPECT_EQ(lists[i], expected) << "robot " << a.first << " range " << range;
+      ++i;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace sim
 }  // namespace swarm_transport
