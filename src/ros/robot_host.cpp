@@ -39,122 +39,214 @@ std::string RobotHostOptions::Validate() const {
   return os.str();
 }
 
-// Real-time ticks of many robots from one thread and one heap of due times. A due tick is
-// queued on its robot's callback queue (so it never overlaps the robot's other callbacks)
-// and the next one is scheduled when it has run, as roscpp's timers do: due + period, or
-// now when the robot fell more than a period behind (no burst of catch-up ticks).
-class TickScheduler {
+// Real time: one thread runs a share of the robots - their ticks from one heap of due times,
+// their radio rounds (the simulator of this process hands them over once per round) and their
+// roscpp callbacks (subscriptions, services) from their callback queue - so one robot's
+// callbacks never overlap, and nothing passes through a callback queue per robot and tick.
+// Until 2026-11-25 every tick and every round was a callback-queue entry of its own
+// (CallbackQueue::addCallback, getIDInfo, their mutexes and wake-ups: ~15 % of the process at
+// 2,000 robots). A tick is rescheduled at due + period or, when the robot fell more than a
+// period behind, at the first due time of its own timeline after now: no burst of catch-up
+// ticks, and the robots' phases stay spread over the period (a worker held up for a moment,
+// as by the first /flock/robots of thousands of robots, rescheduling them all to "now" as
+// roscpp's timers do, made them tick in one burst of 10-20 ms every period from then on).
+class HostWorker {
  public:
   using Clock = std::chrono::steady_clock;
 
-  explicit TickScheduler(double period_s)
-      : period_(
-            std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(period_s))) {}
-  ~TickScheduler() { Stop(); }
+  HostWorker(ros::CallbackQueue* queue, double period_s)
+      : queue_(queue),
+        period_(
+            std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(period_s))),
+        slack_(std::min<Clock::duration>(std::chrono::milliseconds(1), period_ / 100)) {}
+  ~HostWorker() { Stop(); }
 
-  // Robot `robot`, served by `queue`, first ticks at `first_due` (also while running: a robot
-  // that joins).
-  void Add(RobotNode* robot, ros::CallbackQueue* queue, Clock::time_point first_due) {
-    bool earliest = false;
+  // Robot `robot` first ticks `phase` after the worker starts, or after now when it runs
+  // already (a robot that joins). The returned slot is the robot's for Stage() and Remove().
+  void* Add(RobotNode* robot, Clock::duration phase) {
+    Slot* slot = nullptr;
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      robots_.emplace_back(robot, queue);
-      earliest = heap_.empty() || first_due < heap_.top().due;
-      heap_.push(Entry{first_due, robots_.size() - 1});
+      slots_.push_back(std::make_unique<Slot>());
+      slot = slots_.back().get();
+      slot->robot = robot;
+      // Before Start(): due times count from the epoch until Start() moves them to its now.
+      heap_.push(Entry{(started_ ? Clock::now() : Clock::time_point()) + phase, slot});
     }
-    if (earliest) wake_.notify_one();
+    Wake();
+    return slot;
   }
 
-  // Robot `robot` ticks no more. A tick already queued still runs unless the caller removes
-  // it from the robot's queue (removeByID with the robot's address, which also waits for one
-  // in progress).
-  void Remove(RobotNode* robot) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    for (auto& entry : robots_) {
-      if (entry.first == robot) entry.first = nullptr;
-    }
+  // The robot ticks and hears no more; returns when none of its ticks or rounds runs (from
+  // any thread but this worker's).
+  void Remove(void* handle) {
+    Slot* slot = static_cast<Slot*>(handle);
+    std::unique_lock<std::mutex> lock(mutex_);
+    slot->robot = nullptr;
+    slot->pending.reset();
+    idle_.wait(lock, [&] { return running_ != slot; });
   }
 
-  void Start() { thread_ = std::thread(&TickScheduler::Run, this); }
+  // The simulator's thread: the robot's round of this radio round (handed over by Flush).
+  void Stage(void* handle, Neighbors::ConstPtr round) {
+    staged_.emplace_back(static_cast<Slot*>(handle), std::move(round));
+  }
+
+  // The simulator's thread: hands the staged rounds over. A robot that has not taken its
+  // last round yet gets the latest only, as a neighbors subscription with a short queue drops
+  // old rounds (its diagnostics count them as missed).
+  void Flush() {
+    if (staged_.empty()) return;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      for (auto& entry : staged_) {
+        Slot* slot = entry.first;
+        if (slot->robot == nullptr) continue;
+        if (!slot->pending) dirty_.push_back(slot);
+        slot->pending = std::move(entry.second);
+      }
+    }
+    staged_.clear();
+    Wake();
+  }
+
+  // The initial robots' phases count from now: they were added while the robots were set up
+  // (thousands take seconds).
+  void Start() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      std::vector<Entry> entries;
+      for (; !heap_.empty(); heap_.pop()) entries.push_back(heap_.top());
+      const Clock::time_point now = Clock::now();
+      for (Entry& entry : entries) {
+        entry.due = now + entry.due.time_since_epoch();
+        heap_.push(entry);
+      }
+      started_ = true;
+    }
+    thread_ = std::thread(&HostWorker::Run, this);
+  }
 
   void Stop() {
     {
       std::lock_guard<std::mutex> lock(mutex_);
       stop_ = true;
     }
-    wake_.notify_all();
+    Wake();
     if (thread_.joinable()) thread_.join();
   }
 
  private:
+  struct Slot {
+    RobotNode* robot = nullptr;     // null: removed
+    Neighbors::ConstPtr pending;    // its latest round not taken yet
+  };
   struct Entry {
     Clock::time_point due;
-    std::size_t index;
+    Slot* slot;
     bool operator>(const Entry& other) const { return due > other.due; }
   };
-
-  // Runs one robot's tick on its queue's thread, then schedules the next.
-  class TickCallback : public ros::CallbackInterface {
+  // Does nothing: its arrival ends the worker's wait on the callback queue.
+  class WakeCall : public ros::CallbackInterface {
    public:
-    TickCallback(TickScheduler* scheduler, RobotNode* robot, std::size_t index,
-                 Clock::time_point due)
-        : scheduler_(scheduler), robot_(robot), index_(index), due_(due) {}
-    CallResult call() override {
-      robot_->TimerTick();
-      scheduler_->Reschedule(index_, due_);
-      return Success;
-    }
-
-   private:
-    TickScheduler* scheduler_;
-    RobotNode* robot_;
-    std::size_t index_;
-    Clock::time_point due_;
+    CallResult call() override { return Success; }
   };
 
-  void Reschedule(std::size_t index, Clock::time_point due) {
-    Clock::time_point next = due + period_;
-    const Clock::time_point now = Clock::now();
-    if (next + period_ < now) next = now;
-    bool earliest = false;
+  void Wake() {
+    bool wake = false;
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      if (robots_[index].first == nullptr) return;  // removed
-      earliest = heap_.empty() || next < heap_.top().due;
-      heap_.push(Entry{next, index});
+      wake = !wake_queued_;
+      wake_queued_ = true;
     }
-    if (earliest) wake_.notify_one();
+    if (wake) queue_->addCallback(boost::make_shared<WakeCall>(), kWakeId);
+  }
+
+  // Runs `call` for the slot's robot unless it was removed; Remove() waits for it.
+  template <typename F>
+  bool RunFor(Slot* slot, F call) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (slot->robot == nullptr) return false;
+      running_ = slot;
+    }
+    call(slot->robot);
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      running_ = nullptr;
+    }
+    idle_.notify_all();
+    return true;
+  }
+
+  // Runs the ticks due by now, and those due within the slack (1 % of the period, at most 1 ms:
+  // a tick that early is no tick late, and thousands of robots cost one wake-up per slack, not
+  // one per tick); returns how long until the next one (at most a period).
+  Clock::duration RunDueTicks() {
+    for (;;) {
+      Entry top;
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (heap_.empty()) return period_;
+        const Clock::time_point now = Clock::now();
+        if (heap_.top().due > now + slack_) return std::min(period_, heap_.top().due - now);
+        top = heap_.top();
+        heap_.pop();
+      }
+      if (!RunFor(top.slot, [](RobotNode* robot) { robot->TimerTick(); })) continue;
+      Clock::time_point next = top.due + period_;
+      const Clock::time_point now = Clock::now();
+      if (next + period_ < now) {
+        // More than a period behind: its next due time on its own timeline after now.
+        next += ((now - next) / period_ + 1) * period_;
+      }
+      std::lock_guard<std::mutex> lock(mutex_);
+      heap_.push(Entry{next, top.slot});
+    }
   }
 
   void Run() {
-    std::unique_lock<std::mutex> lock(mutex_);
-    while (!stop_) {
-      if (heap_.empty()) {
-        wake_.wait(lock);
-        continue;
+    std::vector<std::pair<Slot*, Neighbors::ConstPtr>> rounds;
+    for (;;) {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (stop_) return;
+        wake_queued_ = false;
+        for (Slot* slot : dirty_) rounds.emplace_back(slot, std::move(slot->pending));
+        dirty_.clear();
       }
-      const Entry top = heap_.top();
-      if (Clock::now() < top.due) {
-        wake_.wait_until(lock, top.due);
-        continue;
+      // The rounds in the order they were delivered (ascending id), a few at a time between
+      // the ticks that fall due meanwhile: a whole round of thousands of robots at once would
+      // hold their ticks back by milliseconds.
+      for (std::size_t k = 0; k < rounds.size(); ++k) {
+        if (k % kRoundsBetweenTicks == 0) RunDueTicks();
+        if (rounds[k].second) {
+          RunFor(rounds[k].first, [&](RobotNode* robot) { robot->OnNeighbors(rounds[k].second); });
+        }
       }
-      heap_.pop();
-      const std::pair<RobotNode*, ros::CallbackQueue*> robot = robots_[top.index];
-      if (robot.first == nullptr) continue;  // removed
-      lock.unlock();
-      robot.second->addCallback(
-          boost::make_shared<TickCallback>(this, robot.first, top.index, top.due),
-          reinterpret_cast<std::uint64_t>(robot.first));
-      lock.lock();
+      rounds.clear();
+      const Clock::duration wait = RunDueTicks();
+      // The robots' roscpp callbacks, and the wait for the next tick or a wake-up.
+      queue_->callAvailable(ros::WallDuration(std::chrono::duration<double>(wait).count()));
     }
   }
 
+  static constexpr std::size_t kRoundsBetweenTicks = 32;
+  static constexpr std::uint64_t kWakeId = 1;  // no robot's address
+
+  ros::CallbackQueue* queue_;
   const Clock::duration period_;
-  std::vector<std::pair<RobotNode*, ros::CallbackQueue*>> robots_;
+  const Clock::duration slack_;
   std::mutex mutex_;
-  std::condition_variable wake_;
+  std::condition_variable idle_;
+  std::vector<std::unique_ptr<Slot>> slots_;  // kept until the worker goes (Remove() only marks)
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap_;
+  std::vector<Slot*> dirty_;  // slots with a pending round
+  Slot* running_ = nullptr;
+  bool wake_queued_ = false;
+  bool started_ = false;
   bool stop_ = false;
+  std::vector<std::pair<Slot*, Neighbors::ConstPtr>> staged_;  // the simulator's thread only
   std::thread thread_;
 };
 
@@ -213,15 +305,17 @@ bool RobotHost::Initialize() {
            options_.from, options_.to, (ros::WallTime::now() - started).toSec(),
            core::ClockName(options_.clock), core::CommName(options_.comm), options_.threads);
   // Callbacks start only now: a robot must not hear anything while it is being set up.
-  // Lock-step with the simulator here: the simulator runs the queues (SpinRobots), so a tick
-  // needs no thread hand-off and callbacks run in the same order every time.
-  if (!(simulator_ && !realtime)) {
+  // Real time: a worker thread per queue runs its robots (HostWorker). Lock-step with the
+  // simulator here: the simulator runs the queues (SpinRobots), so a tick needs no thread
+  // hand-off and callbacks run in the same order every time; without it, a spinner per queue.
+  if (realtime) {
+    for (auto& worker : workers_) worker->Start();
+  } else if (!simulator_) {
     for (auto& queue : queues_) {
       spinners_.push_back(std::make_unique<ros::AsyncSpinner>(1, queue.get()));
       spinners_.back()->start();
     }
   }
-  if (scheduler_) scheduler_->Start();
   if (!simulator_) {
     // The host's own thread: robots joining and leaving, and its diagnostic status (with the
     // simulator here, the simulator reports for the process).
@@ -266,25 +360,26 @@ bool RobotHost::StartRobot(std::uint16_t id) {
   Hosted hosted;
   hosted.node = std::make_unique<RobotNode>(nh, private_nh);
   hosted.queue = queue;
-  if (simulator_) hosted.inbox = std::make_unique<Inbox>();
   if (!hosted.node->Initialize(robot)) return false;
   RobotNode* node = hosted.node.get();
-  ids_.insert(id);
-  hosted_.emplace(id, std::move(hosted));
   if (options_.clock == core::Clock::kRealtime) {
-    if (!scheduler_) scheduler_ = std::make_unique<TickScheduler>(node->tick_period_s());
+    const double period_s = node->tick_period_s();
+    if (workers_.empty()) {
+      for (auto& q : queues_) workers_.push_back(std::make_unique<HostWorker>(q.get(), period_s));
+    }
     // Each robot on its own timeline, as separate processes would be: the initial robots'
     // phases are spread over one period so that their ticks do not all fall due at once; a
     // robot that joins later ticks from now.
-    const double period_s = node->tick_period_s();
     const std::size_t initial = static_cast<std::size_t>(options_.to - options_.from);
     const double phase_s =
         k < initial ? period_s * static_cast<double>(k) / static_cast<double>(initial) : 0.0;
-    scheduler_->Add(node, queue,
-                    TickScheduler::Clock::now() +
-                        std::chrono::duration_cast<TickScheduler::Clock::duration>(
-                            std::chrono::duration<double>(phase_s)));
+    hosted.worker = workers_[k % workers_.size()].get();
+    hosted.slot = hosted.worker->Add(
+        node, std::chrono::duration_cast<HostWorker::Clock::duration>(
+                  std::chrono::duration<double>(phase_s)));
   }
+  ids_.insert(id);
+  hosted_.emplace(id, std::move(hosted));
   return true;
 }
 
@@ -304,8 +399,9 @@ void RobotHost::Release(std::uint16_t id) {
   auto it = hosted_.find(id);
   if (it == hosted_.end()) return;
   RobotNode* robot = it->second.node.get();
-  if (scheduler_) scheduler_->Remove(robot);
-  // Its queued ticks and rounds go, and one in progress ends first.
+  // Real time: it ticks and hears no more (a tick or round in progress ends first).
+  if (it->second.worker != nullptr) it->second.worker->Remove(it->second.slot);
+  // Lock-step: its queued rounds go, and one in progress ends first.
   it->second.queue->removeByID(reinterpret_cast<std::uint64_t>(robot));
   // Its callbacks end before it goes (the queue thread runs the other robots meanwhile).
   robot->Disconnect();
@@ -350,26 +446,12 @@ void RobotHost::Deliver(std::uint16_t id, const Neighbors::ConstPtr& round) {
         reinterpret_cast<std::uint64_t>(robot));
     return;
   }
-  // Real time: a robot that fell behind gets the latest round only, as a neighbors
-  // subscription with a short queue drops old rounds (its diagnostics count them as missed);
-  // an unbounded queue would grow while the robot can not keep up.
-  Inbox& inbox = *it->second.inbox;
-  bool pending = false;
-  {
-    std::lock_guard<std::mutex> lock(inbox.mutex);
-    pending = inbox.round != nullptr;
-    inbox.round = round;
-  }
-  if (pending) return;  // the queued callback will take this one
-  queue->addCallback(boost::make_shared<QueuedCall>([robot, &inbox]() {
-                       Neighbors::ConstPtr latest;
-                       {
-                         std::lock_guard<std::mutex> lock(inbox.mutex);
-                         latest.swap(inbox.round);
-                       }
-                       if (latest) robot->OnNeighbors(latest);
-                     }),
-                     reinterpret_cast<std::uint64_t>(robot));
+  // Real time: staged for the robot's worker, handed over with the whole round (EndRound).
+  it->second.worker->Stage(it->second.slot, round);
+}
+
+void RobotHost::EndRound() {
+  for (auto& worker : workers_) worker->Flush();
 }
 
 void RobotHost::SpinRobots() {
@@ -397,7 +479,7 @@ void RobotHost::Shutdown() {
 void RobotHost::StopCallbacks() {
   status_timer_.stop();
   if (control_spinner_) control_spinner_->stop();
-  if (scheduler_) scheduler_->Stop();
+  for (auto& worker : workers_) worker->Stop();
   for (auto& spinner : spinners_) spinner->stop();
 }
 

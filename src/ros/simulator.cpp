@@ -172,6 +172,7 @@ void Simulator::Shutdown() {
 
 void Simulator::SpinOnce(double wait_s) {
   SpinRobots();
+  TakeDirectCommands();
   cmd_queue_.callAvailable(ros::WallDuration(wait_s));
   ros::spinOnce();
 }
@@ -352,6 +353,7 @@ void Simulator::PublishRadio() {
   }
 
   if (lockstep_) session_->EndRound();
+  if (direct_ != nullptr) direct_->EndRound();
   Robot_Positions all;
   all.tick = tick_;
   all.sim_time = sim_time;
@@ -400,7 +402,22 @@ void Simulator::OnSimulatorThread(std::function<void()> call) {
 }
 
 void Simulator::SendCommand(std::uint16_t id, const geometry_msgs::Twist& command) {
-  OnSimulatorThread([this, id, command]() { OnCmdVel(id, command); });
+  if (std::this_thread::get_id() == thread_) {
+    OnCmdVel(id, command);
+    return;
+  }
+  std::lock_guard<std::mutex> lock(direct_commands_mutex_);
+  direct_commands_.emplace_back(id, command);
+}
+
+void Simulator::TakeDirectCommands() {
+  {
+    std::lock_guard<std::mutex> lock(direct_commands_mutex_);
+    if (direct_commands_.empty()) return;
+    direct_commands_taken_.swap(direct_commands_);
+  }
+  for (const auto& command : direct_commands_taken_) OnCmdVel(command.first, command.second);
+  direct_commands_taken_.clear();
 }
 
 void Simulator::SendAnswer(std::uint16_t id, const Tick_Answer& answer) {

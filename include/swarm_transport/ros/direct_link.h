@@ -43,6 +43,9 @@ class DirectRobots {
   // Hands robot `id` its radio round. It must not run the robot's tick before returning: the
   // simulator is in the middle of its round (the robot runs on its own callback queue).
   virtual void Deliver(std::uint16_t id, const Neighbors::ConstPtr& round) = 0;
+  // Every round of this radio round is delivered: a host that collects them (real time) hands
+  // them to its robots now, with one wake-up per thread instead of one per robot.
+  virtual void EndRound() {}
   // Lock-step: runs the callbacks the hosted robots have pending, in the calling (the
   // simulator's) thread. Real time: robots run on their own threads and this does nothing.
   virtual void SpinRobots() = 0;

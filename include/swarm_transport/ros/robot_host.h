@@ -50,18 +50,19 @@ struct RobotHostOptions {
 };
 
 class Simulator;
-class TickScheduler;
+class HostWorker;
 
 // The in-process twin of robots.launch [issue 5]: robot <id> gets the handles
 // NodeHandle("robot_<id>") and NodeHandle("robot_<id>/robot"), so its topics, its ~describe
 // service and its parameters resolve exactly as for the node /robot_<id>/robot; global topics
 // are shared, and roscpp delivers messages between the hosted robots without serialising.
-// Real-time ticks come from one scheduler (one heap, one thread) instead of a wall timer per
-// robot: roscpp's timer manager re-sorts all of a process's timers, with a linear search per
-// comparison, at every expiry.
-// With ~deploy host_sim the host is the simulator's DirectRobots: it delivers each round on the
-// robot's callback queue, and in lock-step it runs those queues from the simulator's thread
-// (no spinner threads: no hand-offs, and the order of callbacks is fixed).
+// Real time: a worker thread per queue (HostWorker) ticks its robots from one heap of due times
+// instead of a wall timer per robot (roscpp's timer manager re-sorts all of a process's timers,
+// with a linear search per comparison, at every expiry), and runs their roscpp callbacks.
+// With ~deploy host_sim the host is the simulator's DirectRobots: in real time it hands each
+// worker its robots' rounds once per radio round (EndRound); in lock-step it delivers each round
+// on the robot's callback queue and runs those queues from the simulator's thread (no spinner
+// threads: no hand-offs, and the order of callbacks is fixed).
 class RobotHost : public DirectRobots {
  public:
   RobotHost(ros::NodeHandle nh, ros::NodeHandle private_nh);
@@ -77,20 +78,17 @@ class RobotHost : public DirectRobots {
   // DirectRobots (the simulator of this process calls these from its thread).
   bool Hosts(std::uint16_t id) const override;
   void Deliver(std::uint16_t id, const Neighbors::ConstPtr& round) override;
+  void EndRound() override;
   void SpinRobots() override;
   bool Adopt(std::uint16_t id) override;
   void Release(std::uint16_t id) override;
 
  private:
-  // Real time with the simulator here: a robot's latest round not yet taken (Deliver).
-  struct Inbox {
-    std::mutex mutex;
-    Neighbors::ConstPtr round;
-  };
   struct Hosted {
     std::unique_ptr<RobotNode> node;
     ros::CallbackQueue* queue = nullptr;
-    std::unique_ptr<Inbox> inbox;
+    HostWorker* worker = nullptr;  // real time: the thread that runs it
+    void* slot = nullptr;          // its place in that worker
   };
   // Starts robot `id` on the next queue (real time: it ticks from now on).
   bool StartRobot(std::uint16_t id);
@@ -110,8 +108,10 @@ class RobotHost : public DirectRobots {
   std::map<std::uint16_t, Hosted> hosted_;
   std::set<std::uint16_t> ids_;  // hosted or about to be (Hosts() before the robots start)
   std::size_t started_ = 0;      // robots started so far: robot k is served by queue k % n
-  std::vector<std::unique_ptr<ros::AsyncSpinner>> spinners_;
-  std::unique_ptr<TickScheduler> scheduler_;
+  std::vector<std::unique_ptr<ros::AsyncSpinner>> spinners_;  // lock-step without simulator
+  // Real time: one per queue. Declared after the queues (a worker waits on its queue) and the
+  // robots (a worker runs them): members go in reverse order, so the workers stop first.
+  std::vector<std::unique_ptr<HostWorker>> workers_;
   ros::CallbackQueue control_queue_;  // the host's own subscription (/flock/robots)
   std::unique_ptr<ros::AsyncSpinner> control_spinner_;
   ros::Subscriber robots_sub_;

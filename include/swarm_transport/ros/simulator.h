@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <set>
 #include <string>
 #include <thread>
@@ -61,8 +62,10 @@ class Simulator : public RobotOutlet {
   bool Initialize();
   bool lockstep() const { return lockstep_; }
   // RobotOutlet: a directly linked robot's command and answer. From the simulator's own
-  // thread (lock-step: a robot run by SpinRobots) they apply at once, from any other thread
-  // they are queued for the simulator's loop like a cmd_vel message.
+  // thread (lock-step: a robot run by SpinRobots) they apply at once; from any other thread
+  // (a real-time robot's worker) a command waits in a mailbox that the simulator's loop empties
+  // at each step (one mutex, no callback-queue entry per robot and tick), an answer is queued
+  // for the loop like a message.
   void SendCommand(std::uint16_t id, const geometry_msgs::Twist& command) override;
   void SendAnswer(std::uint16_t id, const Tick_Answer& answer) override;
   // Runs the clock until ROS shuts down.
@@ -106,6 +109,8 @@ class Simulator : public RobotOutlet {
   ros::Time Stamp() const;
 
   void OnCmdVel(std::uint16_t id, const geometry_msgs::Twist& msg);
+  // Applies the commands directly linked robots sent from other threads, in arrival order.
+  void TakeDirectCommands();
   // Runs `call` now on the simulator's thread, or queues it for its loop from another one.
   void OnSimulatorThread(std::function<void()> call);
   // Lock-step: the statists of the dispatcher's recruiting missions (SPEC 9.4) that stand at
@@ -127,6 +132,11 @@ class Simulator : public RobotOutlet {
   // cmd_vel callbacks have their own queue so that lock-step can wait for answers without
   // running services (which may spawn or kill robots) at arbitrary points.
   ros::CallbackQueue cmd_queue_;
+  // Commands of directly linked robots sent from other threads (SendCommand), in arrival order;
+  // `direct_commands_taken_` is the loop's buffer, swapped with it (no allocation once warm).
+  std::mutex direct_commands_mutex_;
+  std::vector<std::pair<std::uint16_t, geometry_msgs::Twist>> direct_commands_;
+  std::vector<std::pair<std::uint16_t, geometry_msgs::Twist>> direct_commands_taken_;
   std::unique_ptr<RobotLinks> links_;
   // Live tuning of the flocking parameters (dynamic_reconfigure on the private handle).
   std::unique_ptr<LiveTuning> tuning_;
