@@ -1,5 +1,7 @@
 #include "swarm_transport/ros/robot_host.h"
 
+#include <std_msgs/String.h>
+
 #include <algorithm>
 #include <chrono>
 #include <condition_variable>
@@ -54,8 +56,10 @@ class HostWorker {
  public:
   using Clock = std::chrono::steady_clock;
 
-  HostWorker(ros::CallbackQueue* queue, double period_s)
+  // `stats` (may be null): the host's diagnostics lines, flushed when due at every wake-up.
+  HostWorker(ros::CallbackQueue* queue, double period_s, StatsBatch* stats)
       : queue_(queue),
+        stats_(stats),
         period_(
             std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(period_s))),
         slack_(std::min<Clock::duration>(std::chrono::milliseconds(1), period_ / 100)) {}
@@ -226,6 +230,7 @@ class HostWorker {
       }
       rounds.clear();
       const Clock::duration wait = RunDueTicks();
+      if (stats_ != nullptr) stats_->FlushIfDue();
       // The robots' roscpp callbacks, and the wait for the next tick or a wake-up.
       queue_->callAvailable(ros::WallDuration(std::chrono::duration<double>(wait).count()));
     }
@@ -235,6 +240,7 @@ class HostWorker {
   static constexpr std::uint64_t kWakeId = 1;  // no robot's address
 
   ros::CallbackQueue* queue_;
+  StatsBatch* stats_;
   const Clock::duration period_;
   const Clock::duration slack_;
   std::mutex mutex_;
@@ -249,6 +255,39 @@ class HostWorker {
   std::vector<std::pair<Slot*, Neighbors::ConstPtr>> staged_;  // the simulator's thread only
   std::thread thread_;
 };
+
+namespace {
+constexpr char kStatsTopic[] = "/flock/robot_stats";
+constexpr double kStatsBatchS = 0.05;
+// Messages, not lines: a subscriber that lags a few seconds still gets every line.
+constexpr std::uint32_t kStatsBatchQueue = 100;
+}  // namespace
+
+StatsBatch::StatsBatch(ros::NodeHandle nh)
+    : pub_(nh.advertise<std_msgs::String>(kStatsTopic, kStatsBatchQueue)),
+      last_(ros::WallTime::now()) {}
+
+void StatsBatch::Add(const std::string& line) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!lines_.empty()) lines_ += '\n';
+  lines_ += line;
+  const ros::WallTime now = ros::WallTime::now();
+  if ((now - last_).toSec() >= kStatsBatchS) FlushLocked(now);
+}
+
+void StatsBatch::FlushIfDue() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (lines_.empty()) return;
+  const ros::WallTime now = ros::WallTime::now();
+  if ((now - last_).toSec() >= kStatsBatchS) FlushLocked(now);
+}
+
+void StatsBatch::FlushLocked(const ros::WallTime& now) {
+  auto msg = boost::make_shared<std_msgs::String>();
+  msg->data.swap(lines_);
+  pub_.publish(msg);
+  last_ = now;
+}
 
 RobotHost::RobotHost(ros::NodeHandle nh, ros::NodeHandle private_nh)
     : nh_(nh), private_nh_(private_nh) {}
@@ -356,6 +395,11 @@ bool RobotHost::StartRobot(std::uint16_t id) {
   robot.comm = options_.comm;
   robot.diagnostics = options_.diagnostics;
   robot.external_timer = options_.clock == core::Clock::kRealtime;
+  if (options_.diagnostics) {
+    if (!stats_) stats_ = std::make_unique<StatsBatch>(nh_);
+    StatsBatch* stats = stats_.get();
+    robot.stats_sink = [stats](const std::string& line) { stats->Add(line); };
+  }
   if (simulator_) robot.direct = simulator_.get();
   Hosted hosted;
   hosted.node = std::make_unique<RobotNode>(nh, private_nh);
@@ -365,7 +409,9 @@ bool RobotHost::StartRobot(std::uint16_t id) {
   if (options_.clock == core::Clock::kRealtime) {
     const double period_s = node->tick_period_s();
     if (workers_.empty()) {
-      for (auto& q : queues_) workers_.push_back(std::make_unique<HostWorker>(q.get(), period_s));
+      for (auto& q : queues_) {
+        workers_.push_back(std::make_unique<HostWorker>(q.get(), period_s, stats_.get()));
+      }
     }
     // Each robot on its own timeline, as separate processes would be: the initial robots'
     // phases are spread over one period so that their ticks do not all fall due at once; a
@@ -460,6 +506,7 @@ void RobotHost::SpinRobots() {
   // Queue by queue: robot k's callbacks in arrival order, the robots of a queue in the order
   // their rounds were delivered (ascending id), so a run is the same every time.
   for (auto& queue : queues_) queue->callAvailable(ros::WallDuration());
+  if (stats_) stats_->FlushIfDue();
 }
 
 void RobotHost::Spin() {

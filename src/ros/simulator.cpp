@@ -363,6 +363,7 @@ void Simulator::PublishRadio() {
 }
 
 void Simulator::PublishPoses() {
+  if (!params_.pose_topics) return;  // no robot_<id>/pose (host_sim's default)
   for (const auto& entry : *links_) {
     if (entry.second.pose_subscribers == 0) continue;
     const sim::Robot* robot = world_->Find(entry.first);

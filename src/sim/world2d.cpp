@@ -257,9 +257,11 @@ void World2D::Step(double dt_s, bool resolve_contacts) {
           robot.command = core::Velocity();
         }
       }
+      robot.pose.position = Clamped(robot.pose.position);  // ClampAll in the same pass
     }
+  } else {
+    ClampAll();
   }
-  ClampAll();
   if (resolve_contacts) ResolveContacts();
 }
 

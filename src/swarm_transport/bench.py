@@ -235,8 +235,11 @@ def run_one(a):
         stats = {}  # id -> list of (recv wall, fields)
 
         def on_stats(msg):
-            f = parse_stats(msg.data)
-            stats.setdefault(int(f['id']), []).append((time.time(), f))
+            # One robot's line, or a robot_host's lines of many robots (one per line).
+            now = time.time()
+            for line in msg.data.splitlines():
+                f = parse_stats(line)
+                stats.setdefault(int(f['id']), []).append((now, f))
 
         rospy.Subscriber(STATS_TOPIC, String, on_stats, queue_size=100000)
         # What else keeps the machine busy (other users' jobs skew every figure).

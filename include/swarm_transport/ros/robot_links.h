@@ -7,6 +7,7 @@
 #include <geometry_msgs/Twist.h>
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
+#include <boost/container/flat_map.hpp>
 
 #include <cstdint>
 #include <functional>
@@ -60,7 +61,8 @@ struct RobotLinkHandlers {
 
 class RobotLinks {
  public:
-  using Map = std::map<std::uint16_t, RobotLink>;
+  // Sorted by id in one array: found and walked for every robot in every round.
+  using Map = boost::container::flat_map<std::uint16_t, RobotLink>;
 
   // `direct`: the robots of this process linked directly (may be null); `pose_topics`:
   // advertise robot_<id>/pose.

@@ -6,6 +6,7 @@
 #include <std_srvs/Trigger.h>
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -61,6 +62,10 @@ struct RobotNodeOptions {
   // simulator's robot list (/kill, Delete_Robot), so that a killed robot does not act on and a
   // re-spawned id gets a fresh process. A host of many robots removes them itself instead.
   bool exit_when_removed = false;
+  // Not a parameter: where its diagnostics lines go instead of its own publication of
+  // /flock/robot_stats (a host of many robots sends many robots' lines in one message; must be
+  // thread-safe and outlive the robot).
+  std::function<void(const std::string&)> stats_sink;
   // Not a parameter: publish its own diagnostic status on /diagnostics (a process of its own;
   // a host of many robots reports once for all of them).
   bool status = false;

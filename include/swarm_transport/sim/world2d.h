@@ -2,6 +2,8 @@
 #ifndef SWARM_TRANSPORT_SIM_WORLD2D_H_
 #define SWARM_TRANSPORT_SIM_WORLD2D_H_
 
+#include <boost/container/flat_map.hpp>
+
 #include <cstdint>
 #include <map>
 #include <string>
@@ -72,8 +74,10 @@ class World2D {
   // Every robot back to its spawn pose, commands cleared.
   void Reset();
 
-  // All robots, sorted by id.
-  const std::map<std::uint16_t, Robot>& robots() const { return robots_; }
+  // All robots, sorted by id, in one array (a map's node per robot cost a tenth of a real-time
+  // process at 2,000 robots in traversals alone: the simulator walks them every 10 ms step).
+  using RobotMap = boost::container::flat_map<std::uint16_t, Robot>;
+  const RobotMap& robots() const { return robots_; }
   // The robot with `id`, or nullptr.
   const Robot* Find(std::uint16_t id) const;
   std::size_t size() const { return robots_.size(); }
@@ -98,7 +102,7 @@ class World2D {
   bool PushApartOnce();
 
   WorldParams params_;
-  std::map<std::uint16_t, Robot> robots_;
+  RobotMap robots_;
   // PushApartOnce's scratch, kept between calls (it runs up to 5 times per ResolveContacts).
   std::vector<Robot*> push_order_;
   std::vector<core::Vec2> push_points_;
