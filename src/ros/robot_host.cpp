@@ -307,12 +307,21 @@ bool RobotHost::Initialize() {
       ReadPrivate(private_nh_, "diagnostics", &options_.diagnostics, &error) &&
       ReadPrivate(private_nh_, "threads", &options_.threads, &error) &&
       ReadPrivate(private_nh_, "deploy", &options_.deploy, &error) &&
-      ReadPrivate(private_nh_, "adopt", &options_.adopt, &error)) {
+      ReadPrivate(private_nh_, "adopt", &options_.adopt, &error) &&
+      ReadPrivate(private_nh_, "robot_services", &options_.robot_services, &error)) {
     error = options_.Validate();
   }
   if (!error.empty()) {
     ROS_FATAL("robot_host: invalid parameters: %s", error.c_str());
     return false;
+  }
+  {
+    XmlRpc::XmlRpcValue dict;
+    SwarmConfig config;
+    std::string swarm_error;
+    if (nh_.getParam("/swarm", dict) && ConfigFromXmlRpc(dict, &config, &swarm_error)) {
+      swarm_ = config;
+    }
   }
   // Its robots, before the simulator (linking them directly) asks.
   for (int id = options_.from; id < options_.to; ++id) ids_.insert(static_cast<std::uint16_t>(id));
@@ -339,6 +348,15 @@ bool RobotHost::Initialize() {
   const ros::WallTime started = ros::WallTime::now();
   for (int id = options_.from; id < options_.to; ++id) {
     if (!StartRobot(static_cast<std::uint16_t>(id))) return false;
+  }
+  // With the simulator here its thread (the global queue, which it spins) changes hosted_;
+  // without, the control queue's.
+  if (simulator_) {
+    SubscribeSharedTopics(nh_);
+  } else {
+    ros::NodeHandle control(nh_);
+    control.setCallbackQueue(&control_queue_);
+    SubscribeSharedTopics(control);
   }
   ROS_INFO("robot_host: robots [%d, %d) up in %.1f s (%s clock, %s comm, %d threads)",
            options_.from, options_.to, (ros::WallTime::now() - started).toSec(),
@@ -395,6 +413,13 @@ bool RobotHost::StartRobot(std::uint16_t id) {
   robot.comm = options_.comm;
   robot.diagnostics = options_.diagnostics;
   robot.external_timer = options_.clock == core::Clock::kRealtime;
+  robot.shared_topics = true;
+  robot.services = options_.robot_services;
+  // The initial robots share one reading of /swarm; a robot that joins later reads it itself,
+  // as a process of its own would.
+  if (swarm_ && k < static_cast<std::size_t>(options_.to - options_.from)) {
+    robot.swarm = &*swarm_;
+  }
   if (options_.diagnostics) {
     if (!stats_) stats_ = std::make_unique<StatsBatch>(nh_);
     StatsBatch* stats = stats_.get();
@@ -425,6 +450,13 @@ bool RobotHost::StartRobot(std::uint16_t id) {
                   std::chrono::duration<double>(phase_s)));
   }
   ids_.insert(id);
+  // A robot that starts while the swarm runs hears the current robot list (latched), as its
+  // own subscription would have.
+  if (last_robots_) {
+    const ros::MessageEvent<Robot_Positions const> event = *last_robots_;
+    queue->addCallback(boost::make_shared<QueuedCall>([node, event]() { node->Hear(event); }),
+                       reinterpret_cast<std::uint64_t>(node));
+  }
   hosted_.emplace(id, std::move(hosted));
   return true;
 }
@@ -455,6 +487,44 @@ void RobotHost::Release(std::uint16_t id) {
   hosted_.erase(it);  // unsubscribes (waiting for a callback in progress)
   ids_.erase(id);
   ROS_INFO("robot_host: robot %u left", id);
+}
+
+template <typename M>
+void RobotHost::FanOut(const ros::MessageEvent<M const>& event) {
+  for (auto& entry : hosted_) {
+    RobotNode* robot = entry.second.node.get();
+    entry.second.queue->addCallback(
+        boost::make_shared<QueuedCall>([robot, event]() { robot->Hear(event); }),
+        reinterpret_cast<std::uint64_t>(robot));
+  }
+}
+
+template <typename M>
+void RobotHost::SubscribeShared(ros::NodeHandle& nh, const char* topic, std::uint32_t queue_size) {
+  shared_subs_.push_back(nh.subscribe<M>(
+      topic, queue_size,
+      boost::function<void(const ros::MessageEvent<M const>&)>(
+          [this](const ros::MessageEvent<M const>& event) { FanOut(event); })));
+}
+
+void RobotHost::SubscribeSharedTopics(ros::NodeHandle nh) {
+  // The queue sizes of a robot's own subscriptions (robot_node.cpp).
+  shared_subs_.push_back(nh.subscribe<Robot_Positions>(
+      names::kRobots, 2,
+      boost::function<void(const ros::MessageEvent<Robot_Positions const>&)>(
+          [this](const ros::MessageEvent<Robot_Positions const>& event) {
+            last_robots_ = event;
+            FanOut(event);
+          })));
+  // Lock-step: mission messages come relayed inside each round.
+  if (options_.clock == core::Clock::kLockstep) return;
+  SubscribeShared<Robot_Freeze>(nh, names::kFreeze, 20);
+  SubscribeShared<Robot_Continue>(nh, names::kContinue, 20);
+  SubscribeShared<New_Mission>(nh, names::kMissionNew, 256);
+  SubscribeShared<Update_Object>(nh, names::kObjectUpdate, 20);
+  SubscribeShared<Delete_Object>(nh, names::kObjectDelete, 20);
+  SubscribeShared<Mission_Event>(nh, names::kMissionEvent, 20);
+  SubscribeShared<Mission_Status>(nh, names::kMissionStatus, 50);
 }
 
 void RobotHost::OnRobots(const Robot_Positions::ConstPtr& msg) {
@@ -525,6 +595,7 @@ void RobotHost::Shutdown() {
 
 void RobotHost::StopCallbacks() {
   status_timer_.stop();
+  for (auto& sub : shared_subs_) sub.shutdown();
   if (control_spinner_) control_spinner_->stop();
   for (auto& worker : workers_) worker->Stop();
   for (auto& spinner : spinners_) spinner->stop();

@@ -83,6 +83,16 @@ void RobotLinks::Add(std::uint16_t id) {
       link.answer = robot_nh.subscribe(answer_ops);
     }
   }
+  // Every robot's teleports, unless the process hosting it directly asks for none (a
+  // robot_host with ~robot_services false: registering them is O(N^2) in roscpp and the master).
+  if (!link.direct || direct_->RobotServices()) {
+    AdvertiseTeleports(id, robot_nh, &link);
+  }
+  links_[id] = link;
+}
+
+void RobotLinks::AdvertiseTeleports(std::uint16_t id, ros::NodeHandle& robot_nh, RobotLink* out) {
+  RobotLink& link = *out;
   link.teleport_absolute =
       robot_nh.advertiseService<TeleportAbsolute::Request, TeleportAbsolute::Response>(
           names::kTeleportAbsolute,
@@ -95,7 +105,6 @@ void RobotLinks::Add(std::uint16_t id) {
           [this, id](TeleportRelative::Request& req, TeleportRelative::Response& res) {
             return handlers_.teleport_relative(id, req, res);
           });
-  links_[id] = link;
 }
 
 void RobotLinks::Remove(std::uint16_t id) {

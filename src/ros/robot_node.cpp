@@ -62,7 +62,9 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
   options_ = options;
   std::string error = options_.Validate();
   XmlRpc::XmlRpcValue swarm;
-  if (error.empty() && nh_.getParam("/swarm", swarm)) {
+  if (error.empty() && options_.swarm != nullptr) {
+    config_ = *options_.swarm;
+  } else if (error.empty() && nh_.getParam("/swarm", swarm)) {
     ConfigFromXmlRpc(swarm, &config_, &error);
   }
   if (error.empty()) error = config_.Validate();
@@ -86,7 +88,7 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
   }
   // Lock-step: mission messages arrive relayed inside `neighbors`, each at the tick after it
   // was sent, and go out inside the robot's answer: no mission topics, nothing to connect.
-  if (options_.clock != core::Clock::kLockstep) {
+  if (options_.clock != core::Clock::kLockstep && !options_.shared_topics) {
     freeze_sub_ = nh_.subscribe(names::kFreeze, 20, &RobotNode::OnFreeze, this);
     continue_sub_ = nh_.subscribe(names::kContinue, 20, &RobotNode::OnContinue, this);
     // Up to a dispatcher's whole table of live orders at once (a flood of hand-made ones is
@@ -105,7 +107,9 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
         nh_.subscribe(names::kMissionStatus, 50,
                       &RobotNode::FromTopic<Mission_Status, &RobotNode::OnMissionStatus>, this);
   }
-  robots_sub_ = nh_.subscribe(names::kRobots, 2, &RobotNode::OnRobots, this);
+  if (!options_.shared_topics) {
+    robots_sub_ = nh_.subscribe(names::kRobots, 2, &RobotNode::OnRobots, this);
+  }
   if (options_.comm == core::Comm::kBroadcast) {
     position_sub_ = nh_.subscribe(names::kPosition, kBroadcastQueue, &RobotNode::OnPosition, this,
                                   ros::TransportHints().tcpNoDelay());
@@ -115,8 +119,10 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
                                                options_.clock == core::Clock::kRealtime);
     if (!options_.stats_sink) stats_pub_ = nh_.advertise<std_msgs::String>(kStatsTopic, kStatsQueue);
   }
-  describe_srv_ = private_nh_.advertiseService("describe", &RobotNode::OnDescribe, this);
-  state_srv_ = private_nh_.advertiseService("state", &RobotNode::OnState, this);
+  if (options_.services) {
+    describe_srv_ = private_nh_.advertiseService("describe", &RobotNode::OnDescribe, this);
+    state_srv_ = private_nh_.advertiseService("state", &RobotNode::OnState, this);
+  }
   if (options_.status) {
     diagnostics_ =
         std::make_unique<NodeDiagnostics>(nh_, "swarm_transport: robot " + std::to_string(id_));

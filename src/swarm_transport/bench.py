@@ -94,6 +94,9 @@ def parse_args(argv):
     p.add_argument('--chain-hops', type=int, default=16,
                    help='hop limit of the chain relay (config chain_hops, default 16)')
     p.add_argument('--threads', type=int, default=1, help='host: callback threads (default 1)')
+    p.add_argument('--no-robot-services', action='store_true',
+                   help='host / host_sim: robots offer no per-robot services (robot_host '
+                   '~robot_services false; their registration is O(N^2) at start-up)')
     p.add_argument('--startup-timeout', type=float, default=0.0,
                    help='s to wait for every robot to tick (default 60 + 0.5 s per robot)')
     p.add_argument('--csv', default='', help='also write the table to this CSV file')
@@ -209,7 +212,7 @@ def run_one(a):
     result = {'robots': a.robots, 'clock': a.clock, 'deploy': a.deploy, 'comm': a.comm,
               'threads': a.threads, 'seconds': a.seconds, 'log_dir': log_dir,
               'arena_m': a.arena_m, 'neighbourhood': a.neighbourhood,
-              'chain_hops': a.chain_hops}
+              'chain_hops': a.chain_hops, 'robot_services': not a.no_robot_services}
     ok = False
     with st_ros.PrivateRos(log_dir=log_dir) as ros:
         import rosgraph.masterapi
@@ -260,6 +263,7 @@ def run_one(a):
                 'robots': a.robots, 'seed': a.seed, 'deploy': a.deploy,
                 'lockstep': 'true' if a.clock == 'lockstep' else 'false',
                 'dispatcher': 'false', 'observers': 0, 'robot_output': 'log',
+                'robot_services': 'false' if a.no_robot_services else 'true',
                 'extra_config': arena_yaml})
         try:
             ok = measure(a, ros, launch.pid, stats, t0, result)
@@ -286,6 +290,7 @@ def set_host_sim_params(master, a):
     master.setParam('/robot_host', {
         'from': 0, 'to': a.robots, 'clock': a.clock, 'comm': a.comm, 'diagnostics': True,
         'threads': a.threads, 'deploy': 'host_sim',
+        'robot_services': not a.no_robot_services,
         'simulator': {'robots': a.robots, 'clock': a.clock}})
 
 
@@ -433,6 +438,8 @@ def child_run(a, clock, comm):
             '--neighbourhood', a.neighbourhood, '--chain-hops', str(a.chain_hops), '--child', out]
     if a.keep_logs:
         args.append('--keep-logs')
+    if a.no_robot_services:
+        args.append('--no-robot-services')
     log('run: %d robots, %s clock, %s comm, deploy %s, arena %.2f m, %s neighbourhood (%d hops)'
         % (a.robots, clock, comm, a.deploy, a.arena_m, a.neighbourhood, a.chain_hops))
     p = subprocess.Popen(args)
@@ -553,7 +560,7 @@ def main(argv):
         keys = ['clock', 'comm', 'deploy', 'robots', 'threads', 'seconds'] + [
             k for k, _ in COLUMNS if k not in ('clock', 'comm', 'deploy', 'robots')] + [
             'updates', 'max_latency_ms', 'missed_rounds_pct', 'arena_m', 'sim_rss_mb',
-            'robot_processes',
+            'robot_processes', 'robot_services',
             'ok']
         with open(a.csv, 'w', newline='') as f:
             w = csv.DictWriter(f, fieldnames=keys, extrasaction='ignore')

@@ -55,6 +55,8 @@ class DirectRobots {
   virtual bool Adopt(std::uint16_t /*id*/) { return false; }
   // Robot `id` left the world (killed or deleted): the process stops and removes its robot.
   virtual void Release(std::uint16_t /*id*/) {}
+  // False: the simulator offers no robot_<id>/teleport_* services for these robots.
+  virtual bool RobotServices() const { return true; }
 };
 
 // A callback queue entry that runs a function: how a round reaches a robot's queue, or a

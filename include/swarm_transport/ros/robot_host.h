@@ -11,6 +11,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -48,6 +49,12 @@ struct RobotHostOptions {
   // without, the host runs every robot /flock/robots lists. false: robots beyond [from, to)
   // need processes of their own (a host beside robot processes).
   bool adopt = true;
+  // ~robot_services: every robot offers its services as a process of its own would
+  // (robot_<id>/robot/describe and state; with host_sim the simulator's robot_<id>/teleport_absolute
+  // and teleport_relative). false: none of them. Each one is a master registration and, in
+  // roscpp, a linear search over all of the process's services: at 10,000 robots that was most
+  // of a start-up of 514 s. Default true.
+  bool robot_services = true;
   std::string Validate() const;
 };
 
@@ -102,6 +109,7 @@ class RobotHost : public DirectRobots {
   void SpinRobots() override;
   bool Adopt(std::uint16_t id) override;
   void Release(std::uint16_t id) override;
+  bool RobotServices() const override { return options_.robot_services; }
 
  private:
   struct Hosted {
@@ -114,6 +122,14 @@ class RobotHost : public DirectRobots {
   bool StartRobot(std::uint16_t id);
   // Without the simulator here: robots join and leave as /flock/robots says (~adopt).
   void OnRobots(const Robot_Positions::ConstPtr& msg);
+  // The swarm-wide topics, subscribed once for every robot of the host (RobotNodeOptions::
+  // shared_topics) on `nh`'s queue, the thread that also changes hosted_.
+  void SubscribeSharedTopics(ros::NodeHandle nh);
+  template <typename M>
+  void SubscribeShared(ros::NodeHandle& nh, const char* topic, std::uint32_t queue_size);
+  // Hands a shared topic's message to every hosted robot, on the robot's queue.
+  template <typename M>
+  void FanOut(const ros::MessageEvent<M const>& event);
   // No tick or callback runs after this returns.
   void StopCallbacks();
 
@@ -125,6 +141,8 @@ class RobotHost : public DirectRobots {
   std::vector<std::unique_ptr<ros::CallbackQueue>> queues_;
   // ~diagnostics: declared before the robots, which add to it, and the workers, which flush it.
   std::unique_ptr<StatsBatch> stats_;
+  // /swarm, read once for every robot (unset: each robot reads it and reports what is wrong).
+  std::optional<SwarmConfig> swarm_;
   // The hosted robots by id. Changed only from one thread: the simulator's (~deploy host_sim,
   // which also calls Deliver) or the control queue's (/flock/robots).
   boost::container::flat_map<std::uint16_t, Hosted> hosted_;  // found for every round
@@ -139,6 +157,9 @@ class RobotHost : public DirectRobots {
   ros::Subscriber robots_sub_;
   std::unique_ptr<NodeDiagnostics> diagnostics_;
   ros::WallTimer status_timer_;
+  std::vector<ros::Subscriber> shared_subs_;
+  // The latest /flock/robots (latched), for a robot that starts later.
+  std::optional<ros::MessageEvent<Robot_Positions const>> last_robots_;
 };
 
 }  // namespace swarm_transport

@@ -86,6 +86,7 @@ class RobotLinks {
   static bool Ready(RobotLink* link, double settle_s);
 
  private:
+  void AdvertiseTeleports(std::uint16_t id, ros::NodeHandle& robot_nh, RobotLink* link);
   void CountSubscriber(std::uint16_t id, std::uint64_t generation, int RobotLink::*field,
                        int delta);
 

@@ -62,6 +62,18 @@ struct RobotNodeOptions {
   // simulator's robot list (/kill, Delete_Robot), so that a killed robot does not act on and a
   // re-spawned id gets a fresh process. A host of many robots removes them itself instead.
   bool exit_when_removed = false;
+  // Not a parameter: the robot does not subscribe the swarm-wide topics (/flock/robots and, in
+  // real time, the mission topics); the host that sets this subscribes them once for all its
+  // robots and hands every message to each robot's Hear() on the robot's thread. roscpp asks
+  // the master five parameters for every subscription callback (its statistics logger), so a
+  // subscription per robot and topic was almost all of a host's start-up.
+  bool shared_topics = false;
+  // Not a parameter: offer ~describe and ~state (a host of many robots may ask for none).
+  bool services = true;
+  // Not a parameter: the swarm's configuration as read from /swarm by a host of many robots
+  // (read once for all of them: a parameter-server round trip per robot was a large part of a
+  // 10,000-robot start-up). Null: the robot reads /swarm itself.
+  const SwarmConfig* swarm = nullptr;
   // Not a parameter: where its diagnostics lines go instead of its own publication of
   // /flock/robot_stats (a host of many robots sends many robots' lines in one message; must be
   // thread-safe and outlive the robot).
@@ -95,6 +107,33 @@ class RobotNode {
   // One radio round (the neighbors subscription's callback; a host with direct links calls it
   // on the robot's callback queue). Lock-step: one tick.
   void OnNeighbors(const Neighbors::ConstPtr& msg);
+
+  // A swarm-wide topic's message, from a host that subscribes for it (shared_topics): what the
+  // robot's own subscription would have done with it.
+  void Hear(const ros::MessageEvent<Robot_Positions const>& event) {
+    OnRobots(event.getConstMessage());
+  }
+  void Hear(const ros::MessageEvent<Robot_Freeze const>& event) {
+    OnFreeze(event.getConstMessage());
+  }
+  void Hear(const ros::MessageEvent<Robot_Continue const>& event) {
+    OnContinue(event.getConstMessage());
+  }
+  void Hear(const ros::MessageEvent<Mission_Event const>& event) {
+    OnMissionEvent(event.getConstMessage());
+  }
+  void Hear(const ros::MessageEvent<New_Mission const>& event) {
+    FromTopic<New_Mission, &RobotNode::OnNewMission>(event);
+  }
+  void Hear(const ros::MessageEvent<Update_Object const>& event) {
+    FromTopic<Update_Object, &RobotNode::OnObjectUpdate>(event);
+  }
+  void Hear(const ros::MessageEvent<Delete_Object const>& event) {
+    FromTopic<Delete_Object, &RobotNode::OnObjectDelete>(event);
+  }
+  void Hear(const ros::MessageEvent<Mission_Status const>& event) {
+    FromTopic<Mission_Status, &RobotNode::OnMissionStatus>(event);
+  }
 
   std::uint64_t ticks() const { return ticks_; }
   double tick_period_s() const { return config_.tick_period_s; }
