@@ -62,11 +62,11 @@ class HostServices(unittest.TestCase):
         resume = rospy.Publisher('/flock/continue', Robot_Continue, queue_size=10)
         self.assertTrue(st.wait_for(lambda: freeze.get_num_connections() > 0, self.timeout))
         self.assertTrue(st.wait_for(lambda: resume.get_num_connections() > 0, self.timeout))
-        freeze.publish(Robot_Freeze(robot_index_from=0, robot_index_to=self.robots - 1))
+        freeze.publish(Robot_Freeze(robot_index_from=0, robot_index_to=self.robots))
         # The freeze takes effect within a few rounds; from then on nobody moves.
         self.assertTrue(self.log.wait_tick(self.log.latest_tick() + 5, self.timeout))
         self.assertLess(self.moved(ticks), g('standing_m'), 'a robot did not hear the freeze')
-        resume.publish(Robot_Continue(robot_index_from=0, robot_index_to=self.robots - 1))
+        resume.publish(Robot_Continue(robot_index_from=0, robot_index_to=self.robots))
         self.assertTrue(self.log.wait_tick(self.log.latest_tick() + 5, self.timeout))
         self.assertGreater(self.moved(ticks), g('moving_m'), 'the robots did not continue')
 

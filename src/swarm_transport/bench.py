@@ -93,7 +93,9 @@ def parse_args(argv):
                    '(default chain, the default config)')
     p.add_argument('--chain-hops', type=int, default=16,
                    help='hop limit of the chain relay (config chain_hops, default 16)')
-    p.add_argument('--threads', type=int, default=1, help='host: callback threads (default 1)')
+    p.add_argument('--threads', type=int, default=1,
+                   help='host / host_sim: robot threads (robot_host ~threads; in real time each '
+                   'a worker that ticks its share of the robots; default 1)')
     p.add_argument('--no-robot-services', action='store_true',
                    help='host / host_sim: robots offer no per-robot services (robot_host '
                    '~robot_services false; their registration is O(N^2) at start-up)')

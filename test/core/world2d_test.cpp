@@ -324,6 +324,24 @@ TEST(PlacementTest, ParsesLinesWithComments) {
   EXPECT_EQ(poses.size(), 2u);  // untouched on error
 }
 
+// NeighbourLists(range) of `world` is, for every robot, every other robot within range by a
+// search over all pairs, in id order.
+void ExpectNeighbourListsAreBruteForce(const World2D& world, double range) {
+  const auto lists = world.NeighbourLists(range);
+  ASSERT_EQ(lists.size(), world.size());
+  std::size_t i = 0;
+  for (const auto& a : world.robots()) {
+    std::vector<std::uint16_t> expected;
+    for (const auto& b : world.robots()) {
+      if (b.first != a.first && Dist(a.second.pose.position, b.second.pose.position) <= range) {
+        expected.push_back(b.first);
+      }
+    }
+    EXPECT_EQ(lists[i], expected) << "robot " << a.first << " range " << range;
+    ++i;
+  }
+}
+
 TEST(NeighbourListsTest, EqualsBruteForceOnRandomRobots) {
   WorldParams params;
   params.push_apart = false;
@@ -336,19 +354,7 @@ TEST(NeighbourListsTest, EqualsBruteForceOnRandomRobots) {
     ASSERT_TRUE(world.Spawn(static_cast<std::uint16_t>(3 * id + 1), pose, nullptr));
   }
   for (double range : {0.3, 1.0, 2.5, 20.0}) {
-    const auto lists = world.NeighbourLists(range);
-    ASSERT_EQ(lists.size(), world.size());
-    std::size_t i = 0;
-    for (const auto& a : world.robots()) {
-      std::vector<std::uint16_t> expected;
-      for (const auto& b : world.robots()) {
-        if (b.first != a.first && Dist(a.second.pose.position, b.second.pose.position) <= range) {
-          expected.push_back(b.first);
-        }
-      }
-      EXPECT_EQ(lists[i], expected) << "robot " << a.first << " range " << range;
-      ++i;
-    }
+    ExpectNeighbourListsAreBruteForce(world, range);
   }
   for (const auto& list : world.NeighbourLists(0.0)) EXPECT_TRUE(list.empty());
 }
@@ -367,18 +373,7 @@ TEST(NeighbourListsTest, EqualsBruteForceOnACrowdInABigArena) {
     ASSERT_TRUE(world.Spawn(id, pose, nullptr));
   }
   for (double range : {0.1, 0.35, 1.0}) {
-    const auto lists = world.NeighbourLists(range);
-    std::size_t i = 0;
-    for (const auto& a : world.robots()) {
-      std::vector<std::uint16_t> expected;
-      for (const auto& b : world.robots()) {
-        if (b.first != a.first && Dist(a.second.pose.position, b.second.pose.position) <= range) {
-          expected.push_back(b.first);
-        }
-      }
-      EXPECT_EQ(lists[i], expected) << "robot " << a.first << " range " << range;
-      ++i;
-    }
+    ExpectNeighbourListsAreBruteForce(world, range);
   }
 }
 
