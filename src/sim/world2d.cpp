@@ -267,9 +267,21 @@ void World2D::Step(double dt_s, bool resolve_contacts) {
 
 void World2D::ResolveContacts() {
   if (!params_.push_apart) return;
+  std::vector<std::uint8_t>& touched = push_touched_;
+  touched.clear();  // the first pass searches around every robot
   for (int i = 0; i < kPushIterations; ++i) {
-    const bool pushed = PushApartOnce();
-    ClampAll();
+    const bool pushed = PushApartOnce(&touched);
+    // ClampAll, remembering whom the wall moved: the next pass searches around them too.
+    std::size_t k = 0;
+    for (auto& entry : robots_) {
+      core::Vec2& p = entry.second.pose.position;
+      const core::Vec2 clamped = Clamped(p);
+      if (clamped.x != p.x || clamped.y != p.y) {
+        p = clamped;
+        touched[k] = 1;
+      }
+      ++k;
+    }
     if (!pushed) break;
   }
 }
@@ -278,13 +290,25 @@ void World2D::ClampAll() {
   for (auto& entry : robots_) entry.second.pose.position = Clamped(entry.second.pose.position);
 }
 
-bool World2D::PushApartOnce() {
+bool World2D::PushApartOnce(std::vector<std::uint8_t>* touched) {
   std::vector<Robot*>& order = push_order_;
   std::vector<core::Vec2>& points = push_points_;
   std::vector<std::pair<std::size_t, std::size_t>>& pairs = push_pairs_;
   order.clear();
   points.clear();
-  pairs.clear();
+  const bool all = touched->empty();
+  if (all) {
+    pairs.clear();
+  } else {
+    // The last pass's pairs of two robots that did not move since: still as close (a pair
+    // whose squared distance is below the contact's but whose distance, rounded, is not was
+    // left alone, and a push of one of them later in a pass would have used it).
+    pairs.erase(std::remove_if(pairs.begin(), pairs.end(),
+                               [&](const std::pair<std::size_t, std::size_t>& p) {
+                                 return (*touched)[p.first] != 0 || (*touched)[p.second] != 0;
+                               }),
+                pairs.end());
+  }
   for (auto& entry : robots_) {
     order.push_back(&entry.second);
     points.push_back(entry.second.pose.position);
@@ -293,12 +317,19 @@ bool World2D::PushApartOnce() {
   const double contact2 = contact * contact;
   {
     const Grid grid(points, params_.world_size_m, contact);
+    const auto searched = [&](std::size_t i) { return all || (*touched)[i] != 0; };
     for (std::size_t i = 0; i < points.size(); ++i) {
+      if (!searched(i)) continue;
       grid.ForNearby(i, [&](std::size_t j) {
-        if (j > i && SquaredDistance(points[i], points[j]) < contact2) pairs.emplace_back(i, j);
+        // Each pair once: from its lower robot when both are searched around.
+        if (j == i || (j < i && searched(j))) return;
+        if (SquaredDistance(points[i], points[j]) < contact2) {
+          pairs.emplace_back(std::min(i, j), std::max(i, j));
+        }
       });
     }
   }
+  touched->assign(points.size(), 0);
   if (pairs.empty()) return false;
   // Pairs in id order (the robots are sorted by id): the result never depends on the grid.
   std::sort(pairs.begin(), pairs.end());
@@ -321,6 +352,8 @@ bool World2D::PushApartOnce() {
     a.y -= uy * half;
     b.x += ux * half;
     b.y += uy * half;
+    (*touched)[pair.first] = 1;
+    (*touched)[pair.second] = 1;
     pushed = true;
   }
   return pushed;

@@ -98,8 +98,13 @@ class World2D {
   bool Inside(const core::Pose2& pose, std::string* error) const;
   core::Vec2 Clamped(core::Vec2 p) const;
   void ClampAll();
-  // One pass over all overlapping pairs; false when there was none.
-  bool PushApartOnce();
+  // One pass over all overlapping pairs; false when there was none. `touched`: on entry the
+  // robots (by index) moved by the pass before, to search around (empty: every robot); on exit
+  // the robots this pass pushed. A pair that overlaps now has a robot moved by the pass before
+  // (two unmoved robots that overlapped would have been pushed) or is one of that pass's pairs
+  // left alone at the contact distance: searching around the moved robots and keeping those
+  // pairs finds every pair a search around all robots would (bit for bit the same result).
+  bool PushApartOnce(std::vector<std::uint8_t>* touched);
 
   WorldParams params_;
   RobotMap robots_;
@@ -107,6 +112,7 @@ class World2D {
   std::vector<Robot*> push_order_;
   std::vector<core::Vec2> push_points_;
   std::vector<std::pair<std::size_t, std::size_t>> push_pairs_;
+  std::vector<std::uint8_t> push_touched_;
 };
 
 // Poses of `n` robots at random positions inside [r, size - r]^2, centres at least
