@@ -172,7 +172,9 @@ void Simulator::Shutdown() {
 
 void Simulator::SpinOnce(double wait_s) {
   SpinRobots();
-  TakeDirectCommands();
+  direct_commands_.TakeAll([this](std::uint16_t id, const geometry_msgs::Twist& command) {
+    OnCmdVel(id, command);
+  });
   cmd_queue_.callAvailable(ros::WallDuration(wait_s));
   ros::spinOnce();
 }
@@ -189,10 +191,8 @@ void Simulator::RunRealtime() {
     SpinOnce();
     const ros::WallTime now = ros::WallTime::now();
     if (now >= next_radio) {
-      // Overlaps are pushed apart once per round, right before the radio samples the world
-      // (as lock-step does once per tick), not at every 10 ms integration step: at 2,000 robots
-      // that search was a fifth of the process's CPU (perf), and no robot perceives between
-      // rounds.
+      // Overlaps pushed apart once per round, before the radio samples the world (lock-step: once
+      // per tick), not every 10 ms step: no robot perceives between rounds (docs/scale.md).
       world_->ResolveContacts();
       if (events_) events_->ApplyDue(tick_);
       PublishRadio();
@@ -403,22 +403,8 @@ void Simulator::OnSimulatorThread(std::function<void()> call) {
 }
 
 void Simulator::SendCommand(std::uint16_t id, const geometry_msgs::Twist& command) {
-  if (std::this_thread::get_id() == thread_) {
-    OnCmdVel(id, command);
-    return;
-  }
-  std::lock_guard<std::mutex> lock(direct_commands_mutex_);
-  direct_commands_.emplace_back(id, command);
-}
-
-void Simulator::TakeDirectCommands() {
-  {
-    std::lock_guard<std::mutex> lock(direct_commands_mutex_);
-    if (direct_commands_.empty()) return;
-    direct_commands_taken_.swap(direct_commands_);
-  }
-  for (const auto& command : direct_commands_taken_) OnCmdVel(command.first, command.second);
-  direct_commands_taken_.clear();
+  if (std::this_thread::get_id() != thread_) return direct_commands_.Post(id, command);
+  OnCmdVel(id, command);
 }
 
 void Simulator::SendAnswer(std::uint16_t id, const Tick_Answer& answer) {

@@ -14,7 +14,9 @@
 
 #include <cstdint>
 #include <functional>
+#include <mutex>
 #include <utility>
+#include <vector>
 
 #include "swarm_transport/Neighbors.h"
 #include "swarm_transport/Tick_Answer.h"
@@ -57,6 +59,33 @@ class DirectRobots {
   virtual void Release(std::uint16_t /*id*/) {}
   // False: the simulator offers no robot_<id>/teleport_* services for these robots.
   virtual bool RobotServices() const { return true; }
+};
+
+// Commands of directly linked robots sent from threads other than the simulator's (a real-time
+// robot's worker), in arrival order, for the simulator's loop: one mutex, no callback-queue
+// entry per robot and tick.
+class CommandMailbox {
+ public:
+  void Post(std::uint16_t id, const geometry_msgs::Twist& command) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    posted_.emplace_back(id, command);
+  }
+  // Calls take(id, command) for every command posted since the last call, in order.
+  template <typename F>
+  void TakeAll(F take) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (posted_.empty()) return;
+      taken_.swap(posted_);
+    }
+    for (const auto& command : taken_) take(command.first, command.second);
+    taken_.clear();  // keeps its memory: no allocation once warm
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::pair<std::uint16_t, geometry_msgs::Twist>> posted_;
+  std::vector<std::pair<std::uint16_t, geometry_msgs::Twist>> taken_;
 };
 
 // A callback queue entry that runs a function: how a round reaches a robot's queue, or a

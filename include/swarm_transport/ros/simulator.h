@@ -109,8 +109,6 @@ class Simulator : public RobotOutlet {
   ros::Time Stamp() const;
 
   void OnCmdVel(std::uint16_t id, const geometry_msgs::Twist& msg);
-  // Applies the commands directly linked robots sent from other threads, in arrival order.
-  void TakeDirectCommands();
   // Runs `call` now on the simulator's thread, or queues it for its loop from another one.
   void OnSimulatorThread(std::function<void()> call);
   // Lock-step: the statists of the dispatcher's recruiting missions (SPEC 9.4) that stand at
@@ -132,11 +130,7 @@ class Simulator : public RobotOutlet {
   // cmd_vel callbacks have their own queue so that lock-step can wait for answers without
   // running services (which may spawn or kill robots) at arbitrary points.
   ros::CallbackQueue cmd_queue_;
-  // Commands of directly linked robots sent from other threads (SendCommand), in arrival order;
-  // `direct_commands_taken_` is the loop's buffer, swapped with it (no allocation once warm).
-  std::mutex direct_commands_mutex_;
-  std::vector<std::pair<std::uint16_t, geometry_msgs::Twist>> direct_commands_;
-  std::vector<std::pair<std::uint16_t, geometry_msgs::Twist>> direct_commands_taken_;
+  CommandMailbox direct_commands_;  // directly linked robots' commands from other threads
   std::unique_ptr<RobotLinks> links_;
   // Live tuning of the flocking parameters (dynamic_reconfigure on the private handle).
   std::unique_ptr<LiveTuning> tuning_;
