@@ -1,4 +1,5 @@
-// One robot of the swarm: ~id, the shared /swarm configuration, a tick per perception.
+// One robot of the swarm: ~id, the shared /swarm configuration; lock-step a tick per
+// perception, real time its own timeline.
 #include "swarm_transport/ros/robot_node.h"
 
 #include <ros/ros.h>
@@ -13,7 +14,7 @@ int main(int argc, char** argv) {
   swarm_transport::MasterWatch watch;
   swarm_transport::RobotNode node(nh, private_nh);
   if (!node.Initialize()) return watch.ExitCode(1);
-  ros::spin();
+  const bool ticked = node.Spin();
   node.Shutdown();
-  return watch.ExitCode(0);
+  return watch.ExitCode(ticked ? 0 : 1);
 }

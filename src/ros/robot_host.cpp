@@ -54,7 +54,7 @@ std::string RobotHostOptions::Validate() const {
 // roscpp's timers do, made them tick in one burst of 10-20 ms every period from then on).
 class HostWorker {
  public:
-  using Clock = std::chrono::steady_clock;
+  using Clock = TickClock;
 
   // `stats` (may be null): the host's diagnostics lines, flushed when due at every wake-up.
   HostWorker(ros::CallbackQueue* queue, double period_s, StatsBatch* stats)
@@ -198,12 +198,8 @@ class HostWorker {
         heap_.pop();
       }
       if (!RunFor(top.slot, [](RobotNode* robot) { robot->TimerTick(); })) continue;
-      Clock::time_point next = top.due + period_;
-      const Clock::time_point now = Clock::now();
-      if (next + period_ < now) {
-        // More than a period behind: its next due time on its own timeline after now.
-        next += ((now - next) / period_ + 1) * period_;
-      }
+      // More than a period behind: its next due time on its own timeline after now.
+      const Clock::time_point next = NextTickDue(top.due, period_, Clock::now());
       std::lock_guard<std::mutex> lock(mutex_);
       heap_.push(Entry{next, top.slot});
     }

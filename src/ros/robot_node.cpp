@@ -3,7 +3,10 @@
 #include <geometry_msgs/Twist.h>
 #include <std_msgs/String.h>
 
+#include <ros/callback_queue.h>
+
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -16,6 +19,14 @@
 namespace swarm_transport {
 namespace {
 
+// Neighbors: one message per tick; a robot is never more than one tick behind.
+constexpr std::uint32_t kNeighborsQueue = 2;
+// Its own loop: rounds kept for its next tick (one per period arrives; more only when it was
+// held up, and then the oldest are stale - its diagnostics count them missed).
+constexpr std::size_t kRoundsKept = 4;
+// Its own ticks: the longest wait between two looks at ros::ok() (ros::shutdown ends a wait at
+// once; ros::spin looks every 0.1 s, a wake-up per tick at 10 Hz).
+constexpr double kMaxWaitS = 1.0;
 // Diagnostics: one line per robot per this many wall seconds on this topic.
 constexpr char kStatsTopic[] = "/flock/robot_stats";
 constexpr double kStatsPeriodS = 1.0;
@@ -60,6 +71,12 @@ bool RobotNode::Initialize() {
 
 bool RobotNode::Initialize(const RobotNodeOptions& options) {
   options_ = options;
+  if (OwnLoop()) {
+    // Before anything is connected: every callback of its handles runs under its lock.
+    locked_queue_ = std::make_unique<LockedCallbackQueue>(ros::getGlobalCallbackQueue(), &mutex_);
+    nh_.setCallbackQueue(locked_queue_.get());
+    private_nh_.setCallbackQueue(locked_queue_.get());
+  }
   std::string error = options_.Validate();
   XmlRpc::XmlRpcValue swarm;
   if (error.empty() && options_.swarm != nullptr) {
@@ -75,7 +92,14 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
   id_ = static_cast<std::uint16_t>(options_.id);
   brain_.emplace(id_, config_);
 
-  position_pub_ = nh_.advertise<Robot_Position>(names::kPosition, 10);
+  // Who listens to its own /flock/position besides the simulator (which keeps only virtual
+  // copies and statists of it): connect and disconnect callbacks run on its own queue.
+  position_pub_ = nh_.advertise<Robot_Position>(
+      names::kPosition, 10,
+      [this](const ros::SingleSubscriberPublisher& s) { CountObserver(s.getSubscriberName(), 1); },
+      [this](const ros::SingleSubscriberPublisher& s) {
+        CountObserver(s.getSubscriberName(), -1);
+      });
   if (options_.direct == nullptr) {
     if (options_.clock == core::Clock::kLockstep) {
       answer_pub_ = nh_.advertise<Tick_Answer>(names::kAnswer, 2);
@@ -83,8 +107,20 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
       cmd_pub_ = nh_.advertise<geometry_msgs::Twist>(names::kCmdVel, 2);
     }
     // tcpNoDelay: a tick's perception is one small message; Nagle would add ~40 ms per tick.
-    neighbors_sub_ = nh_.subscribe(names::kNeighbors, 2, &RobotNode::OnNeighbors, this,
-                                   ros::TransportHints().tcpNoDelay());
+    if (OwnLoop()) {
+      // Put into its mailbox by roscpp's receiving thread; taken at its next tick (OnTickDue).
+      ros::SubscribeOptions ops = ros::SubscribeOptions::create<Neighbors>(
+          names::kNeighbors, kNeighborsQueue,
+          [this](const Neighbors::ConstPtr& msg) {
+            mailbox_.Put(msg, ros::WallTime::now().toSec(), kRoundsKept);
+          },
+          ros::VoidConstPtr(), &inline_queue_);
+      ops.transport_hints = ros::TransportHints().tcpNoDelay();
+      neighbors_sub_ = nh_.subscribe(ops);
+    } else {
+      neighbors_sub_ = nh_.subscribe(names::kNeighbors, kNeighborsQueue, &RobotNode::OnNeighbors,
+                                     this, ros::TransportHints().tcpNoDelay());
+    }
   }
   // Lock-step: mission messages arrive relayed inside `neighbors`, each at the tick after it
   // was sent, and go out inside the robot's answer: no mission topics, nothing to connect.
@@ -127,10 +163,6 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
     diagnostics_ =
         std::make_unique<NodeDiagnostics>(nh_, "swarm_transport: robot " + std::to_string(id_));
   }
-  if (options_.clock == core::Clock::kRealtime && !options_.external_timer) {
-    timer_ =
-        nh_.createWallTimer(ros::WallDuration(config_.tick_period_s), &RobotNode::OnTimer, this);
-  }
   ROS_INFO("robot %u: up (%s clock, tick %.3f s, range %.3f m, speed %.3f m/tick)", id_,
            core::ClockName(options_.clock), config_.tick_period_s, config_.flocking.local_range_m,
            config_.flocking.speed_m_per_tick);
@@ -144,7 +176,7 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
 RobotNode::~RobotNode() { Disconnect(); }
 
 void RobotNode::Disconnect() {
-  timer_.stop();
+  ticker_.Stop();
   for (ros::Subscriber* sub :
        {&neighbors_sub_, &freeze_sub_, &continue_sub_, &mission_sub_, &update_sub_, &delete_sub_,
         &event_sub_, &status_sub_, &robots_sub_, &position_sub_}) {
@@ -155,7 +187,8 @@ void RobotNode::Disconnect() {
 }
 
 void RobotNode::Shutdown() {
-  timer_.stop();
+  ticker_.Stop();
+  std::lock_guard<std::mutex> lock(mutex_);
   SendCommand(geometry_msgs::Twist());
 }
 
@@ -167,7 +200,49 @@ void RobotNode::SendCommand(const geometry_msgs::Twist& command) {
   }
 }
 
+bool RobotNode::OwnLoop() const {
+  return options_.clock == core::Clock::kRealtime && !options_.external_timer &&
+         options_.direct == nullptr;
+}
+
+bool RobotNode::Spin() {
+  if (!OwnLoop()) {
+    ros::spin();
+    return true;
+  }
+  std::string error;
+  const TickClock::duration period = std::chrono::duration_cast<TickClock::duration>(
+      std::chrono::duration<double>(config_.tick_period_s));
+  if (!ticker_.Start(period, [this] { OnTickDue(); }, &error)) {
+    ROS_FATAL("robot %u: cannot tick: %s", id_, error.c_str());
+    return false;
+  }
+  // Its other callbacks (mission topics, the robot list, services, connections) until ROS shuts
+  // down (ros::shutdown wakes the wait).
+  while (ros::ok()) ros::getGlobalCallbackQueue()->callAvailable(ros::WallDuration(kMaxWaitS));
+  ticker_.Stop();
+  return true;
+}
+
+void RobotNode::OnTickDue() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  // Take in what arrived, compute one action and execute it.
+  mailbox_.TakeAll(&arrived_);
+  for (const RoundMailbox::Arrived& a : arrived_) TakeRound(a.round, a.wall_s);
+  arrived_.clear();
+  TimerTick();
+}
+
 void RobotNode::OnNeighbors(const Neighbors::ConstPtr& msg) {
+  TakeRound(msg, ros::WallTime::now().toSec());
+}
+
+void RobotNode::CountObserver(const std::string& node, int delta) {
+  if (node == names::kSimulatorNode) return;
+  observers_ = std::max(0, observers_ + delta);
+}
+
+void RobotNode::TakeRound(const Neighbors::ConstPtr& msg, double arrival_s) {
   if (!std::isfinite(msg->pose.x) || !std::isfinite(msg->pose.y) ||
       !std::isfinite(msg->pose.theta)) {
     ROS_WARN_THROTTLE(5.0, "robot %u: rejected a perception with a non-finite own pose", id_);
@@ -184,7 +259,7 @@ void RobotNode::OnNeighbors(const Neighbors::ConstPtr& msg) {
   }
   ApplyTuning(*msg);
   if (options_.clock == core::Clock::kLockstep) ApplyRelayed(*msg);
-  if (stats_) RecordRound(*msg);
+  if (stats_) RecordRound(*msg, arrival_s);
   if (options_.clock == core::Clock::kLockstep) Tick();
 }
 
@@ -222,8 +297,6 @@ void RobotNode::ApplyTuning(const Neighbors& msg) {
             static_cast<unsigned long long>(msg.tick));
 }
 
-void RobotNode::OnTimer(const ros::WallTimerEvent& /*event*/) { TimerTick(); }
-
 void RobotNode::TimerTick() {
   if (perception_) Tick();
 }
@@ -237,8 +310,8 @@ void RobotNode::OnPosition(const Robot_Position::ConstPtr& msg) {
   heard.round = perception_ ? perception_->tick : 0;
 }
 
-void RobotNode::RecordRound(const Neighbors& msg) {
-  const double latency = stats_->OnRound(msg.tick, msg.sim_time, ros::WallTime::now().toSec());
+void RobotNode::RecordRound(const Neighbors& msg, double arrival_s) {
+  const double latency = stats_->OnRound(msg.tick, msg.sim_time, arrival_s);
   if (options_.comm != core::Comm::kLocal) return;
   // Local comm: the round carries the in-range robots' updates, delivered within one tick
   // when it arrived within one period of being sampled; a round that never arrived lost as
@@ -621,7 +694,9 @@ void RobotNode::Tick() {
   // simulator keeps only virtual copies and statists from /flock/position: not published. The
   // same with the simulator in this process (deploy host_sim): it has the robot's true pose, and
   // every publication would be a callback for it to discard - one per robot and tick.
-  const bool for_observers = !lockstep && options_.direct == nullptr;
+  // In real time the simulator does the same (it discards a robot's own position); the robot
+  // sends it while another node listens (observers: rostopic, rosbag, robots of broadcast comm).
+  const bool for_observers = !lockstep && options_.direct == nullptr && observers_ > 0;
   if (for_observers || options_.comm == core::Comm::kBroadcast) {
     const core::Pose2 after = core::TurnThenDrive(before, command, config_.tick_period_s);
     // By shared pointer: roscpp hands it to subscribers in this process (the simulator of a

@@ -8,9 +8,11 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <map>
 #include <set>
@@ -35,6 +37,7 @@
 #include "swarm_transport/ros/direct_link.h"
 #include "swarm_transport/ros/graph.h"
 #include "swarm_transport/ros/params.h"
+#include "swarm_transport/ros/tick_loop.h"
 
 namespace swarm_transport {
 
@@ -95,8 +98,13 @@ class RobotNode {
   bool Initialize();
   // The same with the private options given (a host of many robots reads them once).
   bool Initialize(const RobotNodeOptions& options);
-  // Real time: one tick on the latest perception (the wall timer's work).
+  // Real time: one tick on the latest perception (the robot loop's or a host's work).
   void TimerTick();
+  // Runs the node until ROS shuts down; false (after one ROS_FATAL) when it cannot tick. A
+  // real-time robot of its own process ticks on its own timeline in roscpp's poll thread (the
+  // thesis's ros::Rate loop: take in the rounds that arrived, compute and send) while this
+  // thread serves its other callbacks under its lock; otherwise ros::spin().
+  bool Spin();
   // Sends a last zero velocity (a stopping robot always stands still).
   void Shutdown();
   // Stops every subscription, service and timer (each waits for its callback in progress),
@@ -139,7 +147,14 @@ class RobotNode {
   double tick_period_s() const { return config_.tick_period_s; }
 
  private:
-  void OnTimer(const ros::WallTimerEvent& event);
+  // A radio round that arrived at wall time `arrival_s` (OnNeighbors' work).
+  void TakeRound(const Neighbors::ConstPtr& msg, double arrival_s);
+  // Whether it ticks on its own timeline in the poll thread (Spin) on rounds from its mailbox.
+  bool OwnLoop() const;
+  // Its tick is due (the poll thread): takes in the rounds that arrived and ticks.
+  void OnTickDue();
+  // A node (un)subscribed its own /flock/position: counts the observers, the simulator not.
+  void CountObserver(const std::string& node, int delta);
   void OnFreeze(const Robot_Freeze::ConstPtr& msg);
   void OnContinue(const Robot_Continue::ConstPtr& msg);
   // Mission messages with their sender: from a topic (real time) its publisher, relayed inside
@@ -164,8 +179,9 @@ class RobotNode {
   void ApplyTuning(const Neighbors& msg);
   // Broadcast comm: remembers the latest position of every other robot and copy.
   void OnPosition(const Robot_Position::ConstPtr& msg);
-  // Diagnostics: a round's arrival (and, local comm, its updates' delivery).
-  void RecordRound(const Neighbors& msg);
+  // Diagnostics: a round's arrival at wall time `arrival_s` (and, local comm, its updates'
+  // delivery).
+  void RecordRound(const Neighbors& msg, double arrival_s);
   // Diagnostics: this tick's timing (and, broadcast comm, the updates' delivery); publishes
   // the figures once per wall second.
   void RecordTick();
@@ -203,6 +219,9 @@ class RobotNode {
   std::optional<core::RobotBrain> brain_;
   ros::Publisher cmd_pub_;
   ros::Publisher position_pub_;
+  // Nodes other than the simulator subscribed to its /flock/position (real time: it publishes
+  // its own position each tick only while there are some).
+  int observers_ = 0;
   ros::Subscriber neighbors_sub_;
   ros::Subscriber freeze_sub_;
   ros::Subscriber continue_sub_;
@@ -238,7 +257,15 @@ class RobotNode {
   std::unique_ptr<NodeDiagnostics> diagnostics_;  // with options_.status
   void PublishStatusIfDue();
   ros::Publisher answer_pub_;  // lock-step, without a direct link
-  ros::WallTimer timer_;
+  // Real time, a process of its own (OwnLoop): its rounds, put here by roscpp's receiving
+  // thread (inline_queue_) and taken at its next tick, which ticker_ runs in that thread under
+  // mutex_; its other callbacks run on the spinning thread under mutex_ too (locked_queue_).
+  InlineCallbackQueue inline_queue_;
+  RoundMailbox mailbox_;
+  std::vector<RoundMailbox::Arrived> arrived_;
+  std::mutex mutex_;
+  std::unique_ptr<LockedCallbackQueue> locked_queue_;
+  PollThreadTicker ticker_;
   std::set<std::uint16_t> known_robots_;
   bool listed_ = false;          // it has been in the robot list
   bool said_unlisted_ = false;   // it said once that it is not

@@ -1,0 +1,192 @@
+#!/usr/bin/env python3
+"""The robot node's interface in real time (issue 10, item 8), the test playing the simulator
+(its node is /simulator):
+- the robot ticks on its own timeline: one robot_<id>/cmd_vel per tick period whether its rounds
+  come at the same rate or four times as fast, each command finite; rounds with a non-finite own
+  pose are refused and it keeps ticking;
+- it acts on the latest round it got: the position it announces starts from that round's pose;
+- its own /flock/position goes out only while some node other than the simulator listens (here
+  `rostopic echo`), and stops again when that observer leaves;
+- a /flock/freeze and a /flock/continue (callbacks of its spinning thread while its ticks run in
+  roscpp's receiving thread) take effect: zero commands and ~state frozen, then moving again.
+Counts and typed fields only."""
+
+import math
+import os
+import subprocess
+import sys
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+from geometry_msgs.msg import Twist
+from swarm_transport.msg import (Neighbors, Robot_Continue, Robot_Freeze, Robot_Position,
+                                 Robot_Positions)
+
+import swarm_testing as st
+
+
+def g(key):
+    return rospy.get_param('~' + key)
+
+
+class RobotRealtime(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        cls.rid = g('robot_id')
+        cls.timeout = g('timeout_s')
+        cls.period = rospy.get_param('/swarm/tick_period_s')
+        cls.speed = rospy.get_param('/swarm/speed_m_per_tick')
+        cls.lock = threading.Lock()
+        cls.commands = []   # (wall s, Twist)
+        cls.positions = []  # (wall s, Robot_Position) of this robot
+        cls.pose = (2.0, 2.0)
+        cls.round_hz = 1.0 / cls.period
+        cls.bad = False
+        cls.tick = 0
+        cls.stop = False
+        rospy.Subscriber('/robot_%d/cmd_vel' % cls.rid, Twist, cls.on_command, queue_size=100)
+        rospy.Subscriber('/flock/position', Robot_Position, cls.on_position, queue_size=100)
+        cls.rounds = rospy.Publisher('/robot_%d/neighbors' % cls.rid, Neighbors, queue_size=10)
+        cls.robots = rospy.Publisher('/flock/robots', Robot_Positions, queue_size=1, latch=True)
+        cls.freeze = rospy.Publisher('/flock/freeze', Robot_Freeze, queue_size=10)
+        cls.cont = rospy.Publisher('/flock/continue', Robot_Continue, queue_size=10)
+        listed = Robot_Positions()
+        listed.robots = [Robot_Position(robot_id=i, pos_x=1.0 + i, pos_y=1.0) for i in range(4)]
+        cls.robots.publish(listed)
+        for pub in (cls.rounds, cls.freeze, cls.cont):
+            assert st.wait_connected(pub, cls.timeout), 'the robot never subscribed'
+        assert st.wait_for(lambda: st.robot_state(cls.rid, cls.timeout).listed, cls.timeout)
+        cls.sender = threading.Thread(target=cls.send_rounds)
+        cls.sender.daemon = True
+        cls.sender.start()
+        assert st.wait_for(lambda: cls.commands, cls.timeout), 'no command'
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.stop = True
+        cls.sender.join(5)
+
+    @classmethod
+    def send_rounds(cls):
+        """The radio: rounds at round_hz with the pose the test sets (a neighbour beside it)."""
+        start = time.time()
+        while not cls.stop and not rospy.is_shutdown():
+            with cls.lock:
+                x, y = cls.pose
+                hz = cls.round_hz
+                if cls.bad:
+                    x = float('nan')
+            msg = Neighbors()
+            msg.tick = cls.tick
+            msg.sim_time = time.time() - start
+            msg.pose.x, msg.pose.y, msg.pose.theta = x, y, 0.0
+            msg.robots = [Robot_Position(robot_id=1, pos_x=x + 0.4, pos_y=y)]
+            cls.rounds.publish(msg)
+            cls.tick += 1
+            time.sleep(1.0 / hz)
+
+    @classmethod
+    def on_command(cls, msg):
+        with cls.lock:
+            cls.commands.append((time.time(), msg))
+
+    @classmethod
+    def on_position(cls, msg):
+        if msg.robot_id == cls.rid and msg.type == Robot_Position.TYPE_PHYSICAL:
+            with cls.lock:
+                cls.positions.append((time.time(), msg))
+
+    def since(self, log, t0):
+        with self.lock:
+            return [m for t, m in log if t >= t0]
+
+    def count_over_window(self):
+        t0 = time.time()
+        time.sleep(g('window_s'))
+        got = self.since(self.commands, t0)
+        for c in got:
+            self.assertTrue(math.isfinite(c.linear.x) and math.isfinite(c.angular.z), c)
+        return len(got)
+
+    def assertTicksOwnPeriod(self, count, what):
+        want = g('window_s') / self.period
+        self.assertLessEqual(abs(count - want), g('tick_tolerance'),
+                             '%s: %d commands in %.1f s, want %.0f' % (what, count,
+                                                                       g('window_s'), want))
+
+    def test_1_ticks_on_its_own_timeline(self):
+        self.assertTicksOwnPeriod(self.count_over_window(), 'rounds at its rate')
+        with self.lock:
+            type(self).round_hz = 4.0 / self.period
+        time.sleep(self.period)
+        self.assertTicksOwnPeriod(self.count_over_window(), 'rounds at 4x its rate')
+        with self.lock:
+            type(self).round_hz = 1.0 / self.period
+            type(self).bad = True
+        self.assertTicksOwnPeriod(self.count_over_window(), 'rounds with a NaN pose')
+        with self.lock:
+            type(self).bad = False
+
+    def test_2_announces_its_position_only_while_observed(self):
+        settle = g('settle_s')
+        time.sleep(settle)
+        t0 = time.time()
+        time.sleep(2.0)
+        self.assertEqual(self.since(self.positions, t0), [],
+                         'it announced its position with only the simulator listening')
+        env = dict(os.environ)
+        observer = subprocess.Popen(['rostopic', 'echo', '-n', '12', '/flock/position'],
+                                    stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+                                    env=env, universal_newlines=True)
+        try:
+            # Teleported by its rounds to a new place: what it announces starts from there.
+            with self.lock:
+                type(self).pose = (5.0, 3.0)
+            out, _ = observer.communicate(timeout=self.timeout)
+        finally:
+            if observer.poll() is None:
+                observer.kill()
+                observer.wait()
+        self.assertGreaterEqual(out.count('robot_id: %d' % self.rid), 12, out[-500:])
+        heard = self.since(self.positions, t0)
+        self.assertGreater(len(heard), 0, 'the test heard no announced position')
+        last = heard[-1]
+        self.assertLessEqual(math.hypot(last.pos_x - 5.0, last.pos_y - 3.0),
+                             self.speed + g('position_tolerance_m'),
+                             'announced (%.3f, %.3f), its round said (5, 3)'
+                             % (last.pos_x, last.pos_y))
+        time.sleep(settle)  # the observer's disconnection reaches the robot
+        t1 = time.time()
+        time.sleep(2.0)
+        self.assertEqual(self.since(self.positions, t1), [],
+                         'it went on announcing its position after the observer left')
+
+    def test_3_freeze_and_continue_from_the_topics(self):
+        settle = g('settle_s')
+        self.freeze.publish(Robot_Freeze(robot_index_from=self.rid, robot_index_to=self.rid + 1))
+        self.assertTrue(st.wait_for(lambda: st.robot_state(self.rid, self.timeout).frozen,
+                                    self.timeout), 'not frozen')
+        time.sleep(settle)
+        t0 = time.time()
+        time.sleep(1.0)
+        frozen = self.since(self.commands, t0)
+        self.assertGreater(len(frozen), 0)
+        self.assertTrue(all(c.linear.x == 0.0 and c.angular.z == 0.0 for c in frozen),
+                        'a frozen robot moved')
+        self.cont.publish(Robot_Continue(robot_index_from=self.rid,
+                                         robot_index_to=self.rid + 1))
+        self.assertTrue(st.wait_for(lambda: not st.robot_state(self.rid, self.timeout).frozen,
+                                    self.timeout), 'still frozen')
+        t1 = time.time()
+        self.assertTrue(st.wait_for(
+            lambda: any(c.linear.x != 0.0 for c in self.since(self.commands, t1)),
+            self.timeout), 'it did not move again')
+
+
+if __name__ == '__main__':
+    rospy.init_node('simulator')
+    rostest.rosrun('swarm_transport', 'robot_realtime', RobotRealtime, sys.argv)
