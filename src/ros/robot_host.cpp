@@ -253,14 +253,13 @@ class HostWorker {
 };
 
 namespace {
-constexpr char kStatsTopic[] = "/flock/robot_stats";
 constexpr double kStatsBatchS = 0.05;
 // Messages, not lines: a subscriber that lags a few seconds still gets every line.
 constexpr std::uint32_t kStatsBatchQueue = 100;
 }  // namespace
 
 StatsBatch::StatsBatch(ros::NodeHandle nh)
-    : pub_(nh.advertise<std_msgs::String>(kStatsTopic, kStatsBatchQueue)),
+    : pub_(nh.advertise<std_msgs::String>(names::kRobotStats, kStatsBatchQueue)),
       last_(ros::WallTime::now()) {}
 
 void StatsBatch::Add(const std::string& line) {

@@ -28,7 +28,6 @@ constexpr std::size_t kRoundsKept = 4;
 // once; ros::spin looks every 0.1 s, a wake-up per tick at 10 Hz).
 constexpr double kMaxWaitS = 1.0;
 // Diagnostics: one line per robot per this many wall seconds on this topic.
-constexpr char kStatsTopic[] = "/flock/robot_stats";
 constexpr double kStatsPeriodS = 1.0;
 constexpr std::uint32_t kStatsQueue = 10;
 constexpr std::uint32_t kProgressQueue = 10;
@@ -153,7 +152,9 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
   if (options_.diagnostics) {
     stats_ = std::make_unique<core::TickStats>(config_.tick_period_s,
                                                options_.clock == core::Clock::kRealtime);
-    if (!options_.stats_sink) stats_pub_ = nh_.advertise<std_msgs::String>(kStatsTopic, kStatsQueue);
+    if (!options_.stats_sink) {
+      stats_pub_ = nh_.advertise<std_msgs::String>(names::kRobotStats, kStatsQueue);
+    }
   }
   if (options_.services) {
     describe_srv_ = private_nh_.advertiseService("describe", &RobotNode::OnDescribe, this);

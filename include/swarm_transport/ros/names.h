@@ -28,6 +28,7 @@ constexpr char kMarkers[] = "/flock/markers";
 constexpr char kStats[] = "/flock/stats";  // the recorder's Swarm_Stats
 constexpr char kObjects[] = "/flock/objects";  // Mission_Objects, per tick, on demand
 constexpr char kTuning[] = "/flock/tuning";    // latched: the live flocking tuning (issue 13)
+constexpr char kRobotStats[] = "/flock/robot_stats";  // robots' diagnostics lines (benchmarks)
 
 // Per robot, relative to the robot's namespace.
 constexpr char kCmdVel[] = "cmd_vel";

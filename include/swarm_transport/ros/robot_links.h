@@ -11,7 +11,6 @@
 
 #include <cstdint>
 #include <functional>
-#include <map>
 
 #include "swarm_transport/Neighbors.h"
 #include "swarm_transport/Pose.h"

@@ -44,8 +44,8 @@ namespace swarm_transport {
 // Private parameters of a robot node (the shared behaviour comes from /swarm).
 struct RobotNodeOptions {
   int id = -1;                   // ~id, required, [0, 65535]
-  // ~clock: realtime (own wall timer) or lockstep (tick per Neighbors message from the
-  // simulator).
+  // ~clock: realtime (ticks on its own timeline every tick_period_s) or lockstep (tick per
+  // Neighbors message from the simulator).
   core::Clock clock = core::Clock::kRealtime;
   // ~comm: local (flock on the radio's in-range list, SPEC 7) or broadcast (the thesis's
   // all-to-all wiring: flock on every robot's /flock/position; for comparison benchmarks).
@@ -53,8 +53,9 @@ struct RobotNodeOptions {
   // ~diagnostics: publish tick timing and delivery figures on /flock/robot_stats once per
   // wall second (benchmarks; off by default).
   bool diagnostics = false;
-  // Not a parameter: a host of many robots calls TimerTick() itself instead of giving every
-  // robot a wall timer (roscpp re-sorts all of a process's timers at every expiry).
+  // Not a parameter: a host of many robots calls TimerTick() itself instead of every robot
+  // ticking on its own (Spin; roscpp's timers re-sort all of a process's timers at every
+  // expiry).
   bool external_timer = false;
   // Not a parameter: a host that also runs the simulator links its robots directly. The
   // robot then neither subscribes neighbors nor advertises cmd_vel / answer: its rounds come
@@ -88,9 +89,10 @@ struct RobotNodeOptions {
 };
 
 // One robot of the swarm [SPEC 4]. In lock-step every Neighbors message is one tick and is
-// answered with exactly one Tick_Answer (its command and its mission messages); in real time a
-// wall timer ticks at tick_period_s on the latest perception, like the thesis's ros::Rate loop,
-// and the robot publishes cmd_vel and, as a first leader, the mission topics.
+// answered with exactly one Tick_Answer (its command and its mission messages); in real time it
+// ticks every tick_period_s on its own timeline on the latest perception, like the thesis's
+// ros::Rate loop (a process of its own: in roscpp's poll thread, see Spin; a host's robots: by
+// the host's workers), and publishes cmd_vel and, as a first leader, the mission topics.
 class RobotNode {
  public:
   RobotNode(ros::NodeHandle nh, ros::NodeHandle private_nh);

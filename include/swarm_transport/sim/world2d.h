@@ -5,7 +5,6 @@
 #include <boost/container/flat_map.hpp>
 
 #include <cstdint>
-#include <map>
 #include <string>
 #include <utility>
 #include <vector>
