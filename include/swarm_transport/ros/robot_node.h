@@ -212,6 +212,12 @@ class RobotNode {
   // Asks the master how many nodes subscribe to each mission topic (once per new outlet).
   void LearnExpectedSubscribers();
 
+  // Declared before every publisher, subscriber and service of the handles below, so that
+  // they outlive them: a real-time robot process runs its handles' callbacks on the spinning
+  // thread under mutex_ (locked_queue_), and its rounds' callback where they arrive.
+  std::mutex mutex_;
+  std::unique_ptr<LockedCallbackQueue> locked_queue_;
+  InlineCallbackQueue inline_queue_;
   ros::NodeHandle nh_;
   ros::NodeHandle private_nh_;
   RobotNodeOptions options_;
@@ -261,12 +267,9 @@ class RobotNode {
   ros::Publisher answer_pub_;  // lock-step, without a direct link
   // Real time, a process of its own (OwnLoop): its rounds, put here by roscpp's receiving
   // thread (inline_queue_) and taken at its next tick, which ticker_ runs in that thread under
-  // mutex_; its other callbacks run on the spinning thread under mutex_ too (locked_queue_).
-  InlineCallbackQueue inline_queue_;
+  // mutex_ (its other callbacks: see locked_queue_).
   RoundMailbox mailbox_;
   std::vector<RoundMailbox::Arrived> arrived_;
-  std::mutex mutex_;
-  std::unique_ptr<LockedCallbackQueue> locked_queue_;
   PollThreadTicker ticker_;
   std::set<std::uint16_t> known_robots_;
   bool listed_ = false;          // it has been in the robot list
