@@ -13,7 +13,9 @@
   the running lock-step swarm when the id is spawned beside the others: per tick of
   /flock/positions it moves in the first or second tick after it first appears there (the
   bound is argued in dynamic_swarm.test), it is within local range of a neighbour and hears
-  the others, and the next mission naming it ends DONE.
+  the others, and the next mission naming it ends DONE;
+- a mission naming a spawned robot whose process starts only after the mission was sent
+  reaches it in its first round (as a latched topic would): it ends DONE.
 With all robots in one robot_host (~deploy host_sim or host, either clock): the host starts a
 robot for every robot spawned (/spawn, New_Robot) and removes it when it leaves (/kill,
 Delete_Robot); it moves with the swarm and can be named by the next mission."""
@@ -73,13 +75,18 @@ class DynamicSwarm(unittest.TestCase):
             lambda: st.moved(self.log.at(self.log.latest_tick()).get(robot, start), start)
             >= g('moves_m'), self.timeout)
 
-    def lead(self, mission_id, robot, target=None):
-        """A leader-only mission of `robot` ends DONE (the next mission can name it)."""
+    def order(self, mission_id, robot, target=None):
+        """Sends a leader-only mission of `robot`; returns the StatusLog that follows it."""
         status = st.StatusLog()
         pub = rospy.Publisher('/flock/mission/new', New_Mission, queue_size=10, latch=True)
         self.assertTrue(st.wait_connected(pub, self.timeout))
         pub.publish(st.mission(mission_id, robot, robot + 1, 1, (0.0, 0.0, 0.0, 0.0),
                                g('lead_target') if target is None else target))
+        return status
+
+    def lead(self, mission_id, robot, target=None):
+        """A leader-only mission of `robot` ends DONE (the next mission can name it)."""
+        status = self.order(mission_id, robot, target)
         self.assertTrue(st.wait_for(lambda: status.final(mission_id), self.timeout),
                         'the mission of robot %d did not end: %s'
                         % (robot, status.states(mission_id)))
@@ -215,6 +222,30 @@ class DynamicSwarm(unittest.TestCase):
         # The next mission can name it.
         self.lead(33, joiner, [min(max(place[0] + 0.5, 1.0), 2 * centre - 1.0),
                                min(max(place[1] - 0.5, 1.0), 2 * centre - 1.0)])
+
+    def test_a_mission_reaches_a_robot_whose_process_connects_after_it(self):
+        if self.deploy != 'process' or not self.lockstep:
+            self.skipTest('a process per robot in lock-step only')
+        # Spawned without a process it stands; a mission naming it is sent and relayed to the
+        # live robots; its process starts only then. Its first round carries the order (a
+        # latched topic would give it too): the mission ends DONE.
+        late = g('robots') + g('late_offset')
+        spawn = rospy.ServiceProxy('/spawn', Spawn)
+        spawn.wait_for_service(self.timeout)
+        kill = rospy.ServiceProxy('/kill', Kill)
+        self.assertEqual(spawn(robot_id=late, x=9.0, y=9.0, theta=0.0).code, 0)
+        self.addCleanup(kill, robot_id=late)
+        self.assertTrue(st.wait_for(lambda: late in self.log.at(self.log.latest_tick()),
+                                    self.timeout))
+        status = self.order(35, late, g('late_target'))
+        t = self.log.latest_tick()
+        self.assertTrue(self.log.wait_tick(t + g('late_after_ticks'), self.timeout))
+        self.assertFalse(status.final(35), status.states(35))
+        self.extra.append(st.launch_file('robot.launch', id=late, clock='lockstep'))
+        self.assertTrue(st.wait_for(lambda: status.final(35), self.timeout),
+                        'the mission of robot %d, whose process connected after it was sent, '
+                        'did not end: %s' % (late, status.states(35)))
+        self.assertEqual(status.states(35)[-1], 'DONE', status.states(35))
 
     def test_a_robot_process_without_a_robot_idles_until_spawned(self):
         if self.deploy != 'process':

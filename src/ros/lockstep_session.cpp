@@ -115,6 +115,19 @@ void LockstepSession::AddRobot(std::uint16_t id) {
 void LockstepSession::RemoveRobot(std::uint16_t id) {
   barrier_.Remove(id);
   joining_.erase(id);
+  connected_.erase(id);
+}
+
+void LockstepSession::FillRound(std::uint16_t id, Neighbors* round) {
+  relay_.Fill(round);
+  if (connected_.erase(id) == 0) return;
+  const std::size_t relayed = round->missions.size();
+  relay_.FillStanding(round);
+  if (round->missions.size() > relayed && round->tick > 0) {
+    ROS_INFO("lockstep: robot %u connected: its first round (tick %llu) carries the orders of "
+             "the %zu mission(s) sent before that have not ended", id,
+             static_cast<unsigned long long>(round->tick), round->missions.size() - relayed);
+  }
 }
 
 void LockstepSession::BeginTick(std::uint64_t tick) {
@@ -234,6 +247,7 @@ void LockstepSession::UpdateLiveness(std::uint64_t tick) {
     }
     if (!live && !link.silent && RobotLinks::Ready(&link, kSettleS)) {
       barrier_.MakeLive(id);
+      connected_.insert(id);
       if (tick > 0) {
         ROS_INFO("lockstep: robot %u connected at tick %llu", id,
                  static_cast<unsigned long long>(tick));

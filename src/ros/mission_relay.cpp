@@ -31,6 +31,45 @@ void MissionRelay::AddOrder(const std::string& sender, const New_Mission& order)
   pending_.emplace_back(sender, order);
 }
 
+bool MissionRelay::Started(const Standing& standing) {
+  return standing.phase && standing.phase->state != Mission_Status::QUEUED;
+}
+
+void MissionRelay::Add(const std::string& sender, const Update_Object& msg) {
+  Push(sender, msg, &updates_);
+  const auto it = standing_.find(msg.mission_id);
+  if (it == standing_.end()) return;
+  it->second.order.object_position_x = msg.object_position_x;
+  it->second.order.object_position_y = msg.object_position_y;
+}
+
+void MissionRelay::Add(const std::string& sender, const Delete_Object& msg) {
+  Push(sender, msg, &deletes_);
+  standing_.erase(msg.mission_id);
+}
+
+void MissionRelay::Add(const std::string& sender, const Mission_Status& msg) {
+  Push(sender, msg, &statuses_);
+  const auto it = standing_.find(msg.mission_id);
+  if (it == standing_.end()) return;
+  switch (msg.state) {
+    case Mission_Status::DONE:
+    case Mission_Status::ABORTED:
+      standing_.erase(it);
+      return;
+    case Mission_Status::REJECTED:
+      // Of a mission that never started: it ends. Of one that did: a refused duplicate of its
+      // id (the robots ignore it for the live mission too).
+      if (!Started(it->second)) standing_.erase(it);
+      return;
+    default:
+      if (msg.state > Mission_Status::UNLOADING) return;  // no phase
+      // Phases only move forward (as the robots take them: core::MissionAgent::OnStatus).
+      if (!it->second.phase || msg.state > it->second.phase->state) it->second.phase = msg;
+      return;
+  }
+}
+
 void MissionRelay::AddAnswer(std::uint16_t id, const Tick_Answer& answer) {
   const std::string sender = AnswerSender(id);
   for (const Update_Object& m : answer.object_updates) Add(sender, m);
@@ -51,6 +90,11 @@ std::vector<New_Mission> MissionRelay::ReleaseOrders(std::uint64_t tick) {
       continue;
     }
     released.push_back(entry.second);
+    // A started mission keeps its order (one with its id now is a duplicate the robots refuse).
+    const auto standing = standing_.find(entry.second.mission_id);
+    if (standing == standing_.end() || !Started(standing->second)) {
+      standing_[entry.second.mission_id] = Standing{entry.second, std::nullopt};
+    }
     Push(entry.first, entry.second, &missions_);
   }
   pending_.resize(kept);
@@ -77,6 +121,20 @@ void MissionRelay::Fill(Neighbors* round) {
   round->continues = round_.continues;
   round->mission_events = round_.mission_events;
   round->statuses = round_.statuses;
+}
+
+void MissionRelay::FillStanding(Neighbors* round) const {
+  const auto carries = [](const auto& list, std::uint16_t id) {
+    return std::any_of(list.begin(), list.end(),
+                       [id](const auto& m) { return m.mission_id == id; });
+  };
+  for (const auto& kv : standing_) {
+    if (carries(round->missions, kv.first)) continue;  // released in this round
+    round->missions.push_back(kv.second.order);
+    if (kv.second.phase && !carries(round->statuses, kv.first)) {
+      round->statuses.push_back(*kv.second.phase);
+    }
+  }
 }
 
 void MissionRelay::Clear() {

@@ -346,7 +346,7 @@ void Simulator::PublishRadio() {
     if (!(lockstep_ ? session_->Live(robot->first) : link->Listening())) continue;
     radio_->Hear(i, &round);
     Neighbors msg = RadioRoundMessage(tick_, sim_time, robot->second, round, truth, relayed);
-    if (lockstep_) session_->FillRound(&msg);
+    if (lockstep_) session_->FillRound(robot->first, &msg);
     tuning_->Fill(&msg);
     link->Deliver(robot->first, direct_, std::move(msg));
     if (lockstep_) session_->Asked(robot->first);

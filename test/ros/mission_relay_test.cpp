@@ -112,6 +112,75 @@ TEST(MissionRelayTest, OrdersWaitForTheirStartTick) {
   EXPECT_EQ(round.missions.size(), 2u);
 }
 
+// A robot whose process connects late gets, in its first round, the orders sent before that
+// whose missions have not ended, their objects where last reported, with their latest phase;
+// never twice, never an ended one.
+TEST(MissionRelayTest, AConnectingRobotGetsTheOrdersOfTheMissionsThatHaveNotEnded) {
+  MissionRelay relay;
+  for (std::uint16_t id : {1, 2, 3, 4, 5}) relay.AddOrder("/mission_dispatcher", Order(id, 0));
+  relay.AddOrder("/mission_dispatcher", Order(6, 9));  // held until tick 9
+  ASSERT_EQ(relay.ReleaseOrders(1).size(), 5u);
+  relay.Clear();
+  EXPECT_EQ(relay.standing_orders(), 5u);
+  Tick_Answer leader;
+  leader.statuses = {Status(1, Mission_Status::QUEUED), Status(1, Mission_Status::GATHERING),
+                     Status(1, Mission_Status::TRANSPORT), Status(2, Mission_Status::DONE),
+                     Status(3, Mission_Status::ABORTED),
+                     Status(1, Mission_Status::LOADING)};  // late: not back to LOADING
+  Update_Object moved;
+  moved.mission_id = 1;
+  moved.object_position_x = 4.5f;
+  moved.object_position_y = 5.5f;
+  leader.object_updates = {moved};
+  relay.AddAnswer(7, leader);
+  Delete_Object gone;
+  gone.mission_id = 4;
+  relay.Add("/mission_dispatcher", gone);
+  relay.Add("/mission_dispatcher", Status(5, Mission_Status::REJECTED));  // never started
+  EXPECT_EQ(relay.standing_orders(), 1u);
+  // A dispatcher's REJECTED of a refused duplicate of a started mission's id ends nothing.
+  relay.Add("/mission_dispatcher", Status(1, Mission_Status::REJECTED));
+  EXPECT_EQ(relay.standing_orders(), 1u);
+  relay.Clear();
+
+  Neighbors round;
+  relay.Fill(&round);
+  EXPECT_TRUE(round.missions.empty());
+  relay.FillStanding(&round);
+  ASSERT_EQ(round.missions.size(), 1u);
+  EXPECT_EQ(round.missions[0].mission_id, 1);
+  EXPECT_FLOAT_EQ(round.missions[0].object_position_x, 4.5f);
+  EXPECT_FLOAT_EQ(round.missions[0].object_position_y, 5.5f);
+  ASSERT_EQ(round.statuses.size(), 1u);
+  EXPECT_EQ(round.statuses[0].state, Mission_Status::TRANSPORT);
+
+  // Released in this very round: not twice; nor its phase when the round has one of it.
+  relay.AddOrder("/mission_dispatcher", Order(8, 0));
+  ASSERT_EQ(relay.ReleaseOrders(2).size(), 1u);
+  relay.Add("/mission_dispatcher", Status(1, Mission_Status::UNLOADING));
+  Neighbors joining;
+  relay.Fill(&joining);
+  relay.FillStanding(&joining);
+  ASSERT_EQ(joining.missions.size(), 2u);
+  EXPECT_EQ(joining.missions[0].mission_id, 8);
+  EXPECT_EQ(joining.missions[1].mission_id, 1);
+  ASSERT_EQ(joining.statuses.size(), 1u);
+  EXPECT_EQ(joining.statuses[0].state, Mission_Status::UNLOADING);
+  // A second order with a started mission's id is a duplicate: the mission keeps its order.
+  relay.Clear();
+  New_Mission duplicate = Order(1, 0);
+  duplicate.target_x = 9.0f;
+  relay.AddOrder("/test", duplicate);
+  ASSERT_EQ(relay.ReleaseOrders(3).size(), 1u);
+  relay.Clear();
+  Neighbors later;
+  relay.FillStanding(&later);
+  ASSERT_EQ(later.missions.size(), 2u);
+  EXPECT_EQ(later.missions[0].mission_id, 1);
+  EXPECT_FLOAT_EQ(later.missions[0].target_x, 0.0f);
+  EXPECT_FLOAT_EQ(later.missions[0].object_position_x, 4.5f);
+}
+
 Robot_Position Position(std::uint16_t robot, std::uint8_t sub, std::uint8_t type, double x) {
   Robot_Position p;
   p.robot_id = robot;

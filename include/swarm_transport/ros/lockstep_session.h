@@ -83,7 +83,9 @@ class LockstepSession {
   // Round of tick `tick`: StartRound, then per live robot FillRound, its delivery, Asked;
   // EndRound once every round is out.
   void StartRound(std::uint64_t tick) { barrier_.StartTick(tick); }
-  void FillRound(Neighbors* round) { relay_.Fill(round); }
+  // Robot `id`'s round; the first after its process connected (at tick 0 or when it joins or
+  // comes back) also carries the orders of the missions that have not ended (FillStanding).
+  void FillRound(std::uint16_t id, Neighbors* round);
   void Asked(std::uint16_t id) { barrier_.Ask(id); }
   void EndRound() { relay_.Clear(); }
   // Spins until every live robot answered tick `tick` or the timeout passed; robots that did
@@ -122,6 +124,7 @@ class LockstepSession {
   bool finished_ = false;
   bool started_ = false;             // WaitForStart is done
   std::set<std::uint16_t> joining_;  // added since the last tick began (after the start)
+  std::set<std::uint16_t> connected_;  // became live this tick: their round carries the orders
   std::vector<ros::Subscriber> relay_subs_;
   ros::Subscriber schedule_sub_;
   std::vector<std::pair<std::uint64_t, Robot_Position>> recruit_statists_;  // (first tick, statist)

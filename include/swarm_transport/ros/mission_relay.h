@@ -40,14 +40,14 @@ class MissionRelay {
  public:
   // An order, held until the tick it is stamped with (New_Mission::start_tick).
   void AddOrder(const std::string& sender, const New_Mission& order);
-  void Add(const std::string& sender, const Update_Object& msg) { Push(sender, msg, &updates_); }
-  void Add(const std::string& sender, const Delete_Object& msg) { Push(sender, msg, &deletes_); }
+  void Add(const std::string& sender, const Update_Object& msg);
+  void Add(const std::string& sender, const Delete_Object& msg);
   void Add(const std::string& sender, const Robot_Freeze& msg) { Push(sender, msg, &freezes_); }
   void Add(const std::string& sender, const Robot_Continue& msg) {
     Push(sender, msg, &continues_);
   }
   void Add(const std::string& sender, const Mission_Event& msg) { Push(sender, msg, &events_); }
-  void Add(const std::string& sender, const Mission_Status& msg) { Push(sender, msg, &statuses_); }
+  void Add(const std::string& sender, const Mission_Status& msg);
   // What robot `id` said in its answer (not its progress, which only observers get).
   void AddAnswer(std::uint16_t id, const Tick_Answer& answer);
 
@@ -56,6 +56,14 @@ class MissionRelay {
   std::vector<New_Mission> ReleaseOrders(std::uint64_t tick);
   // This tick's messages into a robot's round (sorted once per tick).
   void Fill(Neighbors* round);
+  // For a robot whose process connected since the last round (after Fill): the orders released
+  // in earlier rounds whose missions have not ended (no DONE, ABORTED or REJECTED, no
+  // Delete_Object relayed since), their objects where last reported, each with its latest
+  // phase, unless the round carries them already. A latched topic would give a late subscriber
+  // its orders too; without them the robot would never learn of a mission sent before it
+  // connected (one naming it would stay queued for good).
+  void FillStanding(Neighbors* round) const;
+  std::size_t standing_orders() const { return standing_.size(); }
   // After the round went out: the lists start empty for the next tick (held orders stay).
   void Clear();
   std::size_t held_orders() const { return pending_.size(); }
@@ -70,7 +78,17 @@ class MissionRelay {
   }
   void Sort();
 
+  // A released order whose mission has not ended, as it stands now.
+  struct Standing {
+    New_Mission order;
+    std::optional<Mission_Status> phase;  // its latest phase status
+  };
+
+  // It has a phase status past QUEUED (its first leader started it).
+  static bool Started(const Standing& standing);
+
   List<New_Mission> pending_;  // received, waiting for their start tick
+  std::map<std::uint16_t, Standing> standing_;  // by mission id (unique among live missions)
   List<New_Mission> missions_;
   List<Update_Object> updates_;
   List<Delete_Object> deletes_;
