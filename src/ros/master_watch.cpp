@@ -3,6 +3,7 @@
 #include <ros/master.h>
 #include <ros/ros.h>
 #include <ros/xmlrpc_manager.h>
+#include <xmlrpcpp/XmlRpcClient.h>
 
 #include <chrono>
 #include <string>
@@ -10,29 +11,70 @@
 namespace swarm_transport {
 namespace {
 
+// Longest wait for one answer of the master (wall s). roscpp's own calls to the master
+// (ros::master::execute) wait for as long as the connection stays open: a master that accepted
+// the connection but never answers (one stopped, hung, or just starting on the port) would
+// hold the watch for good, and a restart would go unnoticed.
+constexpr double kCallTimeoutS = 2.0;
+
+// An XML-RPC client of the master whose calls end after a deadline. The watch's own (its
+// thread only): roscpp's clients are shared by its threads.
+class MasterClient : public XmlRpc::XmlRpcClient {
+ public:
+  MasterClient() : XmlRpcClient(ros::master::getHost().c_str(), ros::master::getPort(), "/") {}
+
+  // The call's value (the third element of a ROS API reply [code, status, value]) when the
+  // master answered with code 1 within timeout_s; else false.
+  bool Call(const char* method, const XmlRpc::XmlRpcValue& args, XmlRpc::XmlRpcValue* payload,
+            double timeout_s) {
+    if (!executeNonBlock(method, args)) {
+      close();
+      return false;
+    }
+    // Returns when the reply is in, the connection failed, or at the deadline.
+    _disp.work(timeout_s);
+    XmlRpc::XmlRpcValue result;
+    if (_connectionState != IDLE || !executeCheckDone(result) || isFault()) {
+      close();
+      return false;
+    }
+    if (result.getType() != XmlRpc::XmlRpcValue::TypeArray || result.size() != 3 ||
+        result[0].getType() != XmlRpc::XmlRpcValue::TypeInt || int(result[0]) != 1) {
+      return false;
+    }
+    *payload = result[2];
+    return true;
+  }
+};
+
 // Whether the master's record of this node is this process's XML-RPC server.
-bool KnowsThisNode() {
-  XmlRpc::XmlRpcValue args, result, payload;
+bool KnowsThisNode(MasterClient* master) {
+  XmlRpc::XmlRpcValue args, payload;
   args[0] = ros::this_node::getName();
   args[1] = ros::this_node::getName();
-  if (!ros::master::execute("lookupNode", args, result, payload, false)) return false;
+  if (!master->Call("lookupNode", args, &payload, kCallTimeoutS)) return false;
   return payload.getType() == XmlRpc::XmlRpcValue::TypeString &&
          std::string(payload) == ros::XMLRPCManager::instance()->getServerURI();
 }
 
-// The master's process id, or 0 when it does not answer. A master started again on the same
-// port is another process: its pid tells it apart even when this node never saw it down.
-int MasterPid() {
-  XmlRpc::XmlRpcValue args, result, payload;
+// The master's process id, or 0 when it does not answer in time. A master started again on the
+// same port is another process: its pid tells it apart even when this node never saw it down.
+int MasterPid(MasterClient* master) {
+  XmlRpc::XmlRpcValue args, payload;
   args[0] = ros::this_node::getName();
-  if (!ros::master::execute("getPid", args, result, payload, false)) return 0;
+  if (!master->Call("getPid", args, &payload, kCallTimeoutS)) return 0;
   return payload.getType() == XmlRpc::XmlRpcValue::TypeInt ? int(payload) : 0;
 }
 
 }  // namespace
 
 MasterWatch::MasterWatch(double period_s)
-    : master_pid_(MasterPid()), thread_(&MasterWatch::Run, this, period_s) {}
+    : master_pid_(InitialMasterPid()), thread_(&MasterWatch::Run, this, period_s) {}
+
+int MasterWatch::InitialMasterPid() {
+  MasterClient master;
+  return MasterPid(&master);
+}
 
 MasterWatch::~MasterWatch() {
   {
@@ -46,12 +88,13 @@ MasterWatch::~MasterWatch() {
 void MasterWatch::Run(double period_s) {
   const auto period = std::chrono::duration<double>(period_s);
   bool was_down = false;
+  MasterClient master;
   std::unique_lock<std::mutex> lock(mutex_);
   while (!stop_) {
     wake_.wait_for(lock, period);
     if (stop_ || !ros::ok()) break;
     lock.unlock();
-    const int pid = MasterPid();
+    const int pid = MasterPid(&master);
     if (pid == 0) {
       if (!was_down) {
         ROS_WARN("%s: the ROS master at %s is unreachable; going on without it",
@@ -61,7 +104,7 @@ void MasterWatch::Run(double period_s) {
     } else if (master_pid_ == 0) {
       master_pid_ = pid;  // first contact: unreachable when the node started
       was_down = false;
-    } else if (pid != master_pid_ || (was_down && !KnowsThisNode())) {
+    } else if (pid != master_pid_ || (was_down && !KnowsThisNode(&master))) {
       // Another master process: it knows nothing this node registered before it came up,
       // even if the node's set-up went on registering with it (a set-up that waited for the
       // master) - its topics, services and parameters are incomplete there.

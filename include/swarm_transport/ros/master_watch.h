@@ -1,11 +1,12 @@
 // Watches the ROS master from a thread of its own (issue 11). ROS 1 nodes do not register
 // again after a master restart: the new master knows none of them, and their topics, services
 // and parameters are gone for anyone who asks it. A node with a MasterWatch tells the new
-// master by its process id (getPid), notices within two periods, says so in one line and stops
-// (ros::requestShutdown), so that it does not run on unreachable; restarted() tells its main to
-// exit non-zero (roslaunch respawn="true" restarts a node, but a swarm needs its /swarm parameters
-// loaded again: relaunch it). A master that was only unreachable for a while (it still knows this
-// node) changes nothing.
+// master by its process id (getPid; each call to the master ends after 2 s, so that a master
+// that accepts a connection but never answers does not hold the watch), notices within two
+// periods, says so in one line and stops (ros::requestShutdown), so that it does not run on
+// unreachable; restarted() tells its main to exit non-zero (roslaunch respawn="true" restarts a
+// node, but a swarm needs its /swarm parameters loaded again: relaunch it). A master that was
+// only unreachable for a while (it still knows this node) changes nothing.
 #ifndef SWARM_TRANSPORT_ROS_MASTER_WATCH_H_
 #define SWARM_TRANSPORT_ROS_MASTER_WATCH_H_
 
@@ -31,6 +32,8 @@ class MasterWatch {
   int ExitCode(int otherwise) const { return restarted_ ? 3 : otherwise; }
 
  private:
+  // The master's pid now, or 0 when it does not answer within the call timeout.
+  static int InitialMasterPid();
   void Run(double period_s);
 
   std::atomic<bool> restarted_{false};
