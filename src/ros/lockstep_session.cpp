@@ -148,6 +148,13 @@ bool LockstepSession::RelaysConnected(const ros::Publisher& robot_list) const {
   for (const ros::Subscriber& sub : relay_subs_) {
     if (!graph.AllConnected(sub)) return false;
   }
+  // Every observer of the robots' mission messages (a recorder, an experiment's runner) hears
+  // them from the first tick: not latched, and a short lock-step mission may be over in a
+  // fraction of a wall second, before a connection still under way is up.
+  for (const ros::Publisher* pub : {&status_pub_, &progress_pub_, &update_pub_, &delete_pub_,
+                                    &freeze_pub_, &continue_pub_}) {
+    if (!graph.AllConnected(*pub)) return false;
+  }
   // Every subscriber of the (latched) robot list has it: a robot checks a mission's robots
   // against it, and one without it would accept an order naming a robot that does not exist.
   return graph.AllConnected(robot_list);

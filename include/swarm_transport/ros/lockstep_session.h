@@ -71,7 +71,9 @@ class LockstepSession {
   std::size_t LiveCount() const { return barrier_.LiveCount(); }
 
   // Before tick 0: waits until every robot is connected, `positions` has its observers and
-  // every relay and `robot_list` subscriber is connected (or the start timeout passed).
+  // every relay, every subscriber of the mission topics it publishes for observers (statuses,
+  // progress, object updates and deletes, freeze / continue) and every `robot_list` subscriber
+  // is connected (or the start timeout passed).
   void WaitForStart(const ros::Publisher& positions, const ros::Publisher& robot_list);
   // Tick `tick` begins: liveness, then the dispatcher's awaited events and orders.
   void BeginTick(std::uint64_t tick);
