@@ -53,10 +53,15 @@ class RobotLoss(unittest.TestCase):
             self.assertTrue(log.wait_tick(3, timeout), 'the swarm never ticked')
             self.assertTrue(st.wait_connected(pub, timeout))
             pub.publish(order)
+        # Their pids first, then the kills back to back: a lock-step run notices a dead robot
+        # at once (its connections close) and runs hundreds of ticks per second, so a lookup
+        # between two kills let the second robot outlive the first by more than the 5 ticks
+        # that make a robot lost (it took over, and only then was replaced itself).
+        pids = [st.node_pid('/robot_%d/robot' % robot) for robot in robots]
         self.assertTrue(st.wait_for(lambda: status.first(mission_id, phase) is not None, timeout),
                         'no %s; states so far %s' % (st.NAMES[phase], status.states(mission_id)))
-        for robot in robots:
-            os.kill(st.node_pid('/robot_%d/robot' % robot), signal.SIGKILL)
+        for pid in pids:
+            os.kill(pid, signal.SIGKILL)
         killed_at = log.latest_tick()
         self.assertTrue(st.wait_for(lambda: status.final(mission_id), timeout),
                         'mission %d never ended after robot(s) %s died; states %s'
