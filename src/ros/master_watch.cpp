@@ -24,9 +24,11 @@ class MasterClient : public XmlRpc::XmlRpcClient {
   MasterClient() : XmlRpcClient(ros::master::getHost().c_str(), ros::master::getPort(), "/") {}
 
   // The call's value (the third element of a ROS API reply [code, status, value]) when the
-  // master answered with code 1 within timeout_s; else false.
+  // master answered with code 1 within timeout_s; else false, with the reply's code in *code
+  // when it answered (-1 or 0 in the ROS master API) and 0 when it did not.
   bool Call(const char* method, const XmlRpc::XmlRpcValue& args, XmlRpc::XmlRpcValue* payload,
-            double timeout_s) {
+            double timeout_s, int* code = nullptr) {
+    if (code != nullptr) *code = 0;
     if (!executeNonBlock(method, args)) {
       close();
       return false;
@@ -39,7 +41,12 @@ class MasterClient : public XmlRpc::XmlRpcClient {
       return false;
     }
     if (result.getType() != XmlRpc::XmlRpcValue::TypeArray || result.size() != 3 ||
-        result[0].getType() != XmlRpc::XmlRpcValue::TypeInt || int(result[0]) != 1) {
+        result[0].getType() != XmlRpc::XmlRpcValue::TypeInt) {
+      return false;
+    }
+    if (int(result[0]) != 1) {
+      // The master's "no" (-1: error, 0: failure) is an answer: never 0 here.
+      if (code != nullptr) *code = int(result[0]) == 0 ? -2 : int(result[0]);
       return false;
     }
     *payload = result[2];
@@ -47,12 +54,17 @@ class MasterClient : public XmlRpc::XmlRpcClient {
   }
 };
 
-// Whether the master's record of this node is this process's XML-RPC server.
-bool KnowsThisNode(MasterClient* master) {
+// Whether the master's record of this node is this process's XML-RPC server (nullopt: no
+// answer in time). A master that does not know the node answers with an error code.
+std::optional<bool> KnowsThisNode(MasterClient* master) {
   XmlRpc::XmlRpcValue args, payload;
   args[0] = ros::this_node::getName();
   args[1] = ros::this_node::getName();
-  if (!master->Call("lookupNode", args, &payload, kCallTimeoutS)) return false;
+  int code = 0;
+  if (!master->Call("lookupNode", args, &payload, kCallTimeoutS, &code)) {
+    if (code == 0) return std::nullopt;
+    return false;
+  }
   return payload.getType() == XmlRpc::XmlRpcValue::TypeString &&
          std::string(payload) == ros::XMLRPCManager::instance()->getServerURI();
 }
@@ -85,6 +97,22 @@ MasterWatch::~MasterWatch() {
   if (thread_.joinable()) thread_.join();
 }
 
+MasterWatch::Look MasterWatch::Judge(int* known_pid, int pid, bool was_down,
+                                     const std::function<std::optional<bool>()>& knows) {
+  if (pid == 0) return Look::kUnreachable;
+  const bool first = *known_pid == 0;
+  if (!first && pid != *known_pid) return Look::kRestarted;
+  if (first || was_down) {
+    // The first answer (none when the watch began: the master may have gone and come back
+    // since the node registered) or the first after it was down: it must still know this node.
+    const std::optional<bool> known = knows();
+    if (!known) return Look::kUnreachable;  // asked again at the next look
+    if (!*known) return Look::kRestarted;
+    *known_pid = pid;
+  }
+  return was_down ? Look::kReachableAgain : Look::kUp;
+}
+
 void MasterWatch::Run(double period_s) {
   const auto period = std::chrono::duration<double>(period_s);
   bool was_down = false;
@@ -94,31 +122,34 @@ void MasterWatch::Run(double period_s) {
     wake_.wait_for(lock, period);
     if (stop_ || !ros::ok()) break;
     lock.unlock();
-    const int pid = MasterPid(&master);
-    if (pid == 0) {
-      if (!was_down) {
-        ROS_WARN("%s: the ROS master at %s is unreachable; going on without it",
-                 ros::this_node::getName().c_str(), ros::master::getURI().c_str());
-      }
-      was_down = true;
-    } else if (master_pid_ == 0) {
-      master_pid_ = pid;  // first contact: unreachable when the node started
-      was_down = false;
-    } else if (pid != master_pid_ || (was_down && !KnowsThisNode(&master))) {
-      // Another master process: it knows nothing this node registered before it came up,
-      // even if the node's set-up went on registering with it (a set-up that waited for the
-      // master) - its topics, services and parameters are incomplete there.
-      ROS_FATAL(
-          "%s: the ROS master at %s restarted and does not know this node (its topics, "
-          "services and parameters are gone there); stopping - launch the swarm again",
-          ros::this_node::getName().c_str(), ros::master::getURI().c_str());
-      restarted_ = true;
-      ros::requestShutdown();
-      return;
-    } else if (was_down) {
-      was_down = false;
-      ROS_INFO("%s: the ROS master is reachable again and still knows this node",
-               ros::this_node::getName().c_str());
+    const Look look = Judge(&master_pid_, MasterPid(&master), was_down,
+                            [&master] { return KnowsThisNode(&master); });
+    switch (look) {
+      case Look::kUnreachable:
+        if (!was_down) {
+          ROS_WARN("%s: the ROS master at %s is unreachable; going on without it",
+                   ros::this_node::getName().c_str(), ros::master::getURI().c_str());
+        }
+        was_down = true;
+        break;
+      case Look::kRestarted:
+        // Another master process: it knows nothing this node registered before it came up,
+        // even if the node's set-up went on registering with it (a set-up that waited for the
+        // master) - its topics, services and parameters are incomplete there.
+        ROS_FATAL(
+            "%s: the ROS master at %s restarted and does not know this node (its topics, "
+            "services and parameters are gone there); stopping - launch the swarm again",
+            ros::this_node::getName().c_str(), ros::master::getURI().c_str());
+        restarted_ = true;
+        ros::requestShutdown();
+        return;
+      case Look::kReachableAgain:
+        was_down = false;
+        ROS_INFO("%s: the ROS master is reachable again and still knows this node",
+                 ros::this_node::getName().c_str());
+        break;
+      case Look::kUp:
+        break;
     }
     lock.lock();
   }

@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <future>
+#include <optional>
 #include <string>
 
 namespace swarm_transport {
@@ -72,6 +73,43 @@ TEST(MasterWatchTest, AMasterThatNeverAnswersDoesNotHoldTheWatch) {
     std::_Exit(1);
   }
   EXPECT_FALSE(watched.get());
+}
+
+// One look at the master, by hand: a master with another pid restarted; after it was down, or at
+// its first answer when it did not answer as the watch began, it must still know this node (a
+// master that came back in between knows nothing: once its first answer was taken for the
+// first contact, and the restart went unnoticed); no answer to that question is no answer.
+TEST(MasterWatchTest, EachLookAtTheMasterIsJudgedByItsPidAndWhetherItKnowsThisNode) {
+  using Look = MasterWatch::Look;
+  int asked = 0;
+  const auto answer = [&asked](std::optional<bool> known) {
+    return [&asked, known] {
+      ++asked;
+      return known;
+    };
+  };
+  int pid = 100;
+  EXPECT_EQ(MasterWatch::Judge(&pid, 100, false, answer(false)), Look::kUp);
+  EXPECT_EQ(asked, 0);  // a steady master is asked only its pid
+  EXPECT_EQ(MasterWatch::Judge(&pid, 0, false, answer(true)), Look::kUnreachable);
+  EXPECT_EQ(MasterWatch::Judge(&pid, 101, false, answer(true)), Look::kRestarted);
+  EXPECT_EQ(MasterWatch::Judge(&pid, 101, true, answer(true)), Look::kRestarted);
+  EXPECT_EQ(MasterWatch::Judge(&pid, 100, true, answer(true)), Look::kReachableAgain);
+  EXPECT_EQ(MasterWatch::Judge(&pid, 100, true, answer(false)), Look::kRestarted);
+  EXPECT_EQ(MasterWatch::Judge(&pid, 100, true, answer(std::nullopt)), Look::kUnreachable);
+  EXPECT_EQ(pid, 100);
+  // No pid when the watch began: the first answer is taken only from a master that knows it.
+  int unknown = 0;
+  EXPECT_EQ(MasterWatch::Judge(&unknown, 0, false, answer(true)), Look::kUnreachable);
+  EXPECT_EQ(MasterWatch::Judge(&unknown, 200, true, answer(false)), Look::kRestarted);
+  EXPECT_EQ(unknown, 0);
+  EXPECT_EQ(MasterWatch::Judge(&unknown, 200, true, answer(std::nullopt)), Look::kUnreachable);
+  EXPECT_EQ(unknown, 0);
+  EXPECT_EQ(MasterWatch::Judge(&unknown, 200, false, answer(true)), Look::kUp);
+  EXPECT_EQ(unknown, 200);
+  asked = 0;
+  EXPECT_EQ(MasterWatch::Judge(&unknown, 200, false, answer(false)), Look::kUp);
+  EXPECT_EQ(asked, 0);
 }
 
 }  // namespace

@@ -12,15 +12,18 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <functional>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 namespace swarm_transport {
 
 class MasterWatch {
  public:
-  // Right after ros::init, before the node's set-up (a restart during a set-up that waits for
-  // the master is caught too); checks every `period_s` of wall time.
+  // Right after ros::init and the node's first NodeHandle (ros::start registers the node with
+  // the master), before the node's set-up (a restart during a set-up that waits for the master
+  // is caught too); checks every `period_s` of wall time.
   explicit MasterWatch(double period_s = 5.0);
   ~MasterWatch();
   MasterWatch(const MasterWatch&) = delete;
@@ -28,6 +31,16 @@ class MasterWatch {
 
   // The master restarted and lost this node: it was asked to stop.
   bool restarted() const { return restarted_; }
+
+  // What one look at the master found.
+  enum class Look { kUnreachable, kUp, kReachableAgain, kRestarted };
+  // One look: `*known_pid` is the master's pid as last known (0: it never answered; set at the
+  // first answer), `pid` its pid now (0: no answer in time), `was_down` whether the last look
+  // found it unreachable, `knows` asks it whether it knows this node (nullopt: no answer; asked
+  // only after it was down or at the first answer). A master with another pid, or one that has
+  // lost this node (which registered with a master before the watch began), restarted.
+  static Look Judge(int* known_pid, int pid, bool was_down,
+                    const std::function<std::optional<bool>()>& knows);
   // The process exit code for main: 3 after a restart, else `otherwise`.
   int ExitCode(int otherwise) const { return restarted_ ? 3 : otherwise; }
 
