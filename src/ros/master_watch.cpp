@@ -6,6 +6,7 @@
 #include <xmlrpcpp/XmlRpcClient.h>
 
 #include <chrono>
+#include <optional>
 #include <string>
 
 namespace swarm_transport {
@@ -17,76 +18,68 @@ namespace {
 // hold the watch for good, and a restart would go unnoticed.
 constexpr double kCallTimeoutS = 2.0;
 
-// An XML-RPC client of the master whose calls end after a deadline. The watch's own (its
+// An XML-RPC client of the master whose calls end after kCallTimeoutS. The watch's own (its
 // thread only): roscpp's clients are shared by its threads.
 class MasterClient : public XmlRpc::XmlRpcClient {
  public:
   MasterClient() : XmlRpcClient(ros::master::getHost().c_str(), ros::master::getPort(), "/") {}
 
-  // The call's value (the third element of a ROS API reply [code, status, value]) when the
-  // master answered with code 1 within timeout_s; else false, with the reply's code in *code
-  // when it answered (-1 or 0 in the ROS master API) and 0 when it did not.
-  bool Call(const char* method, const XmlRpc::XmlRpcValue& args, XmlRpc::XmlRpcValue* payload,
-            double timeout_s, int* code = nullptr) {
-    if (code != nullptr) *code = 0;
+  // The master's ROS API reply [code, status, value] (code 1: done; -1, 0: its "no"), or
+  // nullopt when it did not answer in time (or not with such a reply).
+  std::optional<XmlRpc::XmlRpcValue> Call(const char* method, const XmlRpc::XmlRpcValue& args) {
     if (!executeNonBlock(method, args)) {
       close();
-      return false;
+      return std::nullopt;
     }
     // Returns when the reply is in, the connection failed, or at the deadline.
-    _disp.work(timeout_s);
-    XmlRpc::XmlRpcValue result;
-    if (_connectionState != IDLE || !executeCheckDone(result) || isFault()) {
+    _disp.work(kCallTimeoutS);
+    XmlRpc::XmlRpcValue reply;
+    if (_connectionState != IDLE || !executeCheckDone(reply) || isFault()) {
       close();
-      return false;
+      return std::nullopt;
     }
-    if (result.getType() != XmlRpc::XmlRpcValue::TypeArray || result.size() != 3 ||
-        result[0].getType() != XmlRpc::XmlRpcValue::TypeInt) {
-      return false;
+    if (reply.getType() != XmlRpc::XmlRpcValue::TypeArray || reply.size() != 3 ||
+        reply[0].getType() != XmlRpc::XmlRpcValue::TypeInt) {
+      return std::nullopt;
     }
-    if (int(result[0]) != 1) {
-      // The master's "no" (-1: error, 0: failure) is an answer: never 0 here.
-      if (code != nullptr) *code = int(result[0]) == 0 ? -2 : int(result[0]);
-      return false;
-    }
-    *payload = result[2];
-    return true;
+    return reply;
   }
 };
 
 // Whether the master's record of this node is this process's XML-RPC server (nullopt: no
 // answer in time). A master that does not know the node answers with an error code.
 std::optional<bool> KnowsThisNode(MasterClient* master) {
-  XmlRpc::XmlRpcValue args, payload;
+  XmlRpc::XmlRpcValue args;
   args[0] = ros::this_node::getName();
   args[1] = ros::this_node::getName();
-  int code = 0;
-  if (!master->Call("lookupNode", args, &payload, kCallTimeoutS, &code)) {
-    if (code == 0) return std::nullopt;
-    return false;
-  }
-  return payload.getType() == XmlRpc::XmlRpcValue::TypeString &&
-         std::string(payload) == ros::XMLRPCManager::instance()->getServerURI();
+  std::optional<XmlRpc::XmlRpcValue> reply = master->Call("lookupNode", args);
+  if (!reply) return std::nullopt;
+  XmlRpc::XmlRpcValue& uri = (*reply)[2];
+  return int((*reply)[0]) == 1 && uri.getType() == XmlRpc::XmlRpcValue::TypeString &&
+         std::string(uri) == ros::XMLRPCManager::instance()->getServerURI();
 }
 
 // The master's process id, or 0 when it does not answer in time. A master started again on the
 // same port is another process: its pid tells it apart even when this node never saw it down.
 int MasterPid(MasterClient* master) {
-  XmlRpc::XmlRpcValue args, payload;
+  XmlRpc::XmlRpcValue args;
   args[0] = ros::this_node::getName();
-  if (!master->Call("getPid", args, &payload, kCallTimeoutS)) return 0;
-  return payload.getType() == XmlRpc::XmlRpcValue::TypeInt ? int(payload) : 0;
+  std::optional<XmlRpc::XmlRpcValue> reply = master->Call("getPid", args);
+  if (!reply || int((*reply)[0]) != 1) return 0;
+  XmlRpc::XmlRpcValue& pid = (*reply)[2];
+  return pid.getType() == XmlRpc::XmlRpcValue::TypeInt ? int(pid) : 0;
+}
+
+// The master's pid as the watch begins (a client of its own: the watch thread has another).
+int InitialMasterPid() {
+  MasterClient master;
+  return MasterPid(&master);
 }
 
 }  // namespace
 
 MasterWatch::MasterWatch(double period_s)
     : master_pid_(InitialMasterPid()), thread_(&MasterWatch::Run, this, period_s) {}
-
-int MasterWatch::InitialMasterPid() {
-  MasterClient master;
-  return MasterPid(&master);
-}
 
 MasterWatch::~MasterWatch() {
   {

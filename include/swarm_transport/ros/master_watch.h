@@ -45,12 +45,10 @@ class MasterWatch {
   int ExitCode(int otherwise) const { return restarted_ ? 3 : otherwise; }
 
  private:
-  // The master's pid now, or 0 when it does not answer within the call timeout.
-  static int InitialMasterPid();
   void Run(double period_s);
 
   std::atomic<bool> restarted_{false};
-  int master_pid_;  // the master's pid when the watch began (0: it did not answer); Run's own
+  int master_pid_;  // the master's pid (0: no answer yet; Judge sets it at the first); Run's own
   std::mutex mutex_;
   std::condition_variable wake_;
   bool stop_ = false;
