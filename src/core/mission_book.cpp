@@ -9,8 +9,6 @@ namespace swarm_transport {
 namespace core {
 namespace {
 
-constexpr std::size_t kPhaseCount = 8;
-
 std::uint16_t Clamp16(std::size_t value) {
   return static_cast<std::uint16_t>(std::min<std::size_t>(value, 65535));
 }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <type_traits>
+#include <variant>
 
 namespace swarm_transport {
 namespace core {
@@ -40,6 +42,32 @@ RobotBrain::RobotBrain(std::uint16_t id, const SwarmConfig& config)
       rng_(config.seed, id),
       agent_(id, MissionParams(config)),
       balloon_radius_m_(config.flocking.robot_radius_m) {}
+
+std::string RobotBrain::Take(const MissionMessage& message,
+                             const std::set<std::uint16_t>& known_robots, MissionTaken* taken) {
+  return std::visit(
+      [&](const auto& m) -> std::string {
+        using M = std::decay_t<decltype(m)>;
+        if constexpr (std::is_same_v<M, MissionSpec>) {
+          return OnNewMission(m, known_robots, taken);
+        } else if constexpr (std::is_same_v<M, ObjectUpdate>) {
+          return OnObjectUpdate(m.mission_id, m.centre);
+        } else if constexpr (std::is_same_v<M, ObjectDelete>) {
+          return OnObjectDelete(m.mission_id);
+        } else if constexpr (std::is_same_v<M, Freeze>) {
+          return OnFreeze(m.from, m.to);
+        } else if constexpr (std::is_same_v<M, Continue>) {
+          return OnContinue(m.from, m.to);
+        } else if constexpr (std::is_same_v<M, Signal>) {
+          return OnEvent(m.mission_id, m.kind, m.not_before_tick);
+        } else {
+          static_assert(std::is_same_v<M, PhaseStatus>, "a mission message without its case");
+          OnStatus(m.mission_id, m.phase);
+          return "";
+        }
+      },
+      message);
+}
 
 std::string RobotBrain::OnFreeze(std::uint16_t from, std::uint16_t to) {
   if (from >= to) return BadRange("Robot_Freeze", from, to);

@@ -2,6 +2,7 @@
 #ifndef SWARM_TRANSPORT_CORE_MISSION_H_
 #define SWARM_TRANSPORT_CORE_MISSION_H_
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <set>
@@ -25,6 +26,8 @@ enum class MissionPhase : std::uint8_t {
   kAborted = 6,
   kRejected = 7,
 };
+// How many phases there are: a Mission_Status.state from here on is none.
+constexpr std::size_t kPhaseCount = 8;
 const char* PhaseName(MissionPhase phase);
 
 // Mission_Event.event values.

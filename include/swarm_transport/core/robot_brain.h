@@ -16,6 +16,7 @@
 #include "swarm_transport/core/leader.h"
 #include "swarm_transport/core/mission.h"
 #include "swarm_transport/core/mission_agent.h"
+#include "swarm_transport/core/mission_message.h"
 #include "swarm_transport/core/random.h"
 #include "swarm_transport/core/swarm_config.h"
 #include "swarm_transport/core/transport.h"
@@ -44,9 +45,15 @@ class RobotBrain {
   // `config` must be valid (SwarmConfig::Validate).
   RobotBrain(std::uint16_t id, const SwarmConfig& config);
 
-  // Inbox. Each returns an empty string when taken, else the reason it was not (its state is
-  // then unchanged). Freeze / continue apply to robots in [from, to), an empty or inverted
-  // range is rejected.
+  // The inbox: one mission message, whatever carried it. Empty when taken, else the reason it
+  // was not (its state is then unchanged). Freeze / continue apply to robots in [from, to), an
+  // empty or inverted range is rejected; a phase beyond kRejected is ignored. `known_robots`:
+  // the physical robots the swarm has now (a mission must name only those); `taken` (may be
+  // null) is filled for a mission taken.
+  std::string Take(const MissionMessage& message, const std::set<std::uint16_t>& known_robots,
+                   MissionTaken* taken = nullptr);
+
+  // The inbox by kind (what Take calls).
   std::string OnFreeze(std::uint16_t from, std::uint16_t to);
   std::string OnContinue(std::uint16_t from, std::uint16_t to);
   // `known_robots`: the physical robots the swarm has now (a mission must name only those).
@@ -70,6 +77,8 @@ class RobotBrain {
 
   std::uint16_t id() const { return id_; }
   bool frozen() const { return frozen_; }
+  // Who may order it: the dispatcher (its admitted orders) or anyone (core::MayOrder).
+  Admission admission() const { return params_.admission; }
   const MissionAgent& missions() const { return agent_; }
   const MissionPlan& last_plan() const { return last_plan_; }
   const MoveDecision& last_move() const { return last_move_; }
