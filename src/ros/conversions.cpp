@@ -69,6 +69,59 @@ bool IsFinite(const geometry_msgs::Twist& msg) {
          std::isfinite(msg.angular.y) && std::isfinite(msg.angular.z);
 }
 
+Mission_Event ToEventMsg(const core::DueSignal& due) {
+  Mission_Event msg;
+  msg.mission_id = due.mission_id;
+  msg.event = static_cast<std::uint8_t>(due.kind);
+  msg.not_before_tick = due.not_before_tick;
+  return msg;
+}
+
+core::MissionMessage ToMissionMessage(const New_Mission& msg) { return ToMissionSpec(msg); }
+
+core::MissionMessage ToMissionMessage(const Update_Object& msg) {
+  return core::ObjectUpdate{msg.mission_id, {msg.object_position_x, msg.object_position_y}};
+}
+
+core::MissionMessage ToMissionMessage(const Delete_Object& msg) {
+  return core::ObjectDelete{msg.mission_id};
+}
+
+core::MissionMessage ToMissionMessage(const Robot_Freeze& msg) {
+  return core::Freeze{msg.robot_index_from, msg.robot_index_to};
+}
+
+core::MissionMessage ToMissionMessage(const Robot_Continue& msg) {
+  return core::Continue{msg.robot_index_from, msg.robot_index_to};
+}
+
+core::MissionMessage ToMissionMessage(const Mission_Event& msg) {
+  return core::Signal{msg.mission_id, static_cast<core::MissionEventKind>(msg.event),
+                      msg.not_before_tick};
+}
+
+core::MissionMessage ToMissionMessage(const Mission_Status& msg) {
+  return core::PhaseStatus{msg.mission_id, static_cast<core::MissionPhase>(msg.state)};
+}
+
+std::vector<core::MissionMessage> ToMissionMessages(const Neighbors& round) {
+  std::vector<core::MissionMessage> out;
+  out.reserve(round.missions.size() + round.object_updates.size() + round.object_deletes.size() +
+              round.freezes.size() + round.continues.size() + round.mission_events.size() +
+              round.statuses.size());
+  const auto add = [&out](const auto& list) {
+    for (const auto& m : list) out.push_back(ToMissionMessage(m));
+  };
+  add(round.missions);
+  add(round.object_updates);
+  add(round.object_deletes);
+  add(round.freezes);
+  add(round.continues);
+  add(round.mission_events);
+  add(round.statuses);
+  return out;
+}
+
 core::MissionSpec ToMissionSpec(const New_Mission& msg) {
   core::MissionSpec spec;
   spec.id = msg.mission_id;

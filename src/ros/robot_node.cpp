@@ -89,7 +89,7 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
     return false;
   }
   id_ = static_cast<std::uint16_t>(options_.id);
-  brain_.emplace(id_, config_);
+  session_.emplace(id_, config_);
 
   // Who listens to its own /flock/position besides the simulator (which keeps only virtual
   // copies and statists of it): connect and disconnect callbacks run on its own queue.
@@ -124,23 +124,24 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
   // Lock-step: mission messages arrive relayed inside `neighbors`, each at the tick after it
   // was sent, and go out inside the robot's answer: no mission topics, nothing to connect.
   if (options_.clock != core::Clock::kLockstep && !options_.shared_topics) {
-    freeze_sub_ = nh_.subscribe(names::kFreeze, 20, &RobotNode::OnFreeze, this);
-    continue_sub_ = nh_.subscribe(names::kContinue, 20, &RobotNode::OnContinue, this);
+    freeze_sub_ = nh_.subscribe(names::kFreeze, 20, &RobotNode::FromTopic<Robot_Freeze>, this);
+    continue_sub_ =
+        nh_.subscribe(names::kContinue, 20, &RobotNode::FromTopic<Robot_Continue>, this);
     // Up to a dispatcher's whole table of live orders at once (a flood of hand-made ones is
     // the dispatcher's to refuse: the robots take only the orders it admitted).
     mission_sub_ =
         nh_.subscribe(names::kMissionNew, kMissionQueue,
-                      &RobotNode::FromTopic<New_Mission, &RobotNode::OnNewMission>, this);
+                      &RobotNode::FromTopic<New_Mission>, this);
     update_sub_ =
         nh_.subscribe(names::kObjectUpdate, 20,
-                      &RobotNode::FromTopic<Update_Object, &RobotNode::OnObjectUpdate>, this);
+                      &RobotNode::FromTopic<Update_Object>, this);
     delete_sub_ =
         nh_.subscribe(names::kObjectDelete, 20,
-                      &RobotNode::FromTopic<Delete_Object, &RobotNode::OnObjectDelete>, this);
-    event_sub_ = nh_.subscribe(names::kMissionEvent, 20, &RobotNode::OnMissionEvent, this);
+                      &RobotNode::FromTopic<Delete_Object>, this);
+    event_sub_ = nh_.subscribe(names::kMissionEvent, 20, &RobotNode::FromTopic<Mission_Event>, this);
     status_sub_ =
         nh_.subscribe(names::kMissionStatus, 50,
-                      &RobotNode::FromTopic<Mission_Status, &RobotNode::OnMissionStatus>, this);
+                      &RobotNode::FromTopic<Mission_Status>, this);
   }
   if (!options_.shared_topics) {
     robots_sub_ = nh_.subscribe(names::kRobots, 2, &RobotNode::OnRobots, this);
@@ -264,38 +265,20 @@ void RobotNode::TakeRound(const Neighbors::ConstPtr& msg, double arrival_s) {
   if (options_.clock == core::Clock::kLockstep) Tick();
 }
 
-template <typename Msg, typename Handler>
-static void ApplyAll(const std::vector<Msg>& list, RobotNode* node, Handler handler) {
-  for (const Msg& m : list) (node->*handler)(boost::make_shared<const Msg>(m));
-}
-
 void RobotNode::ApplyRelayed(const Neighbors& msg) {
   // The order documented in Neighbors.msg: a mission before its object's moves, those before
   // freeze / continue, signals and phases last. The relay passed on only what counts.
   const core::Sender relay{core::SenderKind::kRelay, 0};
-  for (const New_Mission& m : msg.missions) OnNewMission(m, relay);
-  for (const Update_Object& m : msg.object_updates) OnObjectUpdate(m, relay);
-  for (const Delete_Object& m : msg.object_deletes) OnObjectDelete(m, relay);
-  ApplyAll(msg.freezes, this, &RobotNode::OnFreeze);
-  ApplyAll(msg.continues, this, &RobotNode::OnContinue);
-  ApplyAll(msg.mission_events, this, &RobotNode::OnMissionEvent);
-  for (const Mission_Status& m : msg.statuses) OnMissionStatus(m, relay);
+  for (const core::MissionMessage& m : ToMissionMessages(msg)) Hand(m, relay);
 }
 
 void RobotNode::ApplyTuning(const Neighbors& msg) {
-  if (msg.tuning.empty()) return;
-  const Flocking_Tuning& t = msg.tuning.front();
-  if (t.generation == tuning_generation_ || t.generation == refused_generation_) return;
-  const std::string why = brain_->OnTuning(ToFlockingTuning(t));
-  if (!why.empty()) {
-    refused_generation_ = t.generation;
-    Rejected("Flocking_Tuning", "Flocking_Tuning " + std::to_string(t.generation) + ": " + why);
-    return;
+  const std::uint32_t had = session_->tuning_generation();
+  Say(session_->TakeTuning(msg));
+  if (session_->tuning_generation() != had) {
+    ROS_DEBUG("robot %u: flocking tuning %u from tick %llu", id_, session_->tuning_generation(),
+              static_cast<unsigned long long>(msg.tick));
   }
-  tuning_generation_ = t.generation;
-  tuning_tick_ = msg.tick;
-  ROS_DEBUG("robot %u: flocking tuning %u from tick %llu", id_, t.generation,
-            static_cast<unsigned long long>(msg.tick));
 }
 
 void RobotNode::TimerTick() {
@@ -368,16 +351,6 @@ void RobotNode::RecordTick() {
   stats_pub_.publish(line);
 }
 
-void RobotNode::OnFreeze(const Robot_Freeze::ConstPtr& msg) {
-  const std::string why = brain_->OnFreeze(msg->robot_index_from, msg->robot_index_to);
-  if (!why.empty()) Rejected("Robot_Freeze", why);
-}
-
-void RobotNode::OnContinue(const Robot_Continue::ConstPtr& msg) {
-  const std::string why = brain_->OnContinue(msg->robot_index_from, msg->robot_index_to);
-  if (!why.empty()) Rejected("Robot_Continue", why);
-}
-
 void RobotNode::PublishStatusIfDue() {
   if (!diagnostics_) return;
   diagnostics_->PublishIfDue([this](NodeStatus* s) {
@@ -402,7 +375,7 @@ void RobotNode::PublishStatusIfDue() {
 }
 
 Robot_State::Response RobotNode::State() const {
-  const core::RobotBrain& brain = *brain_;
+  const core::RobotBrain& brain = session_->brain();
   const core::MissionPlan& plan = brain.last_plan();
   const core::MoveDecision& move = brain.last_move();
   Robot_State::Response state;
@@ -426,8 +399,8 @@ Robot_State::Response RobotNode::State() const {
   state.heading_deg = move.heading.degrees();
   state.distance_m = move.distance_m;
   state.fleeing = move.fleeing;
-  state.tuning_generation = tuning_generation_;
-  state.tuning_tick = tuning_tick_;
+  state.tuning_generation = session_->tuning_generation();
+  state.tuning_tick = session_->tuning_tick();
   const core::FlockingTuning tuning = brain.tuning();
   state.free_will_deg = tuning.free_will_deg;
   state.cohesion = tuning.cohesion;
@@ -494,64 +467,25 @@ void RobotNode::OnRobots(const Robot_Positions::ConstPtr& msg) {
   }
 }
 
-void RobotNode::OnNewMission(const New_Mission& msg, const core::Sender& from) {
-  if (!core::MayOrder(config_.admission, from)) {
-    // Not admitted (yet): the dispatcher answers it, and publishes it when it admits it.
-    ROS_DEBUG("robot %u: New_Mission %u not from the dispatcher; waiting for its verdict", id_,
-              msg.mission_id);
-    return;
-  }
-  const core::MissionSpec spec = ToMissionSpec(msg);
-  core::MissionTaken taken;
-  const std::string why = brain_->OnNewMission(spec, known_robots_, &taken);
-  if (why.empty()) {
-    if (!taken.first_leader) return;
-    if (options_.clock == core::Clock::kLockstep) {
-      statuses_.Queue(taken.queued);  // its answers carry the statuses
+void RobotNode::Hand(const core::MissionMessage& message, const core::Sender& from) {
+  const RobotSession::Taken taken = session_->Take(message, from, known_robots_);
+  // Real time: a new first leader publishes its statuses on topics of its own (lock-step: its
+  // answers carry them); published with this tick's messages.
+  if (taken.first_leader && options_.clock != core::Clock::kLockstep) AdvertiseMissionOutlets();
+  Say(taken);
+}
+
+void RobotNode::Say(const RobotSession::Taken& taken) {
+  switch (taken.say) {
+    case RobotSession::Taken::Say::kNothing:
       return;
-    }
-    AdvertiseMissionOutlets();
-    // Published with this tick's messages (before its GATHERING when it starts at once).
-    statuses_.Queue(taken.queued);
-    return;
+    case RobotSession::Taken::Say::kDebug:
+      ROS_DEBUG("robot %u: ignored: %s", id_, taken.why.c_str());
+      return;
+    case RobotSession::Taken::Say::kWarn:
+      Rejected(taken.kind, taken.why);
+      return;
   }
-  // Only the robots concerned say so, so that one bad message does not log N lines.
-  if (spec.Assigns(id_) || id_ == 0) {
-    Rejected("New_Mission", "New_Mission " + std::to_string(msg.mission_id) + ": " + why);
-  }
-}
-
-bool RobotNode::MayReport(const char* kind, std::uint16_t mission_id, const core::Sender& from) {
-  if (core::MayReport(brain_->missions().Find(mission_id), from)) return true;
-  Rejected(kind, std::string(kind) + " of mission " + std::to_string(mission_id) +
-                     ": not from one of its robots or the dispatcher");
-  return false;
-}
-
-void RobotNode::OnObjectUpdate(const Update_Object& msg, const core::Sender& from) {
-  if (!MayReport("Update_Object", msg.mission_id, from)) return;
-  const std::string why =
-      brain_->OnObjectUpdate(msg.mission_id, {msg.object_position_x, msg.object_position_y});
-  if (why.empty()) return;
-  // An update for a mission it does not hold is routine; a non-finite, out-of-arena or
-  // implausible one is bad input.
-  if (brain_->missions().Find(msg.mission_id) == nullptr) {
-    ROS_DEBUG("robot %u: ignored: %s", id_, why.c_str());
-  } else {
-    Rejected("Update_Object", why);
-  }
-}
-
-void RobotNode::OnObjectDelete(const Delete_Object& msg, const core::Sender& from) {
-  if (!MayReport("Delete_Object", msg.mission_id, from)) return;
-  const std::string why = brain_->OnObjectDelete(msg.mission_id);
-  if (!why.empty()) ROS_DEBUG("robot %u: %s", id_, why.c_str());
-}
-
-void RobotNode::OnMissionEvent(const Mission_Event::ConstPtr& msg) {
-  const std::string why = brain_->OnEvent(
-      msg->mission_id, static_cast<core::MissionEventKind>(msg->event), msg->not_before_tick);
-  if (!why.empty()) Rejected("Mission_Event", why);
 }
 
 void RobotNode::Rejected(const std::string& kind, const std::string& why) {
@@ -569,11 +503,6 @@ void RobotNode::Rejected(const std::string& kind, const std::string& why) {
   }
   log.last = now;
   log.suppressed = 0;
-}
-
-void RobotNode::OnMissionStatus(const Mission_Status& msg, const core::Sender& from) {
-  if (!MayReport("Mission_Status", msg.mission_id, from)) return;
-  brain_->OnStatus(msg.mission_id, static_cast<core::MissionPhase>(msg.state));
 }
 
 void RobotNode::AdvertiseMissionOutlets() {
@@ -607,19 +536,6 @@ bool RobotNode::MissionOutletsReady() {
                     connected(delete_pub_) && connected(status_pub_)) ||
                    ros::WallTime::now() - outlets_since_ > ros::WallDuration(5.0);
   return outlets_ready_;
-}
-
-Tick_Answer RobotNode::MissionMessages(const core::MissionOutbox& outbox,
-                                       const std::vector<core::StatusReport>& progress) const {
-  for (const core::StatusReport& r : outbox.statuses) {
-    ROS_INFO("robot %u: mission %u %s", id_, r.mission_id, core::PhaseName(r.phase));
-  }
-  // Lock-step: stamped with the tick's own simulated time (as the batch engine does), not with
-  // whatever /clock this process has seen by now.
-  const ros::Time stamp = options_.clock == core::Clock::kLockstep
-                              ? ros::Time(perception_->sim_time)
-                              : ros::Time::now();
-  return ToAnswerMessages(outbox, progress, perception_->tick, stamp);
 }
 
 void RobotNode::Publish(const Tick_Answer& m) {
@@ -666,20 +582,23 @@ void RobotNode::Tick() {
   const bool lockstep = options_.clock == core::Clock::kLockstep;
   // Real time: a robot promoted to first leader (its first leader was lost) connects its
   // mission outlets before it speaks (it takes over the tick after its promotion).
-  if (!lockstep && !status_pub_ && brain_->missions().IsFirstLeaderOfAny()) {
+  if (!lockstep && !status_pub_ && session_->brain().missions().IsFirstLeaderOfAny()) {
     AdvertiseMissionOutlets();
   }
-  core::BrainTick step =
-      brain_->Tick(std::move(in), perception_->tick, lockstep || MissionOutletsReady());
-  const core::Velocity command = step.command;
-  std::vector<core::StatusReport> progress;
-  statuses_.Sequence(lockstep || MissionOutletsReady(), &step.outbox.statuses, &progress);
-  Tick_Answer answer = MissionMessages(step.outbox, progress);
+  // Lock-step: stamped with the tick's own simulated time (as the batch engine does), not with
+  // whatever /clock this process has seen by now.
+  const ros::Time stamp = lockstep ? ros::Time(perception_->sim_time) : ros::Time::now();
+  RobotSession::Step step =
+      session_->Tick(std::move(in), perception_->tick, stamp, lockstep || MissionOutletsReady());
+  const core::Velocity command = step.brain.command;
+  Tick_Answer& answer = step.answer;
+  for (const Mission_Status& st : answer.statuses) {
+    ROS_INFO("robot %u: mission %u %s", id_, st.mission_id,
+             core::PhaseName(static_cast<core::MissionPhase>(st.state)));
+  }
   if (lockstep) {
     // One answer: the command and everything said this tick (the simulator relays it and
     // publishes it for observers). Direct links get the same content as the topic.
-    answer.tick = perception_->tick;
-    answer.command = ToTwist(command);
     if (options_.direct != nullptr) {
       options_.direct->SendAnswer(id_, answer);
     } else {

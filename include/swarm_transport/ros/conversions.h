@@ -7,7 +7,12 @@
 #include <cstdint>
 #include <vector>
 
+#include "swarm_transport/Delete_Object.h"
 #include "swarm_transport/Flocking_Tuning.h"
+#include "swarm_transport/Mission_Event.h"
+#include "swarm_transport/Robot_Continue.h"
+#include "swarm_transport/Robot_Freeze.h"
+#include "swarm_transport/Update_Object.h"
 #include "swarm_transport/Neighbors.h"
 #include "swarm_transport/New_Mission.h"
 #include "swarm_transport/Pose.h"
@@ -19,6 +24,7 @@
 #include "swarm_transport/core/mission_agent.h"
 #include "swarm_transport/core/mission.h"
 #include "swarm_transport/core/mission_book.h"
+#include "swarm_transport/core/mission_message.h"
 #include "swarm_transport/core/swarm_config.h"
 #include "swarm_transport/sim/radio.h"
 
@@ -62,6 +68,8 @@ Tick_Answer ToAnswerMessages(const core::MissionOutbox& outbox,
                              const std::vector<core::StatusReport>& progress,
                              std::uint64_t tick, const ros::Time& stamp);
 
+// A LOADED / UNLOADED the dispatcher's book made due -> its Mission_Event.
+Mission_Event ToEventMsg(const core::DueSignal& due);
 // A first leader's (or the dispatcher's) Mission_Status -> the report the dispatcher books.
 core::MissionReport ToMissionReport(const Mission_Status& msg);
 
@@ -73,6 +81,17 @@ Flocking_Tuning ToTuningMsg(const core::FlockingTuning& tuning, std::uint32_t ge
 // New_Mission -> core mission; all_finite records whether every float of the message is finite
 // (ValidateMission rejects the mission otherwise).
 core::MissionSpec ToMissionSpec(const New_Mission& msg);
+// A mission message -> the core's one inbox type (core/mission_message.h).
+core::MissionMessage ToMissionMessage(const New_Mission& msg);
+core::MissionMessage ToMissionMessage(const Update_Object& msg);
+core::MissionMessage ToMissionMessage(const Delete_Object& msg);
+core::MissionMessage ToMissionMessage(const Robot_Freeze& msg);
+core::MissionMessage ToMissionMessage(const Robot_Continue& msg);
+core::MissionMessage ToMissionMessage(const Mission_Event& msg);
+core::MissionMessage ToMissionMessage(const Mission_Status& msg);
+// A lock-step round's relayed mission messages in the order a robot takes them (Neighbors.msg):
+// missions, object updates, object deletes, freezes, continues, events, statuses.
+std::vector<core::MissionMessage> ToMissionMessages(const Neighbors& round);
 // Who published a mission message, from its publisher's node name (MessageEvent): the
 // dispatcher (names::kDispatcherNode), the simulator or a robot host (relay: they carry robots'
 // messages), a robot's node (/robot_<id>/robot), else other.

@@ -37,6 +37,7 @@
 #include "swarm_transport/ros/direct_link.h"
 #include "swarm_transport/ros/graph.h"
 #include "swarm_transport/ros/params.h"
+#include "swarm_transport/ros/robot_session.h"
 #include "swarm_transport/ros/tick_loop.h"
 
 namespace swarm_transport {
@@ -123,26 +124,11 @@ class RobotNode {
   void Hear(const ros::MessageEvent<Robot_Positions const>& event) {
     OnRobots(event.getConstMessage());
   }
-  void Hear(const ros::MessageEvent<Robot_Freeze const>& event) {
-    OnFreeze(event.getConstMessage());
-  }
-  void Hear(const ros::MessageEvent<Robot_Continue const>& event) {
-    OnContinue(event.getConstMessage());
-  }
-  void Hear(const ros::MessageEvent<Mission_Event const>& event) {
-    OnMissionEvent(event.getConstMessage());
-  }
-  void Hear(const ros::MessageEvent<New_Mission const>& event) {
-    FromTopic<New_Mission, &RobotNode::OnNewMission>(event);
-  }
-  void Hear(const ros::MessageEvent<Update_Object const>& event) {
-    FromTopic<Update_Object, &RobotNode::OnObjectUpdate>(event);
-  }
-  void Hear(const ros::MessageEvent<Delete_Object const>& event) {
-    FromTopic<Delete_Object, &RobotNode::OnObjectDelete>(event);
-  }
-  void Hear(const ros::MessageEvent<Mission_Status const>& event) {
-    FromTopic<Mission_Status, &RobotNode::OnMissionStatus>(event);
+  // A mission topic's message (New_Mission, Update_Object, Delete_Object, Robot_Freeze,
+  // Robot_Continue, Mission_Event, Mission_Status).
+  template <typename M>
+  void Hear(const ros::MessageEvent<M const>& event) {
+    FromTopic<M>(event);
   }
 
   std::uint64_t ticks() const { return ticks_; }
@@ -157,22 +143,17 @@ class RobotNode {
   void OnTickDue();
   // A node (un)subscribed its own /flock/position: counts the observers, the simulator not.
   void CountObserver(const std::string& node, int delta);
-  void OnFreeze(const Robot_Freeze::ConstPtr& msg);
-  void OnContinue(const Robot_Continue::ConstPtr& msg);
-  // Mission messages with their sender: from a topic (real time) its publisher, relayed inside
-  // a lock-step round the relay (which let only what counts through).
-  void OnNewMission(const New_Mission& msg, const core::Sender& from);
-  void OnObjectUpdate(const Update_Object& msg, const core::Sender& from);
-  void OnObjectDelete(const Delete_Object& msg, const core::Sender& from);
-  void OnMissionStatus(const Mission_Status& msg, const core::Sender& from);
-  template <typename M, void (RobotNode::*Handle)(const M&, const core::Sender&)>
+  // A mission message with its sender: from a topic (real time) its publisher, relayed inside
+  // a lock-step round the relay (which let only what counts through). The session decides;
+  // the node says what it refused and, as a new first leader in real time, connects its
+  // mission topics.
+  void Hand(const core::MissionMessage& message, const core::Sender& from);
+  template <typename M>
   void FromTopic(const ros::MessageEvent<M const>& event) {
-    (this->*Handle)(*event.getConstMessage(), SenderOf(event.getPublisherName()));
+    Hand(ToMissionMessage(*event.getConstMessage()), SenderOf(event.getPublisherName()));
   }
-  // Whether a status, object update or delete of `mission_id` from `from` counts (logs once per
-  // interval when not).
-  bool MayReport(const char* kind, std::uint16_t mission_id, const core::Sender& from);
-  void OnMissionEvent(const Mission_Event::ConstPtr& msg);
+  // Logs what the session refused, as it says.
+  void Say(const RobotSession::Taken& taken);
   void OnRobots(const Robot_Positions::ConstPtr& msg);
   // Lock-step: applies the mission messages the simulator relayed with this perception.
   void ApplyRelayed(const Neighbors& msg);
@@ -195,10 +176,6 @@ class RobotNode {
   void SendCommand(const geometry_msgs::Twist& command);
   // Computes and executes one tick on `perception_` (the brain decides, the node sends).
   void Tick();
-  // What the first leader of a mission says this tick, as messages (the answer's lists): a
-  // phase it entered (once), reports within the phase (progress), object, freeze, continue.
-  Tick_Answer MissionMessages(const core::MissionOutbox& outbox,
-                              const std::vector<core::StatusReport>& progress) const;
   // Real time: publishes them on the mission topics (/flock/mission/status, .../progress, ...).
   void Publish(const Tick_Answer& messages);
   // Logs a rejected message: one line per kind per kRejectLogPeriodS, with how many of that
@@ -224,7 +201,7 @@ class RobotNode {
   SwarmConfig config_;
   std::uint16_t id_ = 0;
   // Its behaviour and state (set by Initialize).
-  std::optional<core::RobotBrain> brain_;
+  std::optional<RobotSession> session_;
   ros::Publisher cmd_pub_;
   ros::Publisher position_pub_;
   // Nodes other than the simulator subscribed to its /flock/position (real time: it publishes
@@ -248,10 +225,6 @@ class RobotNode {
   // Progress within a phase (not relayed, not counted for the lock-step barrier): advertised
   // when this robot first becomes a first leader.
   ros::Publisher progress_pub_;
-  // The QUEUED of the missions this robot took as first leader, and the phase last published
-  // per mission: every status of a mission comes from its first leader, so that it reaches each
-  // subscriber in order (one publisher, one connection).
-  core::StatusSequencer statuses_;
   struct RejectLog {
     ros::WallTime last;
     std::uint64_t suppressed = 0;
@@ -276,9 +249,6 @@ class RobotNode {
   bool said_unlisted_ = false;   // it said once that it is not
   Neighbors::ConstPtr perception_;
   std::uint64_t ticks_ = 0;
-  std::uint32_t tuning_generation_ = 0;  // the live tuning it took (0: its configuration's)
-  std::uint64_t tuning_tick_ = 0;        // ... at the round of this tick
-  std::uint32_t refused_generation_ = 0;  // the last one it refused (said once)
   // Broadcast comm: what each (robot_id, sub_id) last sent, and when (wall s, radio round).
   struct Heard {
     Robot_Position::ConstPtr position;

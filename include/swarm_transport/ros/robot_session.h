@@ -1,0 +1,87 @@
+// One robot between its messages, without ROS's transport: its brain, the status sequence of the
+// missions it leads and its live tuning - a round (or one mission message) in, an answer out.
+// Every deployment runs a robot through this class: a robot process and a host's robots
+// (RobotNode, which only moves messages between a transport and the session) and the batch
+// runs (batch_run.h: the lock-step engine hands them their rounds). No node handle, no clock,
+// no log: what a transport must say about a message it is told (Taken::say).
+#ifndef SWARM_TRANSPORT_ROS_ROBOT_SESSION_H_
+#define SWARM_TRANSPORT_ROS_ROBOT_SESSION_H_
+
+#include <ros/time.h>
+
+#include <cstdint>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "swarm_transport/Neighbors.h"
+#include "swarm_transport/Tick_Answer.h"
+#include "swarm_transport/core/mission.h"
+#include "swarm_transport/core/mission_message.h"
+#include "swarm_transport/core/robot_brain.h"
+#include "swarm_transport/core/swarm_config.h"
+
+namespace swarm_transport {
+
+class RobotSession {
+ public:
+  // `config` must be valid (SwarmConfig::Validate).
+  RobotSession(std::uint16_t id, const core::SwarmConfig& config);
+
+  // What became of one message, and what its transport should say about it.
+  struct Taken {
+    enum class Say {
+      kNothing,  // taken, or routine (an order for other robots, an update of a mission it
+                 // does not hold)
+      kDebug,    // not for it (an order it may not take from that sender yet)
+      kWarn,     // bad input: worth a (throttled) warning
+    };
+    Say say = Say::kNothing;
+    std::string kind;  // the message's type name ("New_Mission", ...)
+    std::string why;   // empty when taken
+    // It took a mission as its first leader (a real-time transport advertises its mission
+    // topics now).
+    bool first_leader = false;
+  };
+
+  // One mission message from `from` (a topic's publisher; the relay for a lock-step round),
+  // checked against who may send it (core::MayOrder, core::MayReport). `known_robots`: the
+  // physical robots the swarm has now.
+  Taken Take(const core::MissionMessage& message, const core::Sender& from,
+             const std::set<std::uint16_t>& known_robots);
+  // A lock-step round's relayed mission messages, in the round's order (from the relay);
+  // what it refused is appended to `refused` (may be null).
+  void TakeRelayed(const Neighbors& round, const std::set<std::uint16_t>& known_robots,
+                   std::vector<Taken>* refused);
+  // A round's flocking tuning (issue 13): a generation it does not have yet is used from this
+  // tick on. Returns a refusal (once per generation), else nothing to say.
+  Taken TakeTuning(const Neighbors& round);
+
+  // One tick on `in`. `ready`: its mission messages can go out now (a real-time first leader
+  // whose subscribers are not connected yet holds its phase machine and says nothing). The
+  // answer carries every mission message it says (statuses sequenced: one per phase, the
+  // rest progress), stamped `tick` and `stamp`, with `tick` and its command.
+  struct Step {
+    core::BrainTick brain;
+    Tick_Answer answer;
+  };
+  Step Tick(core::Perception in, std::uint64_t tick, const ros::Time& stamp, bool ready);
+
+  std::uint16_t id() const { return brain_.id(); }
+  const core::RobotBrain& brain() const { return brain_; }
+  std::uint32_t tuning_generation() const { return tuning_generation_; }
+  std::uint64_t tuning_tick() const { return tuning_tick_; }
+
+ private:
+  core::RobotBrain brain_;
+  // The QUEUED of the missions it took as first leader and the phase last reported per mission:
+  // every status of a mission comes from its first leader, in order.
+  core::StatusSequencer statuses_;
+  std::uint32_t tuning_generation_ = 0;   // the live tuning it took (0: its configuration's)
+  std::uint64_t tuning_tick_ = 0;         // ... at the round of this tick
+  std::uint32_t refused_generation_ = 0;  // the last one it refused (said once)
+};
+
+}  // namespace swarm_transport
+
+#endif  // SWARM_TRANSPORT_ROS_ROBOT_SESSION_H_
