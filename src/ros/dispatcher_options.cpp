@@ -251,9 +251,7 @@ bool ReadDispatcherOptions(const ros::NodeHandle& nh, const ros::NodeHandle& p,
     *error = "/swarm: " + *error;
     return false;
   }
-  options->loaded_delay_s = config->loaded_delay_s;
-  options->unloaded_delay_s = config->unloaded_delay_s;
-  options->max_live_missions = config->max_live_missions;
+  *options = DispatcherOptionsOf(*config);
   if (!ReadPrivate(p, "loaded_delay_s", &options->loaded_delay_s, error) ||
       !ReadPrivate(p, "unloaded_delay_s", &options->unloaded_delay_s, error) ||
       !ReadPrivate(p, "missions_file", &options->missions_file, error) ||
@@ -275,6 +273,14 @@ bool ReadDispatcherOptions(const ros::NodeHandle& nh, const ros::NodeHandle& p,
   if (options->missions_file.empty()) return true;
   return ReadMissionsFile(options->missions_file, config->flocking.world_size_m, file_missions,
                           error, file_ticks);
+}
+
+DispatcherOptions DispatcherOptionsOf(const SwarmConfig& config) {
+  DispatcherOptions options;
+  options.loaded_delay_s = config.loaded_delay_s;
+  options.unloaded_delay_s = config.unloaded_delay_s;
+  options.max_live_missions = config.max_live_missions;
+  return options;
 }
 
 core::MissionBookParams MissionBookParamsOf(const SwarmConfig& config,

@@ -40,11 +40,12 @@ bool WallThrottle(ros::WallTime* last, double period_s) {
 
 LockstepSession::LockstepSession(ros::NodeHandle nh, const SimulatorParams& params,
                                  RobotLinks* links, ros::CallbackQueue* command_queue,
-                                 LockstepHooks hooks)
+                                 LockstepEngine* engine, LockstepHooks hooks)
     : nh_(nh),
       params_(params),
       links_(links),
       command_queue_(command_queue),
+      engine_(engine),
       hooks_(std::move(hooks)) {}
 
 void LockstepSession::Connect() {
@@ -86,21 +87,21 @@ void LockstepSession::Connect() {
 }
 
 void LockstepSession::Inject(const Robot_Freeze& msg) {
-  relay_.Add(kEventsSender, msg);
+  engine_->relay().Add(kEventsSender, msg);
   freeze_pub_.publish(msg);
 }
 
 void LockstepSession::Inject(const Robot_Continue& msg) {
-  relay_.Add(kEventsSender, msg);
+  engine_->relay().Add(kEventsSender, msg);
   continue_pub_.publish(msg);
 }
 
 void LockstepSession::Inject(const Update_Object& msg) {
-  relay_.Add(kEventsSender, msg);
+  engine_->relay().Add(kEventsSender, msg);
   update_pub_.publish(msg);
 }
 
-void LockstepSession::Inject(const Mission_Event& msg) { relay_.Add(kEventsSender, msg); }
+void LockstepSession::Inject(const Mission_Event& msg) { engine_->relay().Add(kEventsSender, msg); }
 
 void LockstepSession::Shutdown() {
   for (ros::Subscriber& sub : relay_subs_) sub.shutdown();
@@ -118,15 +119,12 @@ void LockstepSession::RemoveRobot(std::uint16_t id) {
   connected_.erase(id);
 }
 
-void LockstepSession::FillRound(std::uint16_t id, Neighbors* round) {
-  relay_.Fill(round);
-  if (connected_.erase(id) == 0) return;
-  const std::size_t relayed = round->missions.size();
-  relay_.FillStanding(round);
-  if (round->missions.size() > relayed && round->tick > 0) {
+void LockstepSession::Round(std::size_t index, std::uint16_t id, Neighbors* round) {
+  const std::size_t standing = engine_->Round(index, connected_.erase(id) > 0, round);
+  if (standing > 0 && round->tick > 0) {
     ROS_INFO("lockstep: robot %u connected: its first round (tick %llu) carries the orders of "
              "the %zu mission(s) sent before that have not ended", id,
-             static_cast<unsigned long long>(round->tick), round->missions.size() - relayed);
+             static_cast<unsigned long long>(round->tick), standing);
   }
 }
 
@@ -330,10 +328,10 @@ void LockstepSession::Relay(const ros::MessageEvent<const M>& event) {
     }
   }
   if constexpr (std::is_same_v<M, New_Mission>) {
-    relay_.AddOrder(from, msg);
+    engine_->relay().AddOrder(from, msg);
     barrier_.OrderArrived(msg.mission_id);
   } else {
-    relay_.Add(from, msg);
+    engine_->relay().Add(from, msg);
   }
   if constexpr (std::is_same_v<M, Mission_Status>) NoteStatus(msg);
   if constexpr (std::is_same_v<M, Mission_Event>) {
@@ -431,7 +429,7 @@ void LockstepSession::OnAnswer(std::uint16_t id, const Tick_Answer& answer,
     ROS_WARN("lockstep: robot %u answered with a non-finite command; it stands instead", id);
   }
   const auto result =
-      barrier_.OnAnswer(id, answer.tick, finite ? ToVelocity(answer.command) : core::Velocity());
+      barrier_.OnAnswer(id, answer.tick, LockstepEngine::CommandOf(answer));
   switch (result) {
     case sim::LockstepBarrier::Answer::kAnswer:
     case sim::LockstepBarrier::Answer::kStale:
@@ -462,12 +460,7 @@ void LockstepSession::OnAnswer(std::uint16_t id, const Tick_Answer& answer,
 
 void LockstepSession::TakeAnswers() {
   // By robot id, then in arrival order (a late answer before the robot's current one).
-  std::stable_sort(answers_.begin(), answers_.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
-  for (const auto& entry : answers_) {
-    const Tick_Answer& a = entry.second;
-    relay_.AddAnswer(entry.first, a);
-    hooks_.books(a);
+  engine_->TakeAnswers(&answers_, [this](std::uint16_t, const Tick_Answer& a) {
     for (const Update_Object& u : a.object_updates) update_pub_.publish(u);
     for (const Robot_Freeze& f : a.freezes) freeze_pub_.publish(f);
     for (const Robot_Continue& c : a.continues) continue_pub_.publish(c);
@@ -477,8 +470,7 @@ void LockstepSession::TakeAnswers() {
       status_pub_.publish(st);
     }
     for (const Mission_Status& st : a.progress) progress_pub_.publish(st);
-  }
-  answers_.clear();
+  });
 }
 
 

@@ -21,7 +21,6 @@ namespace {
 using core::MissionPhase;
 
 constexpr char kNode[] = "mission_dispatcher";
-constexpr std::size_t kPhaseCount = 8;
 // Before publishing a new order, wait at most this long (wall) for every node the master lists
 // as a subscriber of the order and status topics to be connected.
 constexpr double kListenerWaitS = 1.0;
@@ -476,7 +475,7 @@ void MissionDispatcher::OnStatus(const ros::MessageEvent<Mission_Status const>& 
   if (FromSelf(event.getPublisherName())) return;
   const Mission_Status& msg = *event.getMessage();
   if (!MayReport("Mission_Status", msg.mission_id, event.getPublisherName())) return;
-  if (msg.state >= kPhaseCount) {
+  if (msg.state >= core::kPhaseCount) {
     ROS_WARN("%s: ignored a Mission_Status of mission %u from %s: unknown state %u", kNode,
              msg.mission_id, event.getPublisherName().c_str(), msg.state);
     return;
@@ -517,11 +516,7 @@ void MissionDispatcher::OnProgress(const ros::MessageEvent<Mission_Status const>
 
 void MissionDispatcher::SendEvent(std::uint16_t id, core::MissionEventKind kind,
                                   std::uint64_t not_before_tick, const char* why) {
-  Mission_Event msg;
-  msg.mission_id = id;
-  msg.event = static_cast<std::uint8_t>(kind);
-  msg.not_before_tick = not_before_tick;
-  event_pub_.publish(msg);
+  event_pub_.publish(ToEventMsg(core::DueSignal{id, kind, not_before_tick}));
   ROS_INFO("%s: sent %s for mission %u (%s; from tick %llu)", kNode, EventName(kind), id, why,
            static_cast<unsigned long long>(not_before_tick));
 }

@@ -52,13 +52,6 @@ void MissionMirror::UpdateObject(std::uint16_t mission_id, core::Vec2 centre) {
   sim::UpdateMissionObject(mission_id, centre, *world_, &missions_);
 }
 
-void MissionMirror::TakeAnswer(const Tick_Answer& answer) {
-  for (const Update_Object& u : answer.object_updates) {
-    UpdateObject(u.mission_id, {u.object_position_x, u.object_position_y});
-  }
-  for (const Delete_Object& d : answer.object_deletes) missions_.erase(d.mission_id);
-}
-
 void MissionMirror::PublishObjects(std::uint64_t tick) {
   if (objects_pub_.getNumSubscribers() == 0) return;
   Mission_Objects objects;

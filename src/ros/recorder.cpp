@@ -57,10 +57,89 @@ std::string RecorderParams::Validate() const {
   return os.str();
 }
 
+core::RunMetricsParams RunMetricsParamsOf(const RecorderParams& params) {
+  core::RunMetricsParams metrics;
+  metrics.local_range_m = params.swarm.flocking.local_range_m;
+  metrics.goal_tolerance_m = params.swarm.leader.goal_tolerance_m;
+  metrics.sample_period_s = params.sample_period_s;
+  metrics.world_size_m = params.swarm.flocking.world_size_m;
+  return metrics;
+}
+
+core::MetricsFrame RecorderFrame(const Robot_Positions& msg, std::size_t* bad) {
+  core::MetricsFrame frame;
+  frame.tick = msg.tick;
+  frame.sim_time_s = msg.sim_time;
+  std::vector<std::pair<std::uint16_t, core::Vec2>> robots;
+  robots.reserve(msg.robots.size());
+  *bad = 0;
+  for (const Robot_Position& r : msg.robots) {
+    if (r.type != Robot_Position::TYPE_PHYSICAL) continue;
+    if (!std::isfinite(r.pos_x) || !std::isfinite(r.pos_y)) {
+      ++*bad;
+      continue;
+    }
+    robots.emplace_back(r.robot_id, core::Vec2{r.pos_x, r.pos_y});
+  }
+  const auto by_id = [](const auto& a, const auto& b) { return a.first < b.first; };
+  // The simulator sends them in id order already.
+  if (!std::is_sorted(robots.begin(), robots.end(), by_id)) {
+    std::stable_sort(robots.begin(), robots.end(), by_id);
+  }
+  frame.ids.reserve(robots.size());
+  frame.positions.reserve(robots.size());
+  for (const auto& r : robots) {
+    if (!frame.ids.empty() && frame.ids.back() == r.first) continue;  // a duplicate id
+    frame.ids.push_back(r.first);
+    frame.positions.push_back(r.second);
+  }
+  return frame;
+}
+
+std::string RecordOrder(const New_Mission& msg, const SwarmConfig& swarm,
+                        core::RunMetrics* metrics) {
+  const core::MissionSpec spec = ToMissionSpec(msg);
+  core::MissionContext context;
+  context.world_size_m = swarm.flocking.world_size_m;
+  const std::string why = core::ValidateMission(spec, context);
+  if (!why.empty()) {
+    return "ignored New_Mission " + std::to_string(msg.mission_id) + ": " + why;
+  }
+  return metrics->AddOrder(spec, msg.start_tick);
+}
+
+std::string RecordStatus(const Mission_Status& msg, core::RunMetrics* metrics) {
+  if (msg.state > Mission_Status::REJECTED || !std::isfinite(msg.object_position_x) ||
+      !std::isfinite(msg.object_position_y) || !std::isfinite(msg.distance_to_target)) {
+    return "ignored a Mission_Status of mission " + std::to_string(msg.mission_id) +
+           ": unknown state " + std::to_string(msg.state) + " or a non-finite field";
+  }
+  return metrics->AddStatus(msg.mission_id, static_cast<core::MissionPhase>(msg.state), msg.tick,
+                            core::Vec2{msg.object_position_x, msg.object_position_y});
+}
+
+bool WriteRunFile(const std::string& run_dir, const std::string& row, std::string* error) {
+  const std::string path = run_dir + "/run.csv";
+  const std::string temporary = path + ".tmp";
+  CsvFile file;
+  if (!file.Open(temporary, RunMetrics::kRunHeader, error) || !file.Append(row) ||
+      !file.Close()) {
+    if (error->empty()) *error = "cannot write " + temporary;
+    return false;
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    *error = "cannot rename " + temporary + " to " + path + ": " + std::strerror(errno);
+    return false;
+  }
+  return true;
+}
+
 CsvFile::~CsvFile() { Close(); }
 
-bool CsvFile::Open(const std::string& path, const std::string& header, std::string* error) {
+bool CsvFile::Open(const std::string& path, const std::string& header, std::string* error,
+                   bool flush_each_row) {
   Close();
+  flush_each_row_ = flush_each_row;
   file_ = std::fopen(path.c_str(), "w");
   if (file_ == nullptr) {
     *error = "cannot write " + path + ": " + std::strerror(errno);
@@ -77,12 +156,15 @@ bool CsvFile::Open(const std::string& path, const std::string& header, std::stri
 bool CsvFile::Append(const std::string& row) {
   if (file_ == nullptr) return false;
   const bool ok = std::fputs(row.c_str(), file_) >= 0 && std::fputc('\n', file_) != EOF;
+  if (!flush_each_row_) return ok;
   return std::fflush(file_) == 0 && ok;
 }
 
-void CsvFile::Close() {
-  if (file_ != nullptr) std::fclose(file_);
+bool CsvFile::Close() {
+  if (file_ == nullptr) return true;
+  const bool ok = std::fclose(file_) == 0;
   file_ = nullptr;
+  return ok;
 }
 
 Recorder::Recorder(ros::NodeHandle nh, ros::NodeHandle private_nh)
@@ -138,12 +220,7 @@ bool Recorder::Initialize() {
   std::string error;
   bool ok = LoadParams(&error);
   if (ok) {
-    core::RunMetricsParams metrics;
-    metrics.local_range_m = params_.swarm.flocking.local_range_m;
-    metrics.goal_tolerance_m = params_.swarm.leader.goal_tolerance_m;
-    metrics.sample_period_s = params_.sample_period_s;
-    metrics.world_size_m = params_.swarm.flocking.world_size_m;
-    metrics_.emplace(metrics, [](RunMetrics::Level level, const std::string& text) {
+    metrics_.emplace(RunMetricsParamsOf(params_), [](RunMetrics::Level level, const std::string& text) {
       if (level == RunMetrics::Level::kWarn) {
         ROS_WARN("%s: %s", kNode, text.c_str());
       } else {
@@ -243,30 +320,11 @@ void Recorder::OnPositions(const Robot_Positions::ConstPtr& msg) {
              static_cast<unsigned long long>(msg->tick - 1));
   }
   // Physical robots with finite positions, ascending ids, the first of duplicate ids.
-  core::MetricsFrame frame;
-  frame.tick = msg->tick;
-  frame.sim_time_s = msg->sim_time;
-  std::vector<std::pair<std::uint16_t, core::Vec2>> robots;
-  robots.reserve(msg->robots.size());
   std::size_t bad = 0;
-  for (const Robot_Position& r : msg->robots) {
-    if (r.type != Robot_Position::TYPE_PHYSICAL) continue;
-    if (!std::isfinite(r.pos_x) || !std::isfinite(r.pos_y)) {
-      ++bad;
-      continue;
-    }
-    robots.emplace_back(r.robot_id, core::Vec2{r.pos_x, r.pos_y});
-  }
+  core::MetricsFrame frame = RecorderFrame(*msg, &bad);
   if (bad > 0 && WarnDue(&last_bad_position_warning_)) {
     ROS_WARN("%s: ignored %zu robots with non-finite positions at tick %llu", kNode, bad,
              static_cast<unsigned long long>(msg->tick));
-  }
-  std::stable_sort(robots.begin(), robots.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
-  for (const auto& r : robots) {
-    if (!frame.ids.empty() && frame.ids.back() == r.first) continue;  // a duplicate id
-    frame.ids.push_back(r.first);
-    frame.positions.push_back(r.second);
   }
   std::optional<core::SwarmSample> sample;
   metrics_->AddFrame(std::move(frame), &sample);
@@ -287,39 +345,22 @@ void Recorder::Publish(const core::SwarmSample& sample) {
 }
 
 void Recorder::OnMissionNew(const New_Mission::ConstPtr& msg) {
-  core::MissionSpec spec = ToMissionSpec(*msg);
-  core::MissionContext context;
-  context.world_size_m = params_.swarm.flocking.world_size_m;
-  const std::string why = core::ValidateMission(spec, context);
-  if (!why.empty()) {
-    if (WarnDue(&last_bad_mission_warning_)) {
-      ROS_WARN("%s: ignored New_Mission %u: %s", kNode, msg->mission_id, why.c_str());
-    }
-    return;
-  }
-  const std::string not_followed = metrics_->AddOrder(spec, msg->start_tick);
-  if (!not_followed.empty() && WarnDue(&last_bad_mission_warning_)) {
-    ROS_WARN("%s: %s", kNode, not_followed.c_str());
+  const std::string warning = RecordOrder(*msg, params_.swarm, &*metrics_);
+  if (!warning.empty() && WarnDue(&last_bad_mission_warning_)) {
+    ROS_WARN("%s: %s", kNode, warning.c_str());
   }
   WriteMissions(true);
 }
 
 void Recorder::OnStatus(const Mission_Status::ConstPtr& msg) {
-  if (msg->state > Mission_Status::REJECTED || !std::isfinite(msg->object_position_x) ||
-      !std::isfinite(msg->object_position_y) || !std::isfinite(msg->distance_to_target)) {
-    if (WarnDue(&last_bad_status_warning_)) {
-      ROS_WARN(
-          "%s: ignored a Mission_Status of mission %u: unknown state %u or a non-finite "
-          "field",
-          kNode, msg->mission_id, msg->state);
-    }
-    return;
-  }
-  const std::string not_followed =
-      metrics_->AddStatus(msg->mission_id, static_cast<MissionPhase>(msg->state), msg->tick,
-                          core::Vec2{msg->object_position_x, msg->object_position_y});
-  if (!not_followed.empty() && WarnDue(&last_bad_mission_warning_)) {
-    ROS_WARN("%s: %s", kNode, not_followed.c_str());
+  const bool bad = msg->state > Mission_Status::REJECTED || !std::isfinite(msg->object_position_x) ||
+                   !std::isfinite(msg->object_position_y) ||
+                   !std::isfinite(msg->distance_to_target);
+  const std::string warning = RecordStatus(*msg, &*metrics_);
+  // A bad status and a status of a mission not followed warn apart.
+  if (!warning.empty() &&
+      WarnDue(bad ? &last_bad_status_warning_ : &last_bad_mission_warning_)) {
+    ROS_WARN("%s: %s", kNode, warning.c_str());
   }
   WriteMissions(true);
 }
@@ -336,21 +377,9 @@ void Recorder::WriteMissions(bool run) {
 
 void Recorder::WriteRun() {
   if (run_dir_.empty()) return;
-  const std::string row = metrics_->RunRow(params_.run_name, params_.seed);
-  // Written aside and renamed over the old file: a reader never sees half a file.
-  const std::string path = run_dir_ + "/run.csv";
-  const std::string temporary = path + ".tmp";
   std::string error;
-  CsvFile file;
-  if (!file.Open(temporary, RunMetrics::kRunHeader, &error) || !file.Append(row)) {
-    ROS_ERROR("%s: %s", kNode,
-              error.empty() ? ("cannot write " + temporary).c_str() : error.c_str());
-    return;
-  }
-  file.Close();
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    ROS_ERROR("%s: cannot rename %s to %s: %s", kNode, temporary.c_str(), path.c_str(),
-              std::strerror(errno));
+  if (!WriteRunFile(run_dir_, metrics_->RunRow(params_.run_name, params_.seed), &error)) {
+    ROS_ERROR("%s: %s", kNode, error.c_str());
   }
 }
 

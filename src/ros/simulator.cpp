@@ -87,19 +87,20 @@ bool Simulator::Initialize() {
   };
   links_ = std::make_unique<RobotLinks>(nh_, &cmd_queue_, direct_, lockstep_,
                                         params_.pose_topics, std::move(handlers));
+  missions_ = std::make_unique<MissionMirror>(params_.swarm.admission, world_.get());
+  engine_ = std::make_unique<LockstepEngine>(world_.get(), radio_.get(),
+                                             missions_->mutable_missions());
   if (lockstep_) {
     LockstepHooks hooks;
     hooks.running = &Simulator::Running;
     hooks.spin = [this](double wait_s) { SpinOnce(wait_s); };
     hooks.spin_robots = [this] { SpinRobots(); };
     hooks.visuals = [this] { PublishVisualsIfDue(); };
-    hooks.books = [this](const Tick_Answer& a) { missions_->TakeAnswer(a); };
     session_ = std::make_unique<LockstepSession>(nh_, params_, links_.get(), &cmd_queue_,
-                                                 std::move(hooks));
+                                                 engine_.get(), std::move(hooks));
   }
   roster_ = std::make_unique<RobotRoster>(world_.get(), links_.get(), session_.get(), direct_,
                                           params_.swarm.seed, &tick_);
-  missions_ = std::make_unique<MissionMirror>(params_.swarm.admission, world_.get());
   if (!params_.events_file.empty()) {
     events_ = std::make_unique<EventPlayer>(std::move(events), session_.get(), roster_.get(),
                                             missions_.get());
@@ -316,13 +317,12 @@ void Simulator::PublishRadio() {
   if (lockstep_) {
     // The orders due by this tick enter its relay and the simulator's books together (the
     // mission channel, markers); the rest wait for their start tick.
-    for (const New_Mission& order : session_->ReleaseOrders(tick_)) missions_->Register(order);
+    for (const auto& refused : engine_->ReleaseOrders(tick_)) {
+      ROS_DEBUG("simulator: ignored New_Mission %u: %s", refused.first.mission_id,
+                refused.second.c_str());
+    }
   }
-  const double sim_time = SimTime();
   const auto& robots = world_->robots();
-  std::vector<Robot_Position> truth;
-  truth.reserve(robots.size());
-  for (const auto& entry : robots) truth.push_back(ToRobotPosition(entry.first, entry.second.pose));
   // Robots that do not answer their ticks (dead, hung, not connected yet) are silent on the
   // radio: their peers lose them (issue 11). Directly linked robots always answer.
   std::set<std::uint16_t> quiet;
@@ -332,21 +332,20 @@ void Simulator::PublishRadio() {
         lockstep_ ? session_->Live(entry.first) : entry.second.neighbors_subscribers > 0;
     if (!answering) quiet.insert(entry.first);
   }
-  radio_->Begin(*world_, roster_->relayed().Extras(), missions_->missions(), quiet);
-  // Virtual copies are relayed at their owner's true pose, the others where announced.
-  const std::vector<Robot_Position> relayed =
-      roster_->relayed().AtOwners(radio_->extra_owner(), truth);
+  engine_->BeginRound(tick_, SimTime(), &roster_->relayed(), quiet);
 
-  sim::RadioRound round;
   if (lockstep_) session_->StartRound(tick_);
   std::size_t i = 0;
   for (auto robot = robots.begin(); robot != robots.end(); ++robot, ++i) {
     RobotLink* link = links_->Find(robot->first);
     if (link == nullptr) continue;
     if (!(lockstep_ ? session_->Live(robot->first) : link->Listening())) continue;
-    radio_->Hear(i, &round);
-    Neighbors msg = RadioRoundMessage(tick_, sim_time, robot->second, round, truth, relayed);
-    if (lockstep_) session_->FillRound(robot->first, &msg);
+    Neighbors msg;
+    if (lockstep_) {
+      session_->Round(i, robot->first, &msg);
+    } else {
+      engine_->Round(i, false, &msg);  // real time relays nothing: its robots hear the topics
+    }
     tuning_->Fill(&msg);
     link->Deliver(robot->first, direct_, std::move(msg));
     if (lockstep_) session_->Asked(robot->first);
@@ -356,8 +355,8 @@ void Simulator::PublishRadio() {
   if (direct_ != nullptr) direct_->EndRound();
   Robot_Positions all;
   all.tick = tick_;
-  all.sim_time = sim_time;
-  all.robots = std::move(truth);
+  all.sim_time = engine_->sim_time();
+  all.robots = engine_->TakeTruth();
   positions_pub_.publish(all);
   missions_->PublishObjects(tick_);
 }

@@ -1,16 +1,17 @@
-// Experiment runs in one process without a ROS master [issue 10, item 9]: the lock-step tick of
-// swarm.launch with deploy:=host_sim, the dispatcher's part in an experiment and the recorder,
-// composed from the same parts the nodes use (World2D and its placement, the Radio,
-// RadioRoundMessage / ToPerception, RobotBrain and its StatusSequencer, RegisterMission and
-// UpdateMissionObject, the dispatcher's MissionBook, the recorder's RunMetrics), so
-// that a run gives the same rows as a launched one while costing no start-up: a fresh world,
-// robots and generators per run, nothing kept between runs. `scripts/experiment run` uses it by
-// default (--engine batch); test/batch_equivalence.test compares its rows with launched runs.
+// Experiment runs in one process without a ROS master [issue 10, item 9; issue 25]: the
+// lock-step engine that the simulator drives (ros/lockstep_engine.h), driven here with the
+// robots' own sessions (ros/robot_session.h), the dispatcher's book as a dispatcher without
+// private parameters makes it (MissionBookParamsOf), and the recorder's bookkeeping and file
+// writers (ros/recorder.h), so that a run gives the same rows and poses as a launched one
+// (test/batch_equivalence.test, tick by tick) while costing no start-up: a fresh world, robots
+// and generators per run, nothing kept between runs. `scripts/experiment run` uses it by
+// default (--engine batch).
 //
 // What it leaves out, because an experiment does not use it: virtual copies and statists (no
-// robot announces one yet), real time, robots joining or leaving, missions other than the one
-// the runner submits before tick 0, and the wall-clock waits of the ROS barrier (nothing here
-// can be late).
+// robot announces one yet), live tuning, real time, robots joining or leaving, missions other
+// than the one the runner submits before tick 0, the dispatcher's watchdog of silent first
+// leaders (no robot here falls silent), and the wall-clock waits of the ROS barrier (nothing
+// here can be late).
 #ifndef SWARM_TRANSPORT_ROS_BATCH_RUN_H_
 #define SWARM_TRANSPORT_ROS_BATCH_RUN_H_
 

@@ -57,6 +57,10 @@ bool ReadDispatcherOptions(const ros::NodeHandle& nh, const ros::NodeHandle& pri
                            std::vector<core::MissionSpec>* file_missions, std::string* error,
                            std::vector<std::uint64_t>* file_ticks = nullptr);
 
+// The options of a dispatcher without private parameters: its delays and live-mission limit
+// are /swarm's (`config`), the rest the defaults above.
+DispatcherOptions DispatcherOptionsOf(const SwarmConfig& config);
+
 // The mission book the options describe.
 core::MissionBookParams MissionBookParamsOf(const SwarmConfig& config,
                                             const DispatcherOptions& options);

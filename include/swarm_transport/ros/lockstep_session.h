@@ -1,11 +1,11 @@
-// The simulator's lock-step protocol over ROS [SPEC 7]: who is live, when a tick is complete,
-// and the relay of the robots' and the dispatcher's mission messages. The decisions are the
-// pure barrier's (sim/lockstep_barrier.h) and relay's (ros/mission_relay.h); this class feeds
-// them from topics and the robots' links, waits, and tells observers what the robots said.
+// The simulator's lock-step protocol over ROS [SPEC 7]: who is live and when a tick is
+// complete. The tick itself (rounds, relay, answers) is the engine's (ros/lockstep_engine.h),
+// the decisions are the pure barrier's (sim/lockstep_barrier.h); this class feeds them from
+// topics and the robots' links, waits, and tells observers what the robots said.
 //
 // A tick, driven by the simulator:
 //   BeginTick    robots that connected become live, gone ones not; holds for the dispatcher
-//   (the simulator publishes /clock and the radio: ReleaseOrders, then per robot FillRound,
+//   (the simulator publishes /clock and the radio: ReleaseOrders, then per robot Round,
 //    deliver, Asked; then EndRound)
 //   WaitForAnswers  until every live robot answered (or the timeout); their mission messages
 //                go into the next round's relay, the simulator's books and observers' topics
@@ -29,6 +29,7 @@
 #include "swarm_transport/New_Mission.h"
 #include "swarm_transport/Tick_Answer.h"
 #include "swarm_transport/core/kinematics.h"
+#include "swarm_transport/ros/lockstep_engine.h"
 #include "swarm_transport/ros/mission_relay.h"
 #include "swarm_transport/ros/robot_links.h"
 #include "swarm_transport/ros/simulator_params.h"
@@ -42,16 +43,13 @@ struct LockstepHooks {
   std::function<void(double)> spin;          // all queues once, waiting up to s for a command
   std::function<void()> spin_robots;         // the directly linked robots' pending callbacks
   std::function<void()> visuals;             // markers and tf when due
-  // A tick's answer's mission messages, for the simulator's own books (object updates and
-  // deletes), in relay order.
-  std::function<void(const Tick_Answer&)> books;
 };
 
 class LockstepSession {
  public:
-  // `links` and `command_queue` (where answers arrive) must outlive the session.
+  // `links`, `command_queue` (where answers arrive) and `engine` must outlive the session.
   LockstepSession(ros::NodeHandle nh, const SimulatorParams& params, RobotLinks* links,
-                  ros::CallbackQueue* command_queue, LockstepHooks hooks);
+                  ros::CallbackQueue* command_queue, LockstepEngine* engine, LockstepHooks hooks);
 
   // Subscribes the relayed mission topics (and the dispatcher's schedule), advertises the
   // observers' topics.
@@ -80,16 +78,15 @@ class LockstepSession {
   // Statist as dispatcher (SPEC 9.4): the statists of the dispatcher's recruiting missions that
   // stand at tick `tick` (from its schedule; the simulator relays them).
   std::vector<Robot_Position> RecruitStatists(std::uint64_t tick) const;
-  // The held orders due by `tick` (they enter this tick's relay; the simulator's books too).
-  std::vector<New_Mission> ReleaseOrders(std::uint64_t tick) { return relay_.ReleaseOrders(tick); }
-  // Round of tick `tick`: StartRound, then per live robot FillRound, its delivery, Asked;
-  // EndRound once every round is out.
+  // Round of tick `tick` (after the engine's BeginRound): StartRound, then per live robot
+  // Round, its delivery, Asked; EndRound once every round is out.
   void StartRound(std::uint64_t tick) { barrier_.StartTick(tick); }
-  // Robot `id`'s round; the first after its process connected (at tick 0 or when it joins or
-  // comes back) also carries the orders of the missions that have not ended (FillStanding).
-  void FillRound(std::uint16_t id, Neighbors* round);
+  // The round of robot `id` at world index `index`; the first after its process connected (at
+  // tick 0 or when it joins or comes back) also carries the orders of the missions that have
+  // not ended (MissionRelay::FillStanding).
+  void Round(std::size_t index, std::uint16_t id, Neighbors* round);
   void Asked(std::uint16_t id) { barrier_.Ask(id); }
-  void EndRound() { relay_.Clear(); }
+  void EndRound() { engine_->EndRound(); }
   // Spins until every live robot answered tick `tick` or the timeout passed; robots that did
   // not answer are out of the barrier until they answer again.
   void WaitForAnswers(std::uint64_t tick);
@@ -111,18 +108,18 @@ class LockstepSession {
   void WaitForJoining(std::uint64_t tick);
   void UpdateLiveness(std::uint64_t tick);
   void WaitForDispatcher(std::uint64_t tick);
-  // Once a tick's answers are in: their mission messages, by robot id, into the next relay,
-  // the simulator's books and the observers' topics.
+  // Once a tick's answers are in: the engine takes them (next relay, books), the observers'
+  // topics get their mission messages.
   void TakeAnswers();
 
   ros::NodeHandle nh_;
   const SimulatorParams& params_;
   RobotLinks* links_;
   ros::CallbackQueue* command_queue_;
+  LockstepEngine* engine_;
   LockstepHooks hooks_;
   sim::LockstepBarrier barrier_;
-  MissionRelay relay_;
-  std::vector<std::pair<std::uint16_t, Tick_Answer>> answers_;  // not taken yet
+  LockstepEngine::Answers answers_;  // not taken yet
   bool finished_ = false;
   bool started_ = false;             // WaitForStart is done
   std::set<std::uint16_t> joining_;  // added since the last tick began (after the start)

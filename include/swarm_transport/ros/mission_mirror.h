@@ -36,12 +36,13 @@ class MissionMirror {
   void Register(const New_Mission& order);
   // A mission's object moved (an Update_Object taken, or a timed event).
   void UpdateObject(std::uint16_t mission_id, core::Vec2 centre);
-  // Lock-step: the object updates and deletions a robot sent in its answer.
-  void TakeAnswer(const Tick_Answer& answer);
   // /flock/objects of tick `tick`, when someone listens.
   void PublishObjects(std::uint64_t tick);
 
   const sim::LiveMissions& missions() const { return missions_; }
+  // For the lock-step engine, which enters the orders it releases and the answers' object
+  // updates and deletions itself.
+  sim::LiveMissions* mutable_missions() { return &missions_; }
 
  private:
   void OnMissionNew(const ros::MessageEvent<New_Mission const>& event);

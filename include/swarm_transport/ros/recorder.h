@@ -30,8 +30,12 @@ struct RecorderParams {
   std::string Validate() const;
 };
 
+// The recorder's bookkeeping parameters (core::RunMetrics) of `params`.
+core::RunMetricsParams RunMetricsParamsOf(const RecorderParams& params);
+
 // An append-only CSV file: header at open, every row flushed at once so that the file is
-// complete up to the last row even when the process is killed.
+// complete up to the last row even when the process is killed (unless opened without: a
+// trace of every robot at every tick is written at the close).
 class CsvFile {
  public:
   CsvFile() = default;
@@ -39,15 +43,32 @@ class CsvFile {
   CsvFile(const CsvFile&) = delete;
   CsvFile& operator=(const CsvFile&) = delete;
   // Truncates `path` and writes `header`. False with `error` when it cannot.
-  bool Open(const std::string& path, const std::string& header, std::string* error);
+  bool Open(const std::string& path, const std::string& header, std::string* error,
+            bool flush_each_row = true);
   bool is_open() const { return file_ != nullptr; }
   // Appends one line (without its newline) and flushes; false on a write error.
   bool Append(const std::string& row);
-  void Close();
+  // False when a write failed (nothing open: true).
+  bool Close();
 
  private:
   std::FILE* file_ = nullptr;
+  bool flush_each_row_ = true;
 };
+
+// What the recorder makes of the messages it hears - the recorder node on its topics, the batch
+// engine on its own run's - with the same checks. Each returns an empty string when taken, else
+// the warning to give.
+// /flock/positions -> a frame: physical robots with finite positions, ascending ids, the first of
+// duplicate ids; `bad` counts those with non-finite positions.
+core::MetricsFrame RecorderFrame(const Robot_Positions& msg, std::size_t* bad);
+// An order (as published) is followed when valid in the arena.
+std::string RecordOrder(const New_Mission& msg, const SwarmConfig& swarm, core::RunMetrics* metrics);
+// A phase status (state <= REJECTED, finite fields) is booked for its mission.
+std::string RecordStatus(const Mission_Status& msg, core::RunMetrics* metrics);
+// Writes <run_dir>/run.csv: the header and `row`, written aside and renamed over the old file
+// so that a reader never sees half a file.
+bool WriteRunFile(const std::string& run_dir, const std::string& row, std::string* error);
 
 // Subscribes /flock/positions (every tick), /flock/mission/new and /flock/mission/status;
 // publishes /flock/stats at every sample; writes swarm_count.csv (one row per sample),

@@ -27,6 +27,7 @@
 #include "swarm_transport/ros/direct_link.h"
 #include "swarm_transport/ros/event_player.h"
 #include "swarm_transport/ros/live_tuning.h"
+#include "swarm_transport/ros/lockstep_engine.h"
 #include "swarm_transport/ros/lockstep_hold.h"
 #include "swarm_transport/ros/lockstep_session.h"
 #include "swarm_transport/ros/mission_mirror.h"
@@ -137,6 +138,7 @@ class Simulator : public RobotOutlet {
   bool radio_follows_range_ = true;  // ~radio_range_m unset: the radio's range is the local range
   std::unique_ptr<RobotRoster> roster_;      // spawn, kill, teleports, copies and statists
   std::unique_ptr<MissionMirror> missions_;  // what the robots act on, for radio and markers
+  std::unique_ptr<LockstepEngine> engine_;    // the rounds (lock-step: and the relay)
 
   ros::Publisher positions_pub_;
   std::unique_ptr<LockstepSession> session_;  // lock-step only
