@@ -86,7 +86,12 @@ void CsvFile::Close() {
 }
 
 Recorder::Recorder(ros::NodeHandle nh, ros::NodeHandle private_nh)
-    : nh_(nh), private_nh_(private_nh) {}
+    : nh_(nh),
+      private_nh_(private_nh),
+      bad_position_warning_(kWarnPeriodS),
+      bad_status_warning_(kWarnPeriodS),
+      bad_mission_warning_(kWarnPeriodS),
+      tick_warning_(kWarnPeriodS) {}
 
 void Recorder::RequestStop() { stop_requested_ = 1; }
 
@@ -209,16 +214,9 @@ void Recorder::Shutdown() {
            run_dir_.empty() ? "" : "; files in ", run_dir_.c_str());
 }
 
-bool Recorder::WarnDue(ros::WallTime* last) {
-  const ros::WallTime now = ros::WallTime::now();
-  if (!last->isZero() && (now - *last).toSec() < kWarnPeriodS) return false;
-  *last = now;
-  return true;
-}
-
 void Recorder::OnPositions(const Robot_Positions::ConstPtr& msg) {
   if (!std::isfinite(msg->sim_time)) {
-    if (WarnDue(&last_bad_position_warning_)) {
+    if (bad_position_warning_.Due()) {
       ROS_WARN("%s: ignored /flock/positions of tick %llu: sim_time is not finite", kNode,
                static_cast<unsigned long long>(msg->tick));
     }
@@ -228,7 +226,7 @@ void Recorder::OnPositions(const Robot_Positions::ConstPtr& msg) {
   const std::uint64_t newest = metrics_->newest_tick();
   if (has_frames && msg->tick <= newest) {
     // The latched message again (a reconnection), or a restarted simulator.
-    if (msg->tick < newest && WarnDue(&last_tick_warning_)) {
+    if (msg->tick < newest && tick_warning_.Due()) {
       ROS_WARN(
           "%s: /flock/positions went back from tick %llu to %llu; ignored until it passes "
           "tick %llu again",
@@ -237,7 +235,7 @@ void Recorder::OnPositions(const Robot_Positions::ConstPtr& msg) {
     }
     return;
   }
-  if (has_frames && msg->tick > newest + 1 && WarnDue(&last_tick_warning_)) {
+  if (has_frames && msg->tick > newest + 1 && tick_warning_.Due()) {
     ROS_WARN("%s: missed /flock/positions ticks %llu..%llu (queue overflow or late start)", kNode,
              static_cast<unsigned long long>(newest + 1),
              static_cast<unsigned long long>(msg->tick - 1));
@@ -257,7 +255,7 @@ void Recorder::OnPositions(const Robot_Positions::ConstPtr& msg) {
     }
     robots.emplace_back(r.robot_id, core::Vec2{r.pos_x, r.pos_y});
   }
-  if (bad > 0 && WarnDue(&last_bad_position_warning_)) {
+  if (bad > 0 && bad_position_warning_.Due()) {
     ROS_WARN("%s: ignored %zu robots with non-finite positions at tick %llu", kNode, bad,
              static_cast<unsigned long long>(msg->tick));
   }
@@ -292,13 +290,13 @@ void Recorder::OnMissionNew(const New_Mission::ConstPtr& msg) {
   context.world_size_m = params_.swarm.flocking.world_size_m;
   const std::string why = core::ValidateMission(spec, context);
   if (!why.empty()) {
-    if (WarnDue(&last_bad_mission_warning_)) {
+    if (bad_mission_warning_.Due()) {
       ROS_WARN("%s: ignored New_Mission %u: %s", kNode, msg->mission_id, why.c_str());
     }
     return;
   }
   const std::string not_followed = metrics_->AddOrder(spec, msg->start_tick);
-  if (!not_followed.empty() && WarnDue(&last_bad_mission_warning_)) {
+  if (!not_followed.empty() && bad_mission_warning_.Due()) {
     ROS_WARN("%s: %s", kNode, not_followed.c_str());
   }
   WriteMissions(true);
@@ -307,7 +305,7 @@ void Recorder::OnMissionNew(const New_Mission::ConstPtr& msg) {
 void Recorder::OnStatus(const Mission_Status::ConstPtr& msg) {
   if (msg->state > Mission_Status::REJECTED || !std::isfinite(msg->object_position_x) ||
       !std::isfinite(msg->object_position_y) || !std::isfinite(msg->distance_to_target)) {
-    if (WarnDue(&last_bad_status_warning_)) {
+    if (bad_status_warning_.Due()) {
       ROS_WARN(
           "%s: ignored a Mission_Status of mission %u: unknown state %u or a non-finite "
           "field",
@@ -318,7 +316,7 @@ void Recorder::OnStatus(const Mission_Status::ConstPtr& msg) {
   const std::string not_followed =
       metrics_->AddStatus(msg->mission_id, static_cast<MissionPhase>(msg->state), msg->tick,
                           core::Vec2{msg->object_position_x, msg->object_position_y});
-  if (!not_followed.empty() && WarnDue(&last_bad_mission_warning_)) {
+  if (!not_followed.empty() && bad_mission_warning_.Due()) {
     ROS_WARN("%s: %s", kNode, not_followed.c_str());
   }
   WriteMissions(true);
