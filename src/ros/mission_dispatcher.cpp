@@ -582,6 +582,11 @@ bool MissionDispatcher::OnStatusService(std_srvs::Trigger::Request& /*req*/,
                                         std_srvs::Trigger::Response& res) {
   res.success = true;
   res.message = book_->Table(ros::Time::now().toSec());
+  // The tick of the poses it picks robots from (a count-only order): a test that holds the run
+  // waits for it instead of sleeping.
+  if (positions_) {
+    res.message += "positions of tick " + std::to_string(positions_->tick) + "\n";
+  }
   return true;
 }
 
