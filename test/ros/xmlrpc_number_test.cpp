@@ -96,8 +96,8 @@ TEST(XmlRpcNumberTest, TheSwarmConfigurationReadsNumbersThroughIt) {
   };
   SwarmConfig config;
   std::string error;
-  ASSERT_TRUE(load("cohesion: 2", &config, &error)) << error;
-  EXPECT_EQ(config.flocking.cohesion, 2.0);
+  ASSERT_TRUE(load("cohesion: 1", &config, &error)) << error;
+  EXPECT_EQ(config.flocking.cohesion, 1.0);
   ASSERT_TRUE(load("cohesion: 0.5", &config, &error)) << error;
   EXPECT_EQ(config.flocking.cohesion, 0.5);
   const std::vector<std::pair<std::string, std::string>> refused = {
