@@ -55,8 +55,7 @@ class Missions(unittest.TestCase):
         self.assertTrue(st.wait_connected(self.raw, self.timeout))
         for mid, m in sorted(bad.items()):
             self.raw.publish(m)
-            rospy.sleep(0.05)
-        for mid in bad:
+            # Delivered: the dispatcher answers it before the next one goes.
             self.assertTrue(st.wait_for(lambda: self.status.first(mid, 7) is not None, 30),
                             'no REJECTED status for mission %d' % mid)
             self.assertTrue(self.status.first(mid, 7).reason)
@@ -65,6 +64,10 @@ class Missions(unittest.TestCase):
         self.assertEqual(self.submit(ok).code, 0)
         dup = st.mission(48, 5, 10, 1, (3.0, 8.0, 2.0, 2.0), (8.0, 3.0))
         self.assertNotEqual(self.submit(dup).code, 0, 'duplicate live mission id accepted')
+        # The good order, sent after the bad ones, reached the robots (its first leader's
+        # QUEUED): what follows is not "nothing arrived yet".
+        self.assertTrue(st.wait_for(lambda: self.status.first(48, 0) is not None, self.timeout),
+                        'mission 48 never reached its robots: %s' % self.status.states(48))
         t = self.log.latest_tick()
         self.assertTrue(self.log.wait_tick(t + 20, self.timeout), 'the swarm stopped ticking')
         for rid, state in self.states(robots).items():
@@ -91,7 +94,12 @@ class Missions(unittest.TestCase):
         answer = hold(at)
         self.assertEqual(answer.code, Hold._response_class.OK, answer.message)
         self.assertTrue(st.wait_for(lambda: hold(at).holding, self.timeout), 'it never held')
-        rospy.sleep(1.0)  # the dispatcher has the poses of tick at - 1 too
+        self.assertTrue(st.wait_for(lambda: self.log.latest_tick() == at - 1, self.timeout),
+                        'held, the newest poses are of tick %d' % self.log.latest_tick())
+        # The dispatcher has the poses of tick at - 1 too (the newest: the run holds).
+        self.assertTrue(st.wait_for(lambda: st.dispatcher_positions_tick() == at - 1,
+                                    self.timeout),
+                        'the dispatcher has the poses of tick %s' % st.dispatcher_positions_tick())
         orders = []
         sub = rospy.Subscriber('/flock/mission/new', New_Mission,
                                lambda o: orders.append(o) if o.mission_id == 51 else None)
@@ -126,15 +134,24 @@ class Missions(unittest.TestCase):
                          'picked %s, leaders %s' % (picked, list(order.leader_ids)))
         self.assertNotEqual(sorted(order.leader_ids), picked[:leaders])
         # The robots lead as the order says: the hold moves on 5 ticks at a time until the
-        # mission gathers, then they are asked.
+        # mission gathers (its first leader, one of the leaders, says so in its ~state: no
+        # status in flight to wait for), then they are asked.
+        def gathering():
+            for rid in order.leader_ids:
+                state = st.robot_state(rid, self.timeout)
+                phases = dict(zip(state.mission_ids, bytearray(state.mission_phases)))
+                if phases.get(51, 0) >= 1:
+                    return True
+            return False
+
         for _ in range(40):
-            if self.status.first(51, 1) is not None or self.status.final(51):
+            if gathering():
                 break
             at += 5
             self.assertEqual(hold(at).code, Hold._response_class.OK)
             self.assertTrue(st.wait_for(lambda: hold(at).holding, self.timeout), 'never held')
-            rospy.sleep(0.5)  # the statuses of tick at - 1
-        self.assertIsNotNone(self.status.first(51, 1), self.status.states(51))
+        self.assertTrue(st.wait_for(lambda: self.status.first(51, 1) is not None, self.timeout),
+                        self.status.states(51))
         self.assertFalse(self.status.final(51), self.status.states(51))
         states = self.states(robots)
         self.assertEqual(hold(0).code, Hold._response_class.OK)

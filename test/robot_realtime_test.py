@@ -22,6 +22,7 @@ import unittest
 import rospy
 import rostest
 from geometry_msgs.msg import Twist
+from rosgraph_msgs.msg import Log
 from swarm_transport.msg import (Neighbors, Robot_Continue, Robot_Freeze, Robot_Position,
                                  Robot_Positions)
 
@@ -49,7 +50,8 @@ class RobotRealtime(unittest.TestCase):
         cls.tick = 0
         cls.stop = False
         rospy.Subscriber('/robot_%d/cmd_vel' % cls.rid, Twist, cls.on_command, queue_size=100)
-        rospy.Subscriber('/flock/position', Robot_Position, cls.on_position, queue_size=100)
+        cls.position_sub = rospy.Subscriber('/flock/position', Robot_Position, cls.on_position,
+                                            queue_size=100)
         cls.rounds = rospy.Publisher('/robot_%d/neighbors' % cls.rid, Neighbors, queue_size=10)
         cls.robots = rospy.Publisher('/flock/robots', Robot_Positions, queue_size=1, latch=True)
         cls.freeze = rospy.Publisher('/flock/freeze', Robot_Freeze, queue_size=10)
@@ -122,20 +124,36 @@ class RobotRealtime(unittest.TestCase):
         self.assertTicksOwnPeriod(self.count_over_window(), 'rounds at its rate')
         with self.lock:
             type(self).round_hz = 4.0 / self.period
-        time.sleep(self.period)
+            changed = type(self).tick
+        # Rounds at the new rate have begun (the round under way waited at the old one).
+        self.assertTrue(st.wait_for(lambda: type(self).tick >= changed + 2, self.timeout))
         self.assertTicksOwnPeriod(self.count_over_window(), 'rounds at 4x its rate')
+        # Rounds with a NaN pose: it keeps ticking - and it got them (it says it refused one:
+        # the count alone would be the same if they were lost).
+        refusals = []
+        log = rospy.Subscriber('/rosout', Log, lambda m: refusals.append(m.msg)
+                               if 'non-finite own pose' in m.msg else None, queue_size=100)
+        self.assertTrue(st.wait_hears(log, ['/robot_%d/robot' % self.rid], self.timeout))
         with self.lock:
             type(self).round_hz = 1.0 / self.period
             type(self).bad = True
         self.assertTicksOwnPeriod(self.count_over_window(), 'rounds with a NaN pose')
         with self.lock:
             type(self).bad = False
+        self.assertTrue(st.wait_for(lambda: refusals, self.timeout),
+                        'the robot never said it refused a round with a NaN pose')
+        log.unregister()
 
     def test_2_announces_its_position_only_while_observed(self):
-        settle = g('settle_s')
-        time.sleep(settle)
+        robot = '/robot_%d/robot' % self.rid
+        # We would hear it announce, and it knows only the simulator listens.
+        self.assertTrue(st.wait_hears(self.position_sub, [robot], self.timeout),
+                        'not connected to the robot\'s /flock/position')
+        self.assertTrue(st.wait_for(
+            lambda: st.subscribers_of(robot, '/flock/position') == {'/simulator'}, self.timeout),
+            st.subscribers_of(robot, '/flock/position'))
         t0 = time.time()
-        time.sleep(2.0)
+        time.sleep(2.0)  # the observed time: nothing may be announced meanwhile
         self.assertEqual(self.since(self.positions, t0), [],
                          'it announced its position with only the simulator listening')
         env = dict(os.environ)
@@ -159,20 +177,30 @@ class RobotRealtime(unittest.TestCase):
                              self.speed + g('position_tolerance_m'),
                              'announced (%.3f, %.3f), its round said (5, 3)'
                              % (last.pos_x, last.pos_y))
-        time.sleep(settle)  # the observer's disconnection reaches the robot
+        # The observer's disconnection reached the robot: the simulator is its only listener.
+        self.assertTrue(st.wait_for(
+            lambda: st.subscribers_of(robot, '/flock/position') == {'/simulator'}, self.timeout),
+            st.subscribers_of(robot, '/flock/position'))
         t1 = time.time()
-        time.sleep(2.0)
+        time.sleep(2.0)  # the observed time: nothing may be announced meanwhile
         self.assertEqual(self.since(self.positions, t1), [],
                          'it went on announcing its position after the observer left')
 
     def test_3_freeze_and_continue_from_the_topics(self):
-        settle = g('settle_s')
         self.freeze.publish(Robot_Freeze(robot_index_from=self.rid, robot_index_to=self.rid + 1))
         self.assertTrue(st.wait_for(lambda: st.robot_state(self.rid, self.timeout).frozen,
                                     self.timeout), 'not frozen')
-        time.sleep(settle)
-        t0 = time.time()
-        time.sleep(1.0)
+        # Commands of ticks before the freeze may still be on their way: the window starts at
+        # the first zero command, after which (one connection, in order) all are of frozen ticks.
+        with self.lock:
+            seen = len(self.commands)
+        self.assertTrue(st.wait_for(
+            lambda: any(c.linear.x == 0.0 and c.angular.z == 0.0
+                        for _, c in self.commands[seen:]), self.timeout), 'no zero command')
+        with self.lock:
+            t0 = next(t for t, c in self.commands[seen:]
+                      if c.linear.x == 0.0 and c.angular.z == 0.0)
+        time.sleep(1.0)  # the observed time: every command meanwhile must be zero
         frozen = self.since(self.commands, t0)
         self.assertGreater(len(frozen), 0)
         self.assertTrue(all(c.linear.x == 0.0 and c.angular.z == 0.0 for c in frozen),

@@ -14,7 +14,6 @@ changed nothing and stopped nothing). Typed results only: codes, /flock/robots, 
 import math
 import sys
 import threading
-import time
 import unittest
 
 import rospy
@@ -92,7 +91,10 @@ class ServiceInterface(unittest.TestCase):
         submit = rospy.ServiceProxy('/mission_dispatcher/submit', Submit_Mission)
         orders = Latest('/flock/mission/new', New_Mission)
         statuses = Latest('/flock/mission/status', Mission_Status)
-        time.sleep(1.0)  # connected to the dispatcher's (latched) publications
+        # Connected to the dispatcher's publications: from now on we hear all it sends.
+        for latest in (orders, statuses):
+            self.assertTrue(st.wait_hears(latest.sub, ['/mission_dispatcher'], self.timeout),
+                            latest.sub.name)
         base = len([m for m in orders.all() if m.mission_id == 21])
         good = st.mission(21, 0, 2, 1, (6.0, 6.0, 1.0, 1.0), (3.0, 3.0))
         res = submit(mission=good)
@@ -108,11 +110,19 @@ class ServiceInterface(unittest.TestCase):
             res = submit(mission=order)
             self.assertEqual(res.code, 1, 'mission %d accepted' % order.mission_id)
             self.assertTrue(res.message, 'no reason for mission %d' % order.mission_id)
-        time.sleep(g('quiet_s'))
+        # A good order after the bad ones: once its New_Mission is here, any the dispatcher sent
+        # before it is here too (one publisher, one connection, in order).
+        sentinel = st.mission(25, 0, 2, 1, (6.0, 6.0, 1.0, 1.0), (3.0, 3.0))
+        res = submit(mission=sentinel)
+        self.assertEqual(res.code, 0, res.message)
+        self.assertTrue(st.wait_for(lambda: any(m.mission_id == 25 for m in orders.all()),
+                                    self.timeout), 'no New_Mission of the good mission 25')
         self.assertEqual(len([m for m in orders.all() if m.mission_id == 21]), base + 1)
         self.assertEqual([m for m in orders.all() if m.mission_id in (22, 23, 24)], [])
-        rejected = {m.mission_id for m in statuses.all() if m.state == Mission_Status.REJECTED}
-        self.assertTrue({22, 23, 24} <= rejected, rejected)
+        self.assertTrue(st.wait_for(
+            lambda: {22, 23, 24} <= {m.mission_id for m in statuses.all()
+                                     if m.state == Mission_Status.REJECTED}, self.timeout),
+            [(m.mission_id, m.state) for m in statuses.all()])
 
 
 if __name__ == '__main__':

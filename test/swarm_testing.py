@@ -126,6 +126,36 @@ def wait_connected(pub, timeout, at_least=1):
     return wait_for(connected, timeout)
 
 
+def wait_hears(sub, nodes, timeout):
+    """Waits until subscriber `sub` is connected to the publisher of each node in `nodes` (e.g.
+    '/robot_3/robot'): from then on everything those nodes publish on its topic reaches it."""
+    import rosgraph
+    master = rosgraph.Master(rospy.get_name())
+
+    def connected():
+        try:
+            uris = [master.lookupNode(name) for name in nodes]
+        except (rosgraph.MasterError, OSError):
+            return False
+        return all(sub.impl.has_connection(uri) for uri in uris)
+
+    return wait_for(connected, timeout)
+
+
+def subscribers_of(node, topic):
+    """The nodes `node` (a roscpp or rospy node) sends `topic` to now, from its own bus
+    information (getBusInfo): what it knows, not what the master says."""
+    import xmlrpc.client
+    import rosgraph
+    import rosnode
+    caller = rospy.get_name()
+    api = rosnode.get_api_uri(rosgraph.Master(caller), node, skip_cache=True)
+    code, _, info = xmlrpc.client.ServerProxy(api).getBusInfo(caller)
+    assert code == 1, 'no bus information of %s' % node
+    # [connection id, destination, direction ('o': outbound), transport, topic, connected, ...]
+    return {c[1] for c in info if c[2] == 'o' and c[4] == topic and c[5]}
+
+
 def dispatcher_tracks(mission_id):
     """True when the dispatcher's ~status table lists the mission."""
     from std_srvs.srv import Trigger
@@ -134,6 +164,20 @@ def dispatcher_tracks(mission_id):
     except (rospy.ServiceException, rospy.ROSException):
         return False
     return any(line.split()[:1] == [str(mission_id)] for line in table.splitlines()[1:])
+
+
+def dispatcher_positions_tick():
+    """The tick of the newest /flock/positions the dispatcher has (the last line of its ~status:
+    'positions of tick N'), or None."""
+    from std_srvs.srv import Trigger
+    try:
+        table = rospy.ServiceProxy('/mission_dispatcher/status', Trigger)().message
+    except (rospy.ServiceException, rospy.ROSException):
+        return None
+    for line in table.splitlines():
+        if line.startswith('positions of tick '):
+            return int(line.split()[-1])
+    return None
 
 
 def submit_before_first_tick(pub, msg, timeout):

@@ -12,18 +12,6 @@ namespace {
 
 using XmlRpc::XmlRpcValue;
 
-// XmlRpc gives ints and doubles as different types; `x: 7` in a YAML file means 7.0.
-bool AsDouble(XmlRpcValue& v, double* out) {
-  if (v.getType() == XmlRpcValue::TypeDouble) {
-    *out = static_cast<double>(v);
-  } else if (v.getType() == XmlRpcValue::TypeInt) {
-    *out = static_cast<int>(v);
-  } else {
-    return false;
-  }
-  return std::isfinite(*out);
-}
-
 // An integer in [lo, hi] or false.
 bool AsInt(XmlRpcValue& v, int lo, int hi, int* out) {
   if (v.getType() != XmlRpcValue::TypeInt) return false;
@@ -36,7 +24,7 @@ bool AsNumbers(XmlRpcValue& v, int n, std::vector<double>* out) {
   if (v.getType() != XmlRpcValue::TypeArray || v.size() != n) return false;
   out->assign(static_cast<std::size_t>(n), 0.0);
   for (int i = 0; i < n; ++i) {
-    if (!AsDouble(v[i], &(*out)[static_cast<std::size_t>(i)])) return false;
+    if (!XmlRpcNumber(v[i], &(*out)[static_cast<std::size_t>(i)])) return false;
   }
   return true;
 }

@@ -14,17 +14,9 @@ namespace {
 
 using XmlRpc::XmlRpcValue;
 
+// `key` is present and holds a finite number (XmlRpcNumber).
 bool Number(XmlRpcValue& e, const char* key, double* out) {
-  if (!e.hasMember(key)) return false;
-  XmlRpcValue& v = e[key];
-  if (v.getType() == XmlRpcValue::TypeInt) {
-    *out = static_cast<int>(v);
-  } else if (v.getType() == XmlRpcValue::TypeDouble) {
-    *out = static_cast<double>(v);
-  } else {
-    return false;
-  }
-  return std::isfinite(*out);
+  return e.hasMember(key) && XmlRpcNumber(e[key], out);
 }
 
 bool Id(XmlRpcValue& e, const char* key, std::uint16_t* out) {

@@ -466,8 +466,11 @@ bool MissionDispatcher::MayReport(const char* kind, std::uint16_t mission_id,
   if (core::MayReport(entry != nullptr && entry->has_spec ? &entry->spec : nullptr, from)) {
     return true;
   }
-  ROS_WARN_THROTTLE(5.0, "%s: ignored a %s of mission %u from %s: only the mission's robots may "
-                    "send it", kNode, kind, mission_id, publisher.c_str());
+  if (foreign_report_warning_.Due()) {
+    ROS_WARN("%s: ignored a %s of mission %u from %s: only the mission's robots may send it%s",
+             kNode, kind, mission_id, publisher.c_str(),
+             foreign_report_warning_.AndMore("such reports").c_str());
+  }
   return false;
 }
 
@@ -489,9 +492,9 @@ void MissionDispatcher::OnStatus(const ros::MessageEvent<Mission_Status const>& 
   core::MissionReport report = ToMissionReport(msg);
   const core::MissionBook::StatusOutcome outcome =
       book_->OnStatus(report, ros::Time::now().toSec());
-  if (outcome.ignored == "too many live missions") {
-    ROS_WARN_THROTTLE(5.0, "%s: not tracking mission %u: too many live missions", kNode,
-                      msg.mission_id);
+  if (outcome.ignored == "too many live missions" && untracked_warning_.Due()) {
+    ROS_WARN("%s: not tracking mission %u: too many live missions%s", kNode, msg.mission_id,
+             untracked_warning_.AndMore("missions").c_str());
   }
   if (outcome.followed) {
     ROS_INFO("%s: following mission %u first seen in a status from %s", kNode, msg.mission_id,
@@ -574,6 +577,11 @@ bool MissionDispatcher::OnStatusService(std_srvs::Trigger::Request& /*req*/,
                                         std_srvs::Trigger::Response& res) {
   res.success = true;
   res.message = book_->Table(ros::Time::now().toSec());
+  // The tick of the poses it picks robots from (a count-only order): a test that holds the run
+  // waits for it instead of sleeping.
+  if (positions_) {
+    res.message += "positions of tick " + std::to_string(positions_->tick) + "\n";
+  }
   return true;
 }
 

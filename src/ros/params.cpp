@@ -8,27 +8,35 @@
 namespace swarm_transport {
 namespace {
 
-// XmlRpc gives ints and doubles as different types; a user writing `cohesion: 0` means 0.0.
-bool AsDouble(XmlRpc::XmlRpcValue& v, double* out) {
-  if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) {
-    *out = static_cast<double>(v);
-    return true;
+const char* TypeName(XmlRpc::XmlRpcValue::Type type) {
+  switch (type) {
+    case XmlRpc::XmlRpcValue::TypeInvalid:
+      return "empty";
+    case XmlRpc::XmlRpcValue::TypeBoolean:
+      return "a bool";
+    case XmlRpc::XmlRpcValue::TypeInt:
+      return "an integer";
+    case XmlRpc::XmlRpcValue::TypeDouble:
+      return "a double";
+    case XmlRpc::XmlRpcValue::TypeString:
+      return "a string";
+    case XmlRpc::XmlRpcValue::TypeDateTime:
+      return "a date";
+    case XmlRpc::XmlRpcValue::TypeBase64:
+      return "binary data";
+    case XmlRpc::XmlRpcValue::TypeArray:
+      return "a list";
+    case XmlRpc::XmlRpcValue::TypeStruct:
+      return "a dictionary";
   }
-  if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) {
-    *out = static_cast<int>(v);
-    return true;
-  }
-  return false;
+  return "of an unknown type";
 }
 
 bool ReadDouble(XmlRpc::XmlRpcValue& dict, const char* key, double* out, std::string* error) {
   if (!dict.hasMember(key)) return true;
-  if (!AsDouble(dict[key], out)) {
-    *error = std::string("parameter '") + key + "' must be a number";
-    return false;
-  }
-  if (!std::isfinite(*out)) {
-    *error = std::string("parameter '") + key + "' must be finite";
+  std::string why;
+  if (!XmlRpcNumber(dict[key], out, &why)) {
+    *error = std::string("parameter '") + key + "' " + why;
     return false;
   }
   return true;
@@ -97,6 +105,27 @@ XmlRpc::XmlRpcValue FromYaml(const YAML::Node& node) {
 
 }  // namespace
 
+bool XmlRpcNumber(const XmlRpc::XmlRpcValue& value, double* out, std::string* why) {
+  double number = NAN;
+  if (value.getType() == XmlRpc::XmlRpcValue::TypeDouble) {
+    number = static_cast<const double&>(value);
+  } else if (value.getType() == XmlRpc::XmlRpcValue::TypeInt) {
+    number = static_cast<const int&>(value);
+  } else {
+    if (why != nullptr) *why = std::string("must be a number but is ") + TypeName(value.getType());
+    return false;
+  }
+  if (!std::isfinite(number)) {
+    if (why != nullptr) {
+      *why = std::string("must be finite but is ") +
+             (std::isnan(number) ? "nan" : number > 0.0 ? "inf" : "-inf");
+    }
+    return false;
+  }
+  *out = number;
+  return true;
+}
+
 bool ZoneFromXmlRpc(XmlRpc::XmlRpcValue& value, int id, core::Zone* zone, std::string* error) {
   if (value.getType() != XmlRpc::XmlRpcValue::TypeStruct || !value.hasMember("shape") ||
       value["shape"].getType() != XmlRpc::XmlRpcValue::TypeString) {
@@ -105,8 +134,8 @@ bool ZoneFromXmlRpc(XmlRpc::XmlRpcValue& value, int id, core::Zone* zone, std::s
   }
   const std::string shape = static_cast<std::string>(value["shape"]);
   double x = NAN, y = NAN;
-  if (!value.hasMember("x") || !value.hasMember("y") || !AsDouble(value["x"], &x) ||
-      !AsDouble(value["y"], &y) || !std::isfinite(x) || !std::isfinite(y)) {
+  if (!value.hasMember("x") || !value.hasMember("y") || !XmlRpcNumber(value["x"], &x) ||
+      !XmlRpcNumber(value["y"], &y)) {
     *error = "a zone needs finite numbers x and y (its centre, m)";
     return false;
   }
@@ -115,16 +144,15 @@ bool ZoneFromXmlRpc(XmlRpc::XmlRpcValue& value, int id, core::Zone* zone, std::s
   if (shape == "rect") {
     double sx = NAN, sy = NAN;
     if (!value.hasMember("size_x") || !value.hasMember("size_y") ||
-        !AsDouble(value["size_x"], &sx) || !AsDouble(value["size_y"], &sy) || !(sx > 0.0) ||
-        !(sy > 0.0) || !std::isfinite(sx) || !std::isfinite(sy)) {
+        !XmlRpcNumber(value["size_x"], &sx) || !XmlRpcNumber(value["size_y"], &sy) ||
+        !(sx > 0.0) || !(sy > 0.0)) {
       *error = "a rect zone needs size_x > 0 and size_y > 0 (m)";
       return false;
     }
     z.shape = core::Shape::FromRect({x, y}, {sx, sy});
   } else if (shape == "circle") {
     double r = NAN;
-    if (!value.hasMember("radius") || !AsDouble(value["radius"], &r) || !(r > 0.0) ||
-        !std::isfinite(r)) {
+    if (!value.hasMember("radius") || !XmlRpcNumber(value["radius"], &r) || !(r > 0.0)) {
       *error = "a circle zone needs radius > 0 (m)";
       return false;
     }
@@ -272,7 +300,7 @@ bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, double* valu
                  std::string* error) {
   return ReadPrivateAs(
       nh, key, "a finite number", value, error,
-      [](XmlRpc::XmlRpcValue& v, double* out) { return AsDouble(v, out) && std::isfinite(*out); });
+      [](XmlRpc::XmlRpcValue& v, double* out) { return XmlRpcNumber(v, out); });
 }
 
 bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, int* value,

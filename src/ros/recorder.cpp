@@ -168,7 +168,12 @@ bool CsvFile::Close() {
 }
 
 Recorder::Recorder(ros::NodeHandle nh, ros::NodeHandle private_nh)
-    : nh_(nh), private_nh_(private_nh) {}
+    : nh_(nh),
+      private_nh_(private_nh),
+      bad_position_warning_(kWarnPeriodS),
+      bad_status_warning_(kWarnPeriodS),
+      bad_mission_warning_(kWarnPeriodS),
+      tick_warning_(kWarnPeriodS) {}
 
 void Recorder::RequestStop() { stop_requested_ = 1; }
 
@@ -286,16 +291,9 @@ void Recorder::Shutdown() {
            run_dir_.empty() ? "" : "; files in ", run_dir_.c_str());
 }
 
-bool Recorder::WarnDue(ros::WallTime* last) {
-  const ros::WallTime now = ros::WallTime::now();
-  if (!last->isZero() && (now - *last).toSec() < kWarnPeriodS) return false;
-  *last = now;
-  return true;
-}
-
 void Recorder::OnPositions(const Robot_Positions::ConstPtr& msg) {
   if (!std::isfinite(msg->sim_time)) {
-    if (WarnDue(&last_bad_position_warning_)) {
+    if (bad_position_warning_.Due()) {
       ROS_WARN("%s: ignored /flock/positions of tick %llu: sim_time is not finite", kNode,
                static_cast<unsigned long long>(msg->tick));
     }
@@ -305,7 +303,7 @@ void Recorder::OnPositions(const Robot_Positions::ConstPtr& msg) {
   const std::uint64_t newest = metrics_->newest_tick();
   if (has_frames && msg->tick <= newest) {
     // The latched message again (a reconnection), or a restarted simulator.
-    if (msg->tick < newest && WarnDue(&last_tick_warning_)) {
+    if (msg->tick < newest && tick_warning_.Due()) {
       ROS_WARN(
           "%s: /flock/positions went back from tick %llu to %llu; ignored until it passes "
           "tick %llu again",
@@ -314,7 +312,7 @@ void Recorder::OnPositions(const Robot_Positions::ConstPtr& msg) {
     }
     return;
   }
-  if (has_frames && msg->tick > newest + 1 && WarnDue(&last_tick_warning_)) {
+  if (has_frames && msg->tick > newest + 1 && tick_warning_.Due()) {
     ROS_WARN("%s: missed /flock/positions ticks %llu..%llu (queue overflow or late start)", kNode,
              static_cast<unsigned long long>(newest + 1),
              static_cast<unsigned long long>(msg->tick - 1));
@@ -322,7 +320,7 @@ void Recorder::OnPositions(const Robot_Positions::ConstPtr& msg) {
   // Physical robots with finite positions, ascending ids, the first of duplicate ids.
   std::size_t bad = 0;
   core::MetricsFrame frame = RecorderFrame(*msg, &bad);
-  if (bad > 0 && WarnDue(&last_bad_position_warning_)) {
+  if (bad > 0 && bad_position_warning_.Due()) {
     ROS_WARN("%s: ignored %zu robots with non-finite positions at tick %llu", kNode, bad,
              static_cast<unsigned long long>(msg->tick));
   }
@@ -346,7 +344,7 @@ void Recorder::Publish(const core::SwarmSample& sample) {
 
 void Recorder::OnMissionNew(const New_Mission::ConstPtr& msg) {
   const std::string warning = RecordOrder(*msg, params_.swarm, &*metrics_);
-  if (!warning.empty() && WarnDue(&last_bad_mission_warning_)) {
+  if (!warning.empty() && bad_mission_warning_.Due()) {
     ROS_WARN("%s: %s", kNode, warning.c_str());
   }
   WriteMissions(true);
@@ -359,7 +357,7 @@ void Recorder::OnStatus(const Mission_Status::ConstPtr& msg) {
   const std::string warning = RecordStatus(*msg, &*metrics_);
   // A bad status and a status of a mission not followed warn apart.
   if (!warning.empty() &&
-      WarnDue(bad ? &last_bad_status_warning_ : &last_bad_mission_warning_)) {
+      (bad ? bad_status_warning_ : bad_mission_warning_).Due()) {
     ROS_WARN("%s: %s", kNode, warning.c_str());
   }
   WriteMissions(true);

@@ -9,8 +9,6 @@ namespace {
 
 // The stream of the seed's generator that draws the poses of robots joining by New_Robot.
 constexpr std::uint64_t kSpawnStream = 0x737061776eULL;  // "spawn"
-// At most one warning of a kind per this many wall seconds (see WallThrottle).
-constexpr double kWarnPeriodS = 5.0;
 
 // A teleport service's answer: OK, or ERROR with the reason (also logged).
 template <typename Response>
@@ -155,9 +153,9 @@ bool RobotRoster::OnTeleportRelative(std::uint16_t id, TeleportRelative::Request
 
 void RobotRoster::OnPosition(const Robot_Position::ConstPtr& msg) {
   const std::string why = relayed_.Take(*msg);
-  if (!why.empty() && WallThrottle(&last_bad_position_warning_wall_, kWarnPeriodS)) {
-    ROS_WARN("simulator: rejected a Robot_Position of robot %u/%u: %s", msg->robot_id,
-             msg->sub_id, why.c_str());
+  if (!why.empty() && bad_position_warning_.Due()) {
+    ROS_WARN("simulator: rejected a Robot_Position of robot %u/%u: %s%s", msg->robot_id,
+             msg->sub_id, why.c_str(), bad_position_warning_.AndMore("rejected").c_str());
   }
 }
 
@@ -187,9 +185,9 @@ void RobotRoster::OnRobotDelete(const Delete_Robot::ConstPtr& msg) {
     ROS_INFO("simulator: Delete_Robot %u: the robot left the swarm", msg->robot_id);
     return;
   }
-  if (WallThrottle(&last_bad_position_warning_wall_, kWarnPeriodS)) {
-    ROS_WARN("simulator: Delete_Robot %u/%u: no such robot, virtual copy or statist",
-             msg->robot_id, msg->sub_id);
+  if (bad_delete_warning_.Due()) {
+    ROS_WARN("simulator: Delete_Robot %u/%u: no such robot, virtual copy or statist%s",
+             msg->robot_id, msg->sub_id, bad_delete_warning_.AndMore("such messages").c_str());
   }
 }
 

@@ -27,6 +27,7 @@
 #include "swarm_transport/ros/diagnostics.h"
 #include "swarm_transport/ros/dispatcher_options.h"
 #include "swarm_transport/ros/params.h"
+#include "swarm_transport/ros/wall_throttle.h"
 
 namespace swarm_transport {
 
@@ -128,6 +129,8 @@ class MissionDispatcher {
   // Missions the watchdog found silent, since when (wall time): ended after a grace period.
   std::map<std::uint16_t, ros::WallTime> silent_since_;
   ros::WallTimer status_timer_;  // its diagnostic status, once a wall second
+  WarnThrottle foreign_report_warning_;  // wall-clock throttles of repeated warnings
+  WarnThrottle untracked_warning_;
   std::unique_ptr<NodeDiagnostics> diagnostics_;
   ros::Publisher delete_pub_;
 

@@ -18,6 +18,13 @@ namespace swarm_transport {
 // The shared configuration is the core's (core/swarm_config.h); this file loads it.
 using core::SwarmConfig;
 
+// The one reader of a number in an XmlRpc value (a parameter or a YAML file turned into XmlRpc):
+// an int or a double (`x: 7` comes as an int and means 7.0) that is finite. Anything else - a
+// string, a bool, a list, NaN or an infinity (`.nan`, `.inf` in YAML) - is refused: false,
+// `out` untouched and, when `why` is given, the reason, e.g. "must be a number but is a
+// string" or "must be finite but is nan" (the caller puts the key's name in front).
+bool XmlRpcNumber(const XmlRpc::XmlRpcValue& value, double* out, std::string* why = nullptr);
+
 // Fills `config` from a dictionary holding the /swarm keys. Missing keys keep their defaults;
 // a key of the wrong type or an invalid value is an error (`error` names it, config untouched).
 bool ConfigFromXmlRpc(XmlRpc::XmlRpcValue& dict, SwarmConfig* config, std::string* error);

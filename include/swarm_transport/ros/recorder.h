@@ -15,6 +15,7 @@
 #include "swarm_transport/Robot_Positions.h"
 #include "swarm_transport/core/run_metrics.h"
 #include "swarm_transport/ros/params.h"
+#include "swarm_transport/ros/wall_throttle.h"
 
 namespace swarm_transport {
 
@@ -108,8 +109,6 @@ class Recorder {
   void WriteMissions(bool run);
   // Rewrites run.csv: written aside and renamed over the old file.
   void WriteRun();
-  // True at most once per warning period (wall clock) for one kind of warning.
-  static bool WarnDue(ros::WallTime* last);
 
   static volatile std::sig_atomic_t stop_requested_;
 
@@ -127,10 +126,11 @@ class Recorder {
   ros::Subscriber status_sub_;
 
   std::optional<core::RunMetrics> metrics_;  // made once the parameters are loaded
-  ros::WallTime last_bad_position_warning_;
-  ros::WallTime last_bad_status_warning_;
-  ros::WallTime last_bad_mission_warning_;
-  ros::WallTime last_tick_warning_;
+  // At most one warning of a kind per kWarnPeriodS of wall time (recorder.cpp).
+  WarnThrottle bad_position_warning_;
+  WarnThrottle bad_status_warning_;
+  WarnThrottle bad_mission_warning_;
+  WarnThrottle tick_warning_;
 };
 
 }  // namespace swarm_transport

@@ -23,6 +23,7 @@
 #include "swarm_transport/ros/lockstep_session.h"
 #include "swarm_transport/ros/mission_relay.h"
 #include "swarm_transport/ros/robot_links.h"
+#include "swarm_transport/ros/wall_throttle.h"
 #include "swarm_transport/sim/world2d.h"
 
 namespace swarm_transport {
@@ -85,7 +86,8 @@ class RobotRoster {
   ros::Subscriber position_sub_;
   ros::Subscriber robot_new_sub_;
   ros::Subscriber robot_delete_sub_;
-  ros::WallTime last_bad_position_warning_wall_;  // wall-clock throttle of repeated warnings
+  WarnThrottle bad_position_warning_;  // wall-clock throttles of repeated warnings
+  WarnThrottle bad_delete_warning_;
 };
 
 }  // namespace swarm_transport
