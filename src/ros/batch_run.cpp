@@ -118,16 +118,11 @@ bool Run::SetUp(const XmlRpc::XmlRpcValue& base_config, std::string* error) {
   // defaults, /swarm, the run's robots and placement.
   SimulatorParams sim_params;
   sim_params.swarm = config_;
-  if (swarm.hasMember("radio_loss")) {
-    XmlRpc::XmlRpcValue& loss = swarm["radio_loss"];
-    if (loss.getType() == XmlRpc::XmlRpcValue::TypeDouble) {
-      sim_params.radio_loss = static_cast<double>(loss);
-    } else if (loss.getType() == XmlRpc::XmlRpcValue::TypeInt) {
-      sim_params.radio_loss = static_cast<int>(loss);
-    } else {
-      *error = "/swarm/radio_loss must be a number";
-      return false;
-    }
+  std::string why;
+  if (swarm.hasMember("radio_loss") &&
+      !XmlRpcNumber(swarm["radio_loss"], &sim_params.radio_loss, &why)) {
+    *error = "/swarm/radio_loss " + why;
+    return false;
   }
   sim_params.robots = job_.robots;
   sim_params.placement = job_.placement;

@@ -26,17 +26,8 @@ constexpr double kPollS = 0.001;
 constexpr double kIdleS = 0.01;
 // A robot must be connected this long (wall s) before lock-step counts on its answers.
 constexpr double kSettleS = 0.2;
-// At most one warning of a kind per this many wall seconds.
-constexpr double kWarnPeriodS = 5.0;
 
 }  // namespace
-
-bool WallThrottle(ros::WallTime* last, double period_s) {
-  const ros::WallTime now = ros::WallTime::now();
-  if (!last->isZero() && (now - *last).toSec() < period_s) return false;
-  *last = now;
-  return true;
-}
 
 LockstepSession::LockstepSession(ros::NodeHandle nh, const SimulatorParams& params,
                                  RobotLinks* links, ros::CallbackQueue* command_queue,
@@ -292,7 +283,7 @@ void LockstepSession::WaitForAnswers(std::uint64_t tick) {
     barrier_.MakeNotLive(id);
     if (RobotLink* link = links_->Find(id)) link->silent = true;
   }
-  if (WallThrottle(&last_late_warning_wall_, kWarnPeriodS)) {
+  if (late_warning_.Due()) {
     ROS_WARN(
         "lockstep tick %llu: %zu of %zu robots did not answer within %.2f s (first: robot "
         "%d); they stand and are not waited for until they answer again",
@@ -319,7 +310,7 @@ void LockstepSession::Relay(const ros::MessageEvent<const M>& event) {
   if constexpr (std::is_same_v<M, Mission_Status> || std::is_same_v<M, Update_Object> ||
                 std::is_same_v<M, Delete_Object>) {
     if (sender.kind != core::SenderKind::kDispatcher) {
-      if (WallThrottle(&last_refused_warning_wall_, kWarnPeriodS)) {
+      if (refused_warning_.Due()) {
         ROS_WARN("lockstep: ignored a mission message of mission %u from %s: only the mission's "
                  "robots and the dispatcher may send it",
                  msg.mission_id, from.c_str());
@@ -425,7 +416,7 @@ void LockstepSession::OnAnswer(std::uint16_t id, const Tick_Answer& answer,
   RobotLink* link = links_->Find(id);
   if (finished_ || link == nullptr) return;
   const bool finite = IsFinite(answer.command);
-  if (!finite && WallThrottle(&last_bad_answer_warning_wall_, kWarnPeriodS)) {
+  if (!finite && bad_answer_warning_.Due()) {
     ROS_WARN("lockstep: robot %u answered with a non-finite command; it stands instead", id);
   }
   const auto result =
@@ -449,7 +440,7 @@ void LockstepSession::OnAnswer(std::uint16_t id, const Tick_Answer& answer,
       }
       [[fallthrough]];
     case sim::LockstepBarrier::Answer::kUnsolicited:
-      if (WallThrottle(&last_unsolicited_warning_wall_, kWarnPeriodS)) {
+      if (unsolicited_warning_.Due()) {
         ROS_WARN("lockstep: robot %u answered tick %llu, which it was not asked (tick %llu); "
                  "ignored", id, static_cast<unsigned long long>(answer.tick),
                  static_cast<unsigned long long>(tick));

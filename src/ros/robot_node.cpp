@@ -247,7 +247,10 @@ void RobotNode::CountObserver(const std::string& node, int delta) {
 void RobotNode::TakeRound(const Neighbors::ConstPtr& msg, double arrival_s) {
   if (!std::isfinite(msg->pose.x) || !std::isfinite(msg->pose.y) ||
       !std::isfinite(msg->pose.theta)) {
-    ROS_WARN_THROTTLE(5.0, "robot %u: rejected a perception with a non-finite own pose", id_);
+    if (bad_pose_warning_.Due()) {
+      ROS_WARN("robot %u: rejected a perception with a non-finite own pose%s", id_,
+               bad_pose_warning_.AndMore("such perceptions").c_str());
+    }
     return;
   }
   perception_ = msg;
@@ -489,20 +492,9 @@ void RobotNode::Say(const RobotSession::Taken& taken) {
 }
 
 void RobotNode::Rejected(const std::string& kind, const std::string& why) {
-  RejectLog& log = rejected_[kind];
-  const ros::WallTime now = ros::WallTime::now();
-  if (!log.last.isZero() && (now - log.last).toSec() < kRejectLogPeriodS) {
-    ++log.suppressed;
-    return;
-  }
-  if (log.suppressed > 0) {
-    ROS_WARN("robot %u: rejected %s (and %llu more %s since the last such line)", id_, why.c_str(),
-             static_cast<unsigned long long>(log.suppressed), kind.c_str());
-  } else {
-    ROS_WARN("robot %u: rejected %s", id_, why.c_str());
-  }
-  log.last = now;
-  log.suppressed = 0;
+  WarnThrottle& throttle = rejected_.try_emplace(kind, kRejectLogPeriodS).first->second;
+  if (!throttle.Due()) return;
+  ROS_WARN("robot %u: rejected %s%s", id_, why.c_str(), throttle.AndMore(kind).c_str());
 }
 
 void RobotNode::AdvertiseMissionOutlets() {

@@ -31,8 +31,6 @@ constexpr std::uint32_t kLockstepPositionsQueue = 10000;
 constexpr std::uint32_t kMissionQueue = 100;
 // Period of the idle loop after the last lock-step tick and of the start wait (s).
 constexpr double kIdleS = 0.01;
-// At most one warning of a kind per this many wall seconds (see WallThrottle).
-constexpr double kWarnPeriodS = 5.0;
 
 }  // namespace
 
@@ -418,12 +416,12 @@ void Simulator::OnAnswer(std::uint16_t id, const Tick_Answer& answer) {
 void Simulator::OnCmdVel(std::uint16_t id, const geometry_msgs::Twist& msg) {
   if (links_->Find(id) == nullptr || finished_) return;
   const bool finite = IsFinite(msg);
-  if (!finite && WallThrottle(&last_bad_cmd_warning_wall_, kWarnPeriodS)) {
+  if (!finite && bad_cmd_warning_.Due()) {
     ROS_WARN("simulator: robot %u sent a cmd_vel with a non-finite value; it stands instead", id);
   }
   if (lockstep_ && session_->Live(id)) {
     // A lock-step robot's command comes in its answer; a cmd_vel beside it would race it.
-    if (WallThrottle(&last_unsolicited_warning_wall_, kWarnPeriodS)) {
+    if (unsolicited_warning_.Due()) {
       ROS_WARN("lockstep: ignored a cmd_vel for robot %u, which answers its ticks (tick %llu)",
                id, static_cast<unsigned long long>(tick_));
     }

@@ -33,6 +33,7 @@
 #include "swarm_transport/ros/mission_relay.h"
 #include "swarm_transport/ros/robot_links.h"
 #include "swarm_transport/ros/simulator_params.h"
+#include "swarm_transport/ros/wall_throttle.h"
 #include "swarm_transport/sim/lockstep_barrier.h"
 
 namespace swarm_transport {
@@ -134,15 +135,11 @@ class LockstepSession {
   ros::Publisher delete_pub_;
   ros::Publisher freeze_pub_;
   ros::Publisher continue_pub_;
-  ros::WallTime last_late_warning_wall_;  // wall-clock throttles of repeated warnings
-  ros::WallTime last_refused_warning_wall_;
-  ros::WallTime last_bad_answer_warning_wall_;
-  ros::WallTime last_unsolicited_warning_wall_;
+  WarnThrottle late_warning_;  // wall-clock throttles of repeated warnings
+  WarnThrottle refused_warning_;
+  WarnThrottle bad_answer_warning_;
+  WarnThrottle unsolicited_warning_;
 };
-
-// True (and `last` updated) when `period_s` of wall time passed since the last true. (ROS's
-// *_THROTTLE macros use ros::Time, which stands still at 0 under use_sim_time before /clock.)
-bool WallThrottle(ros::WallTime* last, double period_s);
 
 }  // namespace swarm_transport
 

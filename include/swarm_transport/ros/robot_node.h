@@ -39,6 +39,7 @@
 #include "swarm_transport/ros/params.h"
 #include "swarm_transport/ros/robot_session.h"
 #include "swarm_transport/ros/tick_loop.h"
+#include "swarm_transport/ros/wall_throttle.h"
 
 namespace swarm_transport {
 
@@ -225,11 +226,8 @@ class RobotNode {
   // Progress within a phase (not relayed, not counted for the lock-step barrier): advertised
   // when this robot first becomes a first leader.
   ros::Publisher progress_pub_;
-  struct RejectLog {
-    ros::WallTime last;
-    std::uint64_t suppressed = 0;
-  };
-  std::map<std::string, RejectLog> rejected_;  // by message kind
+  std::map<std::string, WarnThrottle> rejected_;  // by message kind
+  WarnThrottle bad_pose_warning_;
   TopicNodeCounts expected_;  // the graph when it became a first leader
   ros::WallTime outlets_since_;
   bool outlets_ready_ = false;

@@ -36,6 +36,7 @@
 #include "swarm_transport/ros/simulator_params.h"
 #include "swarm_transport/sim/radio.h"
 #include "swarm_transport/ros/visuals.h"
+#include "swarm_transport/ros/wall_throttle.h"
 #include "swarm_transport/sim/world2d.h"
 
 namespace swarm_transport {
@@ -152,8 +153,8 @@ class Simulator : public RobotOutlet {
   bool finished_ = false;     // lock-step: max ticks reached, the world is frozen
   ros::WallTime start_wall_;
   std::set<std::pair<std::uint16_t, std::uint8_t>> recruit_statists_;  // relayed now
-  ros::WallTime last_bad_cmd_warning_wall_;  // wall-clock throttles of repeated warnings
-  ros::WallTime last_unsolicited_warning_wall_;
+  WarnThrottle bad_cmd_warning_;  // wall-clock throttles of repeated warnings
+  WarnThrottle unsolicited_warning_;
 };
 
 }  // namespace swarm_transport
