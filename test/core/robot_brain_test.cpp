@@ -38,9 +38,9 @@ Perception Sees(double x, double y, double heading_deg, std::vector<Neighbour> o
 TEST(RobotBrainTest, FreezeHoldsTheRobotButNotItsBehaviour) {
   RobotBrain free(4, Params());
   RobotBrain held(4, Params());
-  EXPECT_EQ(held.OnFreeze(0, 4), "");  // not its range
+  EXPECT_EQ(held.Take(Freeze{0, 4}), "");  // not its range
   EXPECT_FALSE(held.frozen());
-  EXPECT_EQ(held.OnFreeze(3, 5), "");
+  EXPECT_EQ(held.Take(Freeze{3, 5}), "");
   EXPECT_TRUE(held.frozen());
   const Perception in = Sees(5.0, 5.0, 30.0, {At(1, 5.5, 5.0, 90.0)});
   for (std::uint64_t tick = 0; tick < 3; ++tick) {
@@ -52,7 +52,7 @@ TEST(RobotBrainTest, FreezeHoldsTheRobotButNotItsBehaviour) {
     EXPECT_EQ(b.command.linear, 0.0);
     EXPECT_EQ(b.command.angular, 0.0);
   }
-  EXPECT_EQ(held.OnContinue(4, 5), "");
+  EXPECT_EQ(held.Take(Continue{4, 5}), "");
   EXPECT_FALSE(held.frozen());
   EXPECT_GT(held.Tick(in, 3, true).command.linear, 0.0);
 }
@@ -75,7 +75,7 @@ TEST(RobotBrainTest, BalloonStandbyDrivesOffANeighbourUntilAMissionComes) {
   EXPECT_DOUBLE_EQ(flocking.balloon_radius_m(), 0.05);  // flock: no balloon
   // On a mission it leaves standby: the balloon is small again, the mission rules.
   MissionTaken taken;
-  ASSERT_EQ(brain.OnNewMission(Thesis(), {0, 1, 2}, &taken), "");
+  ASSERT_EQ(brain.Take(Thesis(), {0, 1, 2}, &taken), "");
   brain.Tick(in, 8, true);
   EXPECT_TRUE(brain.last_plan().active.has_value());
   EXPECT_DOUBLE_EQ(brain.balloon_radius_m(), 0.05);
@@ -93,7 +93,7 @@ TEST(RobotBrainTest, ABalloonLoadingMemberSpreadsUnderItsObjectUntilTheFreeze) {
     brain->OnStatus(7, MissionPhase::kLoading);
   }
   // none: the first leader froze the group at LOADING.
-  ASSERT_EQ(standing.OnFreeze(0, 3), "");
+  ASSERT_EQ(standing.Take(Freeze{0, 3}), "");
   const Perception in = Sees(7.0, 7.0, 90.0, {At(0, 6.0, 6.5), At(2, 7.2, 7.0, 90.0)});
   BrainTick a, b;
   for (std::uint64_t k = 0; k < 8; ++k) {
@@ -109,7 +109,7 @@ TEST(RobotBrainTest, ABalloonLoadingMemberSpreadsUnderItsObjectUntilTheFreeze) {
   EXPECT_EQ(b.command.linear, 0.0);  // none: frozen, nothing moves
   EXPECT_DOUBLE_EQ(standing.balloon_radius_m(), 0.05);
   // The first leader's freeze ends the spread: it stands.
-  ASSERT_EQ(spreading.OnFreeze(0, 3), "");
+  ASSERT_EQ(spreading.Take(Freeze{0, 3}), "");
   a = spreading.Tick(in, 8, true);
   EXPECT_EQ(a.command.linear, 0.0);
   EXPECT_DOUBLE_EQ(spreading.balloon_radius_m(), 0.05);
@@ -117,11 +117,11 @@ TEST(RobotBrainTest, ABalloonLoadingMemberSpreadsUnderItsObjectUntilTheFreeze) {
 
 TEST(RobotBrainTest, AnEmptyOrInvertedRangeIsRejectedAndChangesNothing) {
   RobotBrain brain(4, Params());
-  EXPECT_EQ(brain.OnFreeze(5, 3), "Robot_Freeze [5, 3): the range is empty or inverted");
-  EXPECT_EQ(brain.OnFreeze(4, 4), "Robot_Freeze [4, 4): the range is empty or inverted");
+  EXPECT_EQ(brain.Take(Freeze{5, 3}), "Robot_Freeze [5, 3): the range is empty or inverted");
+  EXPECT_EQ(brain.Take(Freeze{4, 4}), "Robot_Freeze [4, 4): the range is empty or inverted");
   EXPECT_FALSE(brain.frozen());
-  ASSERT_EQ(brain.OnFreeze(4, 5), "");
-  EXPECT_NE(brain.OnContinue(9, 0), "");
+  ASSERT_EQ(brain.Take(Freeze{4, 5}), "");
+  EXPECT_NE(brain.Take(Continue{9, 0}), "");
   EXPECT_TRUE(brain.frozen());
 }
 
@@ -130,34 +130,34 @@ TEST(RobotBrainTest, BadOrdersAreRejectedWithAReasonAndChangeNothing) {
   MissionSpec nan = Thesis();
   nan.target.x = std::nan("");
   MissionTaken taken;
-  EXPECT_NE(brain.OnNewMission(nan, {}, &taken), "");
+  EXPECT_NE(brain.Take(nan, {}, &taken), "");
   MissionSpec unknown = Thesis();
-  EXPECT_NE(brain.OnNewMission(unknown, {0, 1}, &taken), "");  // robot 2 does not exist
+  EXPECT_NE(brain.Take(unknown, {0, 1}, &taken), "");  // robot 2 does not exist
   EXPECT_TRUE(brain.missions().LiveIds().empty());
-  ASSERT_EQ(brain.OnNewMission(Thesis(), {0, 1, 2}, &taken), "");
+  ASSERT_EQ(brain.Take(Thesis(), {0, 1, 2}, &taken), "");
   EXPECT_TRUE(taken.first_leader);
   EXPECT_EQ(taken.queued.phase, MissionPhase::kQueued);
   EXPECT_EQ(taken.queued.assigned, 3);
   EXPECT_NEAR(taken.queued.distance_to_target, std::hypot(4.0, 4.0), 1e-12);
   MissionSpec again = Thesis();
   again.object_centre = {2.0, 9.0};
-  EXPECT_NE(brain.OnNewMission(again, {}, &taken), "");  // a live id
-  EXPECT_NE(brain.OnObjectUpdate(7, {std::nan(""), 1.0}), "");
-  EXPECT_NE(brain.OnEvent(7, static_cast<MissionEventKind>(9), 0), "");
-  EXPECT_NE(brain.OnObjectDelete(99), "");
+  EXPECT_NE(brain.Take(again, {}, &taken), "");  // a live id
+  EXPECT_NE(brain.Take(ObjectUpdate{7, {std::nan(""), 1.0}}), "");
+  EXPECT_NE(brain.Take(Signal{7, static_cast<MissionEventKind>(9), 0}), "");
+  EXPECT_NE(brain.Take(ObjectDelete{99}), "");
   // The mission stands as ordered: robot 0 outside its object drives for the object at (7, 7).
   const BrainTick t = brain.Tick(Sees(5.0, 7.0, 0.0, {}), 0, true);
   EXPECT_NEAR(t.move.heading.degrees(), 0.0, 1e-9);
   // A passive robot takes it without being its first leader.
   RobotBrain passive(1, Params());
-  ASSERT_EQ(passive.OnNewMission(Thesis(), {}, &taken), "");
+  ASSERT_EQ(passive.Take(Thesis(), {}, &taken), "");
   EXPECT_FALSE(taken.first_leader);
 }
 
 TEST(RobotBrainTest, AFirstLeaderRunsItsMissionAndAFrozenLeaderFacesItsCourse) {
   RobotBrain leader(0, Params());
   MissionTaken taken;
-  ASSERT_EQ(leader.OnNewMission(Thesis(), {}, &taken), "");
+  ASSERT_EQ(leader.Take(Thesis(), {}, &taken), "");
   // Everyone inside and one chain: LOADING, freeze [0, 3).
   const std::vector<Neighbour> group = {At(1, 7.4, 7.0), At(2, 7.0, 7.4)};
   BrainTick t = leader.Tick(Sees(7.0, 7.0, 45.0, group), 1, true);
@@ -165,14 +165,14 @@ TEST(RobotBrainTest, AFirstLeaderRunsItsMissionAndAFrozenLeaderFacesItsCourse) {
   EXPECT_EQ(t.outbox.statuses[0].phase, MissionPhase::kGathering);
   EXPECT_EQ(t.outbox.statuses[1].phase, MissionPhase::kLoading);
   ASSERT_EQ(t.outbox.freeze.size(), 1u);
-  ASSERT_EQ(leader.OnFreeze(t.outbox.freeze[0].first, t.outbox.freeze[0].second), "");
+  ASSERT_EQ(leader.Take(Freeze{t.outbox.freeze[0].first, t.outbox.freeze[0].second}), "");
   // Frozen under its object it turns in place to its course (225 degrees) and does not drive.
   t = leader.Tick(Sees(7.0, 7.0, 45.0, group), 2, true);
   EXPECT_EQ(t.command.linear, 0.0);
   EXPECT_NEAR(std::fabs(t.command.angular), M_PI, 1e-9);  // 180 degrees in a 1 s tick
   // A first leader that cannot publish yet holds its phase machine and sends nothing.
   RobotBrain waiting(0, Params());
-  ASSERT_EQ(waiting.OnNewMission(Thesis(), {}, &taken), "");
+  ASSERT_EQ(waiting.Take(Thesis(), {}, &taken), "");
   EXPECT_TRUE(waiting.Tick(Sees(7.0, 7.0, 45.0, group), 1, false).outbox.empty());
   EXPECT_EQ(waiting.missions().PhaseOf(7), MissionPhase::kQueued);
 }
@@ -189,7 +189,7 @@ TEST(RobotBrainTest, ALeaderOnlyMissionEndsWhenItsLeaderArrives) {
   lead.object_centre = {5.0, 4.9};
   lead.target = {5.0, 5.05};
   MissionTaken taken;
-  ASSERT_EQ(brain.OnNewMission(lead, {}, &taken), "");
+  ASSERT_EQ(brain.Take(lead, {}, &taken), "");
   BrainTick t = brain.Tick(Sees(5.0, 4.9, 0.0, {}), 0, true);
   EXPECT_FALSE(t.arrived);
   EXPECT_NEAR(t.move.heading.degrees(), 90.0, 1e-9);  // no free will: straight for the goal
@@ -224,13 +224,13 @@ TEST(RobotBrainTest, DeletingAMissionsObjectReleasesItsFrozenRobotsOnly) {
     ASSERT_TRUE(brain->frozen());
   }
   // A Delete_Object without the Robot_Continue before it (forged, or the leader lost).
-  EXPECT_EQ(member.OnObjectDelete(7), "");
+  EXPECT_EQ(member.Take(ObjectDelete{7}), "");
   EXPECT_FALSE(member.frozen());
-  EXPECT_EQ(other.OnObjectDelete(7), "");
+  EXPECT_EQ(other.Take(ObjectDelete{7}), "");
   EXPECT_TRUE(other.frozen());  // frozen by someone else's order: not the object's to release
   // An unknown mission's delete is rejected and releases nobody.
-  ASSERT_EQ(member.OnFreeze(0, 10), "");
-  EXPECT_NE(member.OnObjectDelete(99), "");
+  ASSERT_EQ(member.Take(Freeze{0, 10}), "");
+  EXPECT_NE(member.Take(ObjectDelete{99}), "");
   EXPECT_TRUE(member.frozen());
 }
 
@@ -242,16 +242,16 @@ TEST(RobotBrainTest, AdmittingItselfARobotHoldsTheDispatchersLimit) {
   RobotBrain admitted(4, p);
   for (std::uint16_t id = 1; id <= 3; ++id) {
     m.id = id;
-    EXPECT_EQ(admitted.OnNewMission(m, {}, nullptr), "") << id;
+    EXPECT_EQ(admitted.Take(m, {}, nullptr), "") << id;
   }
   p.admission = Admission::kRobots;
   RobotBrain self(4, p);
   m.id = 1;
-  EXPECT_EQ(self.OnNewMission(m, {}, nullptr), "");
+  EXPECT_EQ(self.Take(m, {}, nullptr), "");
   m.id = 2;
-  EXPECT_EQ(self.OnNewMission(m, {}, nullptr), "");
+  EXPECT_EQ(self.Take(m, {}, nullptr), "");
   m.id = 3;
-  const std::string why = self.OnNewMission(m, {}, nullptr);
+  const std::string why = self.Take(m, {}, nullptr);
   EXPECT_NE(why.find("too many live missions"), std::string::npos) << why;
   EXPECT_EQ(self.missions().Find(3), nullptr);
   EXPECT_NE(self.missions().Find(2), nullptr);
@@ -277,8 +277,8 @@ TEST(RobotBrainTest, VirtualLeaderCopiesWeighInAlignmentOnly) {
   for (const int k : {1, 4}) {
     p.leader.virtual_copies = k;
     RobotBrain brain(4, p);
-    ASSERT_EQ(brain.OnNewMission(trip, {}, nullptr), "");
-    brain.OnStatus(3, MissionPhase::kTransport);
+    ASSERT_EQ(brain.Take(trip, {}, nullptr), "");
+    brain.Take(PhaseStatus{3, MissionPhase::kTransport});
     const BrainTick t = brain.Tick(in, 1, true);
     desired[k == 1 ? 0 : 1] = t.move.desired_heading.degrees();
     EXPECT_EQ(t.move.neighbours_in_range, 4) << k;  // itself and 3: copies are nobody

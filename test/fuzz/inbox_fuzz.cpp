@@ -27,31 +27,27 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         const std::uint16_t to = in.ConsumeIntegralInRange<std::uint16_t>(0, 10);
         const bool was = brain.frozen();
         const bool freeze = in.ConsumeBool();
-        const std::string why = freeze ? brain.OnFreeze(from, to) : brain.OnContinue(from, to);
+        const std::string why = freeze ? brain.Take(core::Freeze{from, to}) : brain.Take(core::Continue{from, to});
         fuzz::Require(why.empty() == (from < to));
         if (!why.empty()) fuzz::Require(brain.frozen() == was);
         break;
       }
       case 2: {
         core::MissionTaken taken;
-        brain.OnNewMission(ToMissionSpec(fuzz::AnyOrder(&in)), known, &taken);
+        brain.Take(ToMissionSpec(fuzz::AnyOrder(&in)), known, &taken);
         break;
       }
       case 3:
-        brain.OnObjectUpdate(in.ConsumeIntegralInRange<std::uint16_t>(0, 5),
-                             {fuzz::AnyFloat(&in), fuzz::AnyFloat(&in)});
+        brain.Take(core::ObjectUpdate{in.ConsumeIntegralInRange<std::uint16_t>(0, 5), {fuzz::AnyFloat(&in), fuzz::AnyFloat(&in)}});
         break;
       case 4:
-        brain.OnObjectDelete(in.ConsumeIntegralInRange<std::uint16_t>(0, 5));
+        brain.Take(core::ObjectDelete{in.ConsumeIntegralInRange<std::uint16_t>(0, 5)});
         break;
       case 5:
-        brain.OnEvent(in.ConsumeIntegralInRange<std::uint16_t>(0, 5),
-                      static_cast<core::MissionEventKind>(in.ConsumeIntegral<std::uint8_t>()),
-                      in.ConsumeIntegral<std::uint64_t>());
+        brain.Take(core::Signal{in.ConsumeIntegralInRange<std::uint16_t>(0, 5), static_cast<core::MissionEventKind>(in.ConsumeIntegral<std::uint8_t>()), in.ConsumeIntegral<std::uint64_t>()});
         break;
       case 6:
-        brain.OnStatus(in.ConsumeIntegralInRange<std::uint16_t>(0, 5),
-                       static_cast<core::MissionPhase>(in.ConsumeIntegral<std::uint8_t>()));
+        brain.Take(core::PhaseStatus{in.ConsumeIntegralInRange<std::uint16_t>(0, 5), static_cast<core::MissionPhase>(in.ConsumeIntegral<std::uint8_t>())});
         break;
       case 7: {
         // Any value, NaN and infinities included.

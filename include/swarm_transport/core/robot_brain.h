@@ -50,22 +50,10 @@ class RobotBrain {
   // empty or inverted range is rejected; a phase beyond kRejected is ignored. `known_robots`:
   // the physical robots the swarm has now (a mission must name only those); `taken` (may be
   // null) is filled for a mission taken.
-  std::string Take(const MissionMessage& message, const std::set<std::uint16_t>& known_robots,
+  std::string Take(const MissionMessage& message,
+                   const std::set<std::uint16_t>& known_robots = {},
                    MissionTaken* taken = nullptr);
 
-  // The inbox by kind (what Take calls).
-  std::string OnFreeze(std::uint16_t from, std::uint16_t to);
-  std::string OnContinue(std::uint16_t from, std::uint16_t to);
-  // `known_robots`: the physical robots the swarm has now (a mission must name only those).
-  std::string OnNewMission(const MissionSpec& mission, const std::set<std::uint16_t>& known_robots,
-                           MissionTaken* taken);
-  std::string OnObjectUpdate(std::uint16_t mission_id, Vec2 centre);
-  std::string OnObjectDelete(std::uint16_t mission_id);
-  std::string OnEvent(std::uint16_t mission_id, MissionEventKind event,
-                      std::uint64_t not_before_tick);
-  // A status published by a mission's first leader (how members learn its phase); a value
-  // beyond kRejected is ignored.
-  void OnStatus(std::uint16_t mission_id, MissionPhase phase);
   // New flocking parameters (dynamic_reconfigure, issue 13), used from the next Tick on: empty
   // when taken, else why not (nothing changed).
   std::string OnTuning(const FlockingTuning& tuning);
@@ -89,6 +77,19 @@ class RobotBrain {
   FlockingTuning tuning() const { return FlockingTuning::Of(params_.flocking); }
 
  private:
+  // The inbox by kind (what Take calls).
+  std::string OnFreeze(std::uint16_t from, std::uint16_t to);
+  std::string OnContinue(std::uint16_t from, std::uint16_t to);
+  // `known_robots`: the physical robots the swarm has now (a mission must name only those).
+  std::string OnNewMission(const MissionSpec& mission, const std::set<std::uint16_t>& known_robots,
+                           MissionTaken* taken);
+  std::string OnObjectUpdate(std::uint16_t mission_id, Vec2 centre);
+  std::string OnObjectDelete(std::uint16_t mission_id);
+  std::string OnEvent(std::uint16_t mission_id, MissionEventKind event,
+                      std::uint64_t not_before_tick);
+  // A status published by a mission's first leader (how members learn its phase); a value
+  // beyond kRejected is ignored.
+  void OnStatus(std::uint16_t mission_id, MissionPhase phase);
   bool InRange(std::uint16_t from, std::uint16_t to) const { return from <= id_ && id_ < to; }
 
   std::uint16_t id_;
