@@ -4,8 +4,9 @@
 
 namespace swarm_transport {
 
-LockstepHold::LockstepHold(bool lockstep, const std::uint64_t* tick, const bool* finished)
-    : lockstep_(lockstep), tick_(tick), finished_(finished) {}
+LockstepHold::LockstepHold(bool lockstep, const std::uint64_t* tick, const bool* finished,
+                           std::uint64_t hold_at)
+    : lockstep_(lockstep), tick_(tick), finished_(finished), hold_at_(lockstep ? hold_at : 0) {}
 
 void LockstepHold::Connect(ros::NodeHandle private_nh) {
   srv_ = private_nh.advertiseService("hold", &LockstepHold::OnHold, this);

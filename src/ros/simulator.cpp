@@ -103,7 +103,8 @@ bool Simulator::Initialize() {
     events_ = std::make_unique<EventPlayer>(std::move(events), session_.get(), roster_.get(),
                                             missions_.get());
   }
-  hold_ = std::make_unique<LockstepHold>(lockstep_, &tick_, &finished_);
+  hold_ = std::make_unique<LockstepHold>(lockstep_, &tick_, &finished_,
+                                         static_cast<std::uint64_t>(params_.hold_at));
   Connect();
   for (const auto& entry : world_->robots()) roster_->Add(entry.first);
   roster_->PublishList();

@@ -33,6 +33,8 @@ std::string SimulatorParams::Validate() const {
   } else if (!std::isfinite(real_time_factor) || real_time_factor < 0.0) {
     os << "~real_time_factor must be a finite number >= 0 (0: as fast as possible) but is "
        << real_time_factor;
+  } else if (hold_at < 0) {
+    os << "~hold_at must be >= 0 (0: no hold) but is " << hold_at;
   } else if (!std::isfinite(integration_step_s) || !(integration_step_s > 0.0) ||
              integration_step_s > swarm.tick_period_s) {
     os << "~integration_step_s must be in (0, tick_period_s = " << swarm.tick_period_s
@@ -73,6 +75,7 @@ bool ReadSimulatorParams(const ros::NodeHandle& nh, const ros::NodeHandle& p, bo
       !ReadPrivate(p, "lockstep_max_ticks", &params->lockstep_max_ticks, error) ||
       !ReadPrivate(p, "lockstep_start_timeout_s", &params->lockstep_start_timeout_s, error) ||
       !ReadPrivate(p, "real_time_factor", &params->real_time_factor, error) ||
+      !ReadPrivate(p, "hold_at", &params->hold_at, error) ||
       !ReadPrivate(p, "lockstep_observers", &params->lockstep_observers, error) ||
       !ReadPrivate(p, "lockstep_dispatcher", &params->lockstep_dispatcher, error) ||
       !ReadPrivate(p, "integration_step_s", &params->integration_step_s, error) ||

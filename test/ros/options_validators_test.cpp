@@ -71,6 +71,7 @@ TEST(OptionsValidatorsTest, SimulatorParams) {
   Add<P, double>(&v, "~lockstep_start_timeout_s", &P::lockstep_start_timeout_s,
                  {-0.1, kNan, kInf});
   Add<P, double>(&v, "~real_time_factor", &P::real_time_factor, {-0.1, kNan, kInf});
+  Add<P, int>(&v, "~hold_at", &P::hold_at, {-1});
   // ~integration_step_s in (0, tick_period_s = 0.1]
   Add<P, double>(&v, "~integration_step_s", &P::integration_step_s, {0.0, -0.01, 0.11, kNan, kInf});
   Add<P, double>(&v, "~markers_rate_hz", &P::markers_rate_hz, {-1.0, kNan, kInf});

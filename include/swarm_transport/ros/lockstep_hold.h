@@ -17,8 +17,9 @@ namespace swarm_transport {
 class LockstepHold {
  public:
   // `tick` (ticks so far) and `finished` (the last lock-step tick is done) are the simulator's
-  // and must outlive the hold.
-  LockstepHold(bool lockstep, const std::uint64_t* tick, const bool* finished);
+  // and must outlive the hold. `hold_at` > 0: hold before that tick from the start (~hold_at).
+  LockstepHold(bool lockstep, const std::uint64_t* tick, const bool* finished,
+               std::uint64_t hold_at = 0);
 
   // Offers ~hold on `private_nh` (in real time too: it refuses there).
   void Connect(ros::NodeHandle private_nh);

@@ -34,6 +34,10 @@ struct SimulatorParams {
   // ~real_time_factor: lock-step pacing, simulated seconds per wall second (1.0: real time, to
   // watch a deterministic run in rviz and send commands by hand; 0: as fast as possible).
   double real_time_factor = 0.0;
+  // ~hold_at: lock-step, the run holds before this tick from the start, as a ~hold asked before
+  // tick 0 would (a test or a tool that acts at a stated tick cannot miss it however fast the
+  // run goes); ~hold with tick 0 releases it. 0: no hold.
+  int hold_at = 0;
   // ~lockstep_dispatcher: a mission dispatcher answers LOADING / UNLOADING with a stamped
   // LOADED / UNLOADED (/swarm/loaded_delay_s, unloaded_delay_s >= 0); hold the next tick until
   // it arrived (at most lockstep_timeout_s), so that it applies at its stamped tick however
