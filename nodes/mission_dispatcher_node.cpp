@@ -1,8 +1,8 @@
 // The mission dispatcher: accepts, validates, publishes and tracks missions; signals loading.
 #include <ros/ros.h>
 
-#include "swarm_transport/ros/master_watch.h"
-#include "swarm_transport/ros/mission_dispatcher.h"
+#include "swarm_transport/ros/common/master_watch.h"
+#include "swarm_transport/ros/dispatcher/mission_dispatcher.h"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "mission_dispatcher");

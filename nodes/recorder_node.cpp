@@ -3,8 +3,8 @@
 
 #include <csignal>
 
-#include "swarm_transport/ros/master_watch.h"
-#include "swarm_transport/ros/recorder.h"
+#include "swarm_transport/ros/common/master_watch.h"
+#include "swarm_transport/ros/recorder/recorder.h"
 
 int main(int argc, char** argv) {
   // Our own SIGINT / SIGTERM handler: roscpp's would shut down before the files are closed.

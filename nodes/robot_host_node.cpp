@@ -1,8 +1,8 @@
 // Many robots in one process (ids [~from, ~to)), each as if it were its own robot node.
 #include <ros/ros.h>
 
-#include "swarm_transport/ros/master_watch.h"
-#include "swarm_transport/ros/robot_host.h"
+#include "swarm_transport/ros/common/master_watch.h"
+#include "swarm_transport/ros/robot/robot_host.h"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "robot_host");

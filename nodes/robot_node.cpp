@@ -1,10 +1,10 @@
 // One robot of the swarm: ~id, the shared /swarm configuration; lock-step a tick per
 // perception, real time its own timeline.
-#include "swarm_transport/ros/robot_node.h"
+#include "swarm_transport/ros/robot/robot_node.h"
 
 #include <ros/ros.h>
 
-#include "swarm_transport/ros/master_watch.h"
+#include "swarm_transport/ros/common/master_watch.h"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "robot");

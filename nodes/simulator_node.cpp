@@ -3,8 +3,8 @@
 
 #include <csignal>
 
-#include "swarm_transport/ros/master_watch.h"
-#include "swarm_transport/ros/simulator.h"
+#include "swarm_transport/ros/common/master_watch.h"
+#include "swarm_transport/ros/simulator/simulator.h"
 
 int main(int argc, char** argv) {
   // Our own SIGINT handler: roscpp's would silence rosconsole before the final summary.

@@ -7,7 +7,7 @@
 
 #include "fuzz_common.h"
 #include "swarm_transport/core/robot_brain.h"
-#include "swarm_transport/ros/params.h"
+#include "swarm_transport/ros/common/params.h"
 #include "swarm_transport/sim/world2d.h"
 
 using namespace swarm_transport;  // NOLINT

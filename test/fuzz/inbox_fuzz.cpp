@@ -8,7 +8,7 @@
 
 #include "fuzz_common.h"
 #include "swarm_transport/core/robot_brain.h"
-#include "swarm_transport/ros/conversions.h"
+#include "swarm_transport/ros/common/conversions.h"
 
 using namespace swarm_transport;  // NOLINT
 

@@ -11,7 +11,7 @@
 #include "swarm_transport/core/mission_book.h"
 #include "swarm_transport/core/recruit.h"
 #include "swarm_transport/core/robot_brain.h"
-#include "swarm_transport/ros/conversions.h"
+#include "swarm_transport/ros/common/conversions.h"
 
 using namespace swarm_transport;  // NOLINT
 

@@ -7,8 +7,8 @@
 #include "fuzz_common.h"
 #include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/core/random.h"
-#include "swarm_transport/ros/conversions.h"
-#include "swarm_transport/ros/mission_relay.h"
+#include "swarm_transport/ros/common/conversions.h"
+#include "swarm_transport/ros/engine/mission_relay.h"
 #include "swarm_transport/sim/radio.h"
 #include "swarm_transport/sim/world2d.h"
 

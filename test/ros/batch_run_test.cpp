@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "swarm_transport/ros/batch_run.h"
-#include "swarm_transport/ros/params.h"
+#include "swarm_transport/ros/engine/batch_run.h"
+#include "swarm_transport/ros/common/params.h"
 
 namespace swarm_transport {
 namespace {

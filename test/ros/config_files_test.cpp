@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "swarm_transport/ros/params.h"
+#include "swarm_transport/ros/common/params.h"
 
 namespace swarm_transport {
 namespace {

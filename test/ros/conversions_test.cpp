@@ -1,7 +1,7 @@
 // conversions.h: the one place that knows messages and core types. Round trips keep what the
 // wire can carry (float32), angles land in the ranges the messages promise, and every non-finite
 // float is caught by the checks that guard each subscriber.
-#include "swarm_transport/ros/conversions.h"
+#include "swarm_transport/ros/common/conversions.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The simulator's timed events (~events_file, issue 14): every kind read, a bad entry named,
 // and the schedule hands out each event once, at its tick, in file order within a tick.
-#include "swarm_transport/ros/event_schedule.h"
+#include "swarm_transport/ros/common/event_schedule.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "swarm_transport/Mission_Event.h"
-#include "swarm_transport/ros/params.h"
+#include "swarm_transport/ros/common/params.h"
 
 namespace swarm_transport {
 namespace {

@@ -1,8 +1,8 @@
-// The master watch (ros/master_watch.h) asks the master for its pid with a deadline: a master
+// The master watch (ros/common/master_watch.h) asks the master for its pid with a deadline: a master
 // that accepts the connection but never answers (stopped, hung, or still starting on its port)
 // does not hold it. roscpp's own calls to the master (ros::master::execute) wait for as long
 // as such a connection stays open.
-#include "swarm_transport/ros/master_watch.h"
+#include "swarm_transport/ros/common/master_watch.h"
 
 #include <arpa/inet.h>
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
-// The lock-step relay of mission messages and the relayed positions (ros/mission_relay.h):
+// The lock-step relay of mission messages and the relayed positions (ros/engine/mission_relay.h):
 // every robot's round carries the same messages, ordered by sender, whatever order they
 // arrived in; orders wait for their start tick.
-#include "swarm_transport/ros/mission_relay.h"
+#include "swarm_transport/ros/engine/mission_relay.h"
 
 #include <gtest/gtest.h>
 

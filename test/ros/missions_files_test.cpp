@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "swarm_transport/core/mission.h"
-#include "swarm_transport/ros/dispatcher_options.h"
-#include "swarm_transport/ros/params.h"
+#include "swarm_transport/ros/dispatcher/dispatcher_options.h"
+#include "swarm_transport/ros/common/params.h"
 
 namespace swarm_transport {
 namespace {

@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "swarm_transport/ros/dispatcher_options.h"
-#include "swarm_transport/ros/recorder.h"
-#include "swarm_transport/ros/robot_host.h"
-#include "swarm_transport/ros/robot_node.h"
-#include "swarm_transport/ros/simulator_params.h"
+#include "swarm_transport/ros/dispatcher/dispatcher_options.h"
+#include "swarm_transport/ros/recorder/recorder.h"
+#include "swarm_transport/ros/robot/robot_host.h"
+#include "swarm_transport/ros/robot/robot_node.h"
+#include "swarm_transport/ros/simulator/simulator_params.h"
 
 namespace swarm_transport {
 namespace {

@@ -1,6 +1,6 @@
 // What rviz shows (issue 13): robots coloured by the swarm they belong to, and the status line
 // with the tick, the swarm count and each mission's phase.
-#include "swarm_transport/ros/visuals.h"
+#include "swarm_transport/ros/simulator/visuals.h"
 
 #include <gtest/gtest.h>
 

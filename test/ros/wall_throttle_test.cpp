@@ -1,6 +1,6 @@
 // WarnThrottle (wall_throttle.h): one warning per period of wall time, counting the ones held
 // back. Driven with given wall times, so nothing here depends on how fast the test runs.
-#include "swarm_transport/ros/wall_throttle.h"
+#include "swarm_transport/ros/common/wall_throttle.h"
 
 #include <gtest/gtest.h>
 

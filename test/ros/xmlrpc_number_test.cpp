@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "swarm_transport/ros/dispatcher_options.h"
-#include "swarm_transport/ros/event_schedule.h"
-#include "swarm_transport/ros/params.h"
+#include "swarm_transport/ros/dispatcher/dispatcher_options.h"
+#include "swarm_transport/ros/common/event_schedule.h"
+#include "swarm_transport/ros/common/params.h"
 
 namespace swarm_transport {
 namespace {

@@ -1,5 +1,5 @@
 // The shared swarm configuration (the /swarm keys of config/*.yaml), typed and validated in the
-// core: every node and the robot brain take the same struct. ros/params.h loads it.
+// core: every node and the robot brain take the same struct. ros/common/params.h loads it.
 #ifndef SWARM_TRANSPORT_CORE_SWARM_CONFIG_H_
 #define SWARM_TRANSPORT_CORE_SWARM_CONFIG_H_
 

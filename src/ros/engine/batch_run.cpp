@@ -1,0 +1,415 @@
+#include "swarm_transport/ros/engine/batch_run.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "swarm_transport/Mission_Event.h"
+#include "swarm_transport/Mission_Status.h"
+#include "swarm_transport/Neighbors.h"
+#include "swarm_transport/Robot_Position.h"
+#include "swarm_transport/Robot_Positions.h"
+#include "swarm_transport/core/metrics.h"
+#include "swarm_transport/core/mission_book.h"
+#include "swarm_transport/core/random.h"
+#include "swarm_transport/core/run_metrics.h"
+#include "swarm_transport/ros/engine/batch_files.h"
+#include "swarm_transport/ros/common/conversions.h"
+#include "swarm_transport/ros/dispatcher/dispatcher_options.h"
+#include "swarm_transport/ros/engine/lockstep_engine.h"
+#include "swarm_transport/ros/common/names.h"
+#include "swarm_transport/ros/common/params.h"
+#include "swarm_transport/ros/recorder/recorder.h"
+#include "swarm_transport/ros/robot/robot_session.h"
+#include "swarm_transport/ros/simulator/simulator_params.h"
+#include "swarm_transport/sim/live_mission.h"
+#include "swarm_transport/sim/radio.h"
+#include "swarm_transport/sim/world2d.h"
+
+namespace swarm_transport {
+namespace {
+
+using core::MissionPhase;
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::time_point from) {
+  return std::chrono::duration<double>(Clock::now() - from).count();
+}
+
+class Run {
+ public:
+  explicit Run(const BatchJob& job) : job_(job) {}
+
+  bool SetUp(const XmlRpc::XmlRpcValue& base_config, std::string* error);
+  void Tick();
+  bool Finish(std::string* error);
+  // result.json's members about the run (the job's come first).
+  void AddResult(double setup_s, double ticking_s, double finish_s, JsonObject* o) const;
+  bool over() const { return over_; }
+  std::uint64_t tick() const { return tick_; }
+
+ private:
+  // The recorder's frame of the world as /flock/positions carries it (`truth`: the physical
+  // robots' poses in world order), and the runner's trace.
+  void TakeFrame(std::vector<Robot_Position> truth);
+  // The robot at world index `i` ticks on its round: its answer joins the tick's answers.
+  void RobotTick(std::size_t i, const Neighbors& round);
+  // A status the robots said: the runner's, the dispatcher's and the recorder's part.
+  void Observe(const Mission_Status& status);
+  void WriteMissionRows();
+
+  const BatchJob& job_;
+  SwarmConfig config_;
+  RecorderParams recorder_;
+  std::unique_ptr<sim::World2D> world_;
+  std::unique_ptr<core::Rng> radio_rng_;
+  std::unique_ptr<sim::Radio> radio_;
+  sim::LiveMissions missions_;  // the simulator's books
+  std::unique_ptr<LockstepEngine> engine_;
+  std::vector<RobotSession> robots_;  // in world order (ascending id)
+  std::set<std::uint16_t> known_robots_;
+  std::optional<New_Mission> order_;  // released at tick 0
+  std::unique_ptr<core::MissionBook> book_;  // the dispatcher's
+  std::unique_ptr<core::RunMetrics> metrics_;
+  std::unique_ptr<LeaderTrack> track_;
+  std::string record_path_;
+  CsvFile swarm_csv_;
+  CsvFile missions_csv_;
+  CsvFile trace_csv_;
+  LockstepEngine::Answers answers_;  // of the current tick
+  std::vector<core::Velocity> commands_;
+  Neighbors round_;
+  std::uint64_t tick_ = 0;
+  bool over_ = false;
+  bool files_ok_ = true;
+  std::string end_;
+  // What the experiment's runner sees of the mission: each new state with its tick, the last
+  // status of a tick > 0, the last swarm sample.
+  std::vector<std::pair<int, std::uint64_t>> phases_;
+  std::optional<Mission_Status> last_status_;
+  std::optional<core::SwarmSample> last_sample_;
+  bool recorder_row_ = false;
+  std::size_t logged_warnings_ = 0;
+  // Collisions avoided while gathering: moves of mission robots before their transport (not
+  // frozen for loading) that swerved or slowed for a robot in the way (result.json).
+  std::uint64_t gathering_swerves_ = 0;
+};
+
+bool Run::SetUp(const XmlRpc::XmlRpcValue& base_config, std::string* error) {
+  // /swarm as swarm.launch loads it: the base configuration, the run's YAML over it, the seed.
+  XmlRpc::XmlRpcValue swarm = base_config;
+  XmlRpc::XmlRpcValue over;
+  if (!XmlRpcFromYamlFile(job_.config_path, &over, error)) return false;
+  if (over.getType() == XmlRpc::XmlRpcValue::TypeStruct) MergeParams(over, &swarm);
+  swarm["seed"] = static_cast<int>(job_.seed);
+  if (!ConfigFromXmlRpc(swarm, &config_, error)) {
+    *error = "/swarm: " + *error;
+    return false;
+  }
+  // The simulator's parameters as swarm.launch sets them for a lock-step host_sim run: its
+  // defaults, /swarm, the run's robots and placement.
+  SimulatorParams sim_params;
+  sim_params.swarm = config_;
+  std::string why;
+  if (swarm.hasMember("radio_loss") &&
+      !XmlRpcNumber(swarm["radio_loss"], &sim_params.radio_loss, &why)) {
+    *error = "/swarm/radio_loss " + why;
+    return false;
+  }
+  sim_params.robots = job_.robots;
+  sim_params.placement = job_.placement;
+  sim_params.placement_file = job_.placement_file;
+  sim_params.clock = core::Clock::kLockstep;
+  sim_params.radio_range_m = config_.flocking.local_range_m;
+  *error = sim_params.Validate();
+  if (error->empty()) *error = WorldParamsOf(sim_params).Validate();
+  if (!error->empty()) return false;
+  world_ = std::make_unique<sim::World2D>(WorldParamsOf(sim_params));
+  int robots = job_.robots;
+  if (!sim::PlaceInitialRobots(job_.placement, config_.seed, job_.placement_file, &robots,
+                               world_.get(), error)) {
+    if (error->empty()) *error = "the placement does not fit";
+    return false;
+  }
+  radio_rng_ = std::make_unique<core::Rng>(config_.seed, sim::kRadioLossStream);
+  radio_ = std::make_unique<sim::Radio>(RadioParamsOf(sim_params), radio_rng_.get());
+  engine_ = std::make_unique<LockstepEngine>(world_.get(), radio_.get(), &missions_);
+  robots_.reserve(world_->size());
+  for (const auto& entry : world_->robots()) {
+    robots_.emplace_back(entry.first, config_);
+    known_robots_.insert(entry.first);
+  }
+  answers_.reserve(robots_.size());
+  commands_.resize(robots_.size());
+
+  // The recorder as recorder.launch starts it: its defaults, /swarm, the run's name and seed.
+  recorder_.swarm = config_;
+  recorder_.run_name = job_.run_name;
+  recorder_.seed = job_.seed;
+  *error = recorder_.Validate();
+  if (!error->empty()) return false;
+  metrics_ = std::make_unique<core::RunMetrics>(
+      RunMetricsParamsOf(recorder_),
+      [this](core::RunMetrics::Level level, const std::string& text) {
+        if (level == core::RunMetrics::Level::kWarn && logged_warnings_++ < 20) {
+          std::fprintf(stderr, "%s/%s: recorder: %s\n", job_.setting.c_str(),
+                       job_.run_name.c_str(), text.c_str());
+        }
+      });
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  record_path_ = (fs::path(job_.record_dir) / job_.run_name).string();
+  fs::create_directories(record_path_, ec);
+  if (ec) {
+    *error = "cannot create " + record_path_ + ": " + ec.message();
+    return false;
+  }
+  if (!swarm_csv_.Open(record_path_ + "/swarm_count.csv", core::RunMetrics::kSwarmHeader, error) ||
+      !missions_csv_.Open(record_path_ + "/missions.csv", core::RunMetrics::kMissionsHeader,
+                          error)) {
+    return false;
+  }
+  if (job_.trace && !trace_csv_.Open(job_.run_dir + "/trace.csv", "tick,robot_id,x,y,heading_deg",
+                                     error, /*flush_each_row=*/false)) {
+    return false;
+  }
+
+  if (job_.has_mission) {
+    // The dispatcher's ~submit (a dispatcher without private parameters): validated against
+    // the swarm, then published as its order.
+    book_ = std::make_unique<core::MissionBook>(
+        MissionBookParamsOf(config_, DispatcherOptionsOf(config_)));
+    const core::MissionBook::Verdict verdict =
+        book_->Submit(ToMissionSpec(job_.mission), "service", true, false, known_robots_, 0.0);
+    if (!verdict.accepted) {
+      *error = "the dispatcher rejected the mission: " + verdict.message;
+      return false;
+    }
+    order_ = ToNewMission(verdict.spec);
+    order_->start_tick = 0;
+    // The recorder follows it from the tick it enters (tick 0).
+    RecordOrder(*order_, config_, metrics_.get());
+    if (job_.kind == "leader") {
+      track_ = std::make_unique<LeaderTrack>(static_cast<std::uint16_t>(job_.leader_id),
+                                             core::Vec2{order_->target_x, order_->target_y},
+                                             config_.flocking.local_range_m);
+    }
+  }
+  return true;
+}
+
+void Run::WriteMissionRows() {
+  for (const std::string& row : metrics_->TakeMissionRows()) {
+    files_ok_ = missions_csv_.Append(row) && files_ok_;
+    recorder_row_ = true;
+  }
+}
+
+void Run::TakeFrame(std::vector<Robot_Position> truth) {
+  if (job_.trace) {
+    char row[96];
+    for (const Robot_Position& p : truth) {
+      if (!std::isfinite(p.pos_x) || !std::isfinite(p.pos_y)) continue;
+      std::snprintf(row, sizeof(row), "%llu,%u,%.4f,%.4f,%.2f",
+                    static_cast<unsigned long long>(tick_), static_cast<unsigned>(p.robot_id),
+                    static_cast<double>(p.pos_x), static_cast<double>(p.pos_y),
+                    static_cast<double>(p.angle));
+      files_ok_ = trace_csv_.Append(row) && files_ok_;
+    }
+  }
+  Robot_Positions positions;
+  positions.tick = tick_;
+  positions.sim_time = static_cast<double>(tick_) * config_.tick_period_s;
+  positions.robots = std::move(truth);
+  std::size_t bad = 0;
+  core::MetricsFrame frame = RecorderFrame(positions, &bad);
+  if (track_) track_->Add(frame);
+  std::optional<core::SwarmSample> sample;
+  metrics_->AddFrame(std::move(frame), &sample);
+  if (sample) {
+    files_ok_ = swarm_csv_.Append(core::RunMetrics::SwarmRow(*sample)) && files_ok_;
+    last_sample_ = sample;
+  }
+  WriteMissionRows();
+}
+
+void Run::RobotTick(std::size_t i, const Neighbors& round) {
+  RobotSession& robot = robots_[i];
+  robot.TakeRelayed(round, known_robots_, nullptr);
+  RobotSession::Step step =
+      robot.Tick(ToPerception(robot.id(), round), round.tick, ros::Time(round.sim_time), true);
+  const core::RobotBrain& brain = robot.brain();
+  const std::optional<core::Carry>& carry = brain.last_plan().carry;
+  if (carry && !carry->transport && !carry->loading && !brain.frozen() &&
+      (step.brain.move.outcome == core::MoveOutcome::kSwerved ||
+       step.brain.move.outcome == core::MoveOutcome::kSlowed)) {
+    ++gathering_swerves_;
+  }
+  commands_[i] = LockstepEngine::CommandOf(step.answer);
+  answers_.emplace_back(robot.id(), std::move(step.answer));
+}
+
+void Run::Observe(const Mission_Status& status) {
+  // The runner: each new state with its tick; the last status of a tick > 0.
+  if (job_.has_mission && status.mission_id == job_.mission.mission_id) {
+    if (phases_.empty() || phases_.back().first != status.state) {
+      phases_.emplace_back(status.state, status.tick);
+    }
+    if (status.tick > 0) last_status_ = status;
+  }
+  // The dispatcher: LOADED / UNLOADED at their stamped ticks, into the next tick's relay.
+  // (MissionDispatcher::OnStatus, which checks the same before it books a status.)
+  if (book_ && status.state < core::kPhaseCount && std::isfinite(status.object_position_x) &&
+      std::isfinite(status.object_position_y) && std::isfinite(status.distance_to_target)) {
+    const double now_s = static_cast<double>(tick_) * config_.tick_period_s;
+    for (const core::DueSignal& due : book_->OnStatus(ToMissionReport(status), now_s).signals) {
+      engine_->relay().Add(names::kDispatcherNode, ToEventMsg(due));
+    }
+  }
+  // The recorder.
+  RecordStatus(status, metrics_.get());
+  WriteMissionRows();
+}
+
+void Run::Tick() {
+  // The final state at the final time: a frame, no round.
+  if (tick_ == job_.max_ticks) {
+    std::vector<Robot_Position> truth;
+    truth.reserve(world_->size());
+    for (const auto& entry : world_->robots()) {
+      truth.push_back(ToRobotPosition(entry.first, entry.second.pose));
+    }
+    TakeFrame(std::move(truth));
+    end_ = job_.kind == "flocking" ? "max_ticks" : "TICK_LIMIT";
+    over_ = true;
+    return;
+  }
+  if (tick_ == 0 && order_) engine_->relay().AddOrder(names::kDispatcherNode, *order_);
+  engine_->ReleaseOrders(tick_);  // one the books refuse, the robots refuse too
+  engine_->BeginRound(tick_, static_cast<double>(tick_) * config_.tick_period_s, nullptr, {});
+  TakeFrame(engine_->truth());
+  for (std::size_t i = 0; i < robots_.size(); ++i) {
+    engine_->Round(i, false, &round_);
+    RobotTick(i, round_);
+  }
+  engine_->EndRound();
+  engine_->TakeAnswers(&answers_, [this](std::uint16_t, const Tick_Answer& a) {
+    for (const Mission_Status& s : a.statuses) Observe(s);
+  });
+  // All answers apply together, then the world steps one tick.
+  std::size_t i = 0;
+  for (const auto& entry : world_->robots()) world_->SetCommand(entry.first, commands_[i++], nullptr);
+  world_->Step(config_.tick_period_s);
+  ++tick_;
+  for (const auto& phase : phases_) {
+    if (phase.first == Mission_Status::DONE || phase.first == Mission_Status::ABORTED) {
+      end_ = phase.first == Mission_Status::DONE ? "DONE" : "ABORTED";
+      over_ = true;
+    }
+  }
+}
+
+bool Run::Finish(std::string* error) {
+  if (end_ == "DONE" && track_) track_->Arrived(phases_.back().second);
+  metrics_->Drain();
+  WriteMissionRows();
+  bool ok = swarm_csv_.Close() & missions_csv_.Close() & trace_csv_.Close() & files_ok_;
+  std::string why;
+  if (!WriteRunFile(record_path_, metrics_->RunRow(job_.run_name, job_.seed), &why)) ok = false;
+  if (track_ && !track_->Write(job_.run_dir + "/leader_track.csv")) ok = false;
+  if (!ok) *error = "cannot write the files of " + record_path_ + (why.empty() ? "" : ": " + why);
+  return ok;
+}
+
+void Run::AddResult(double setup_s, double ticking_s, double finish_s, JsonObject* result) const {
+  JsonObject& o = *result;
+  o.Add("engine", JsonString("batch"));
+  o.Add("end", JsonString(end_));
+  if (job_.has_mission) {
+    std::string phases = "[";
+    for (std::size_t k = 0; k < phases_.size(); ++k) {
+      phases += (k ? ", [" : "[") + std::to_string(phases_[k].first) + ", " +
+                std::to_string(phases_[k].second) + "]";
+    }
+    o.Add("phases", phases + "]");
+    o.Add("end_tick", std::to_string(metrics_->newest_tick()));
+    o.Add("gathering_swerves", std::to_string(gathering_swerves_));
+    JsonObject last;
+    if (last_status_) {
+      const Mission_Status& s = *last_status_;
+      last.Add("distance_to_target", JsonNumber(s.distance_to_target));
+      last.Add("object", "[" + JsonNumber(s.object_position_x) + ", " +
+                             JsonNumber(s.object_position_y) + "]");
+      last.Add("reason", JsonString(s.reason));
+      last.Add("state", std::to_string(s.state));
+      last.Add("tick", std::to_string(s.tick));
+    }
+    o.Add("last_status", last.Text(" "));
+    if (end_ == "DONE" || end_ == "ABORTED") o.Add("recorder_row", recorder_row_ ? "true" : "false");
+  }
+  if (last_sample_) {
+    JsonObject stats;
+    stats.Add("largest_swarm", std::to_string(last_sample_->largest_swarm));
+    stats.Add("robots", std::to_string(last_sample_->robots));
+    stats.Add("sim_time", JsonNumber(last_sample_->sim_time_s));
+    stats.Add("swarm_count", std::to_string(last_sample_->swarm_count));
+    stats.Add("tick", std::to_string(last_sample_->tick));
+    o.Add("final_stats", stats.Text(" "));
+  } else {
+    o.Add("final_stats", "null");
+  }
+  o.Add("ticks", std::to_string(metrics_->newest_tick()));
+  o.Add("startup_s", JsonNumber(setup_s));
+  o.Add("ticking_s", JsonNumber(ticking_s));
+  o.Add("ticks_per_s",
+        JsonNumber(ticking_s > 0.0 ? static_cast<double>(metrics_->newest_tick()) / ticking_s
+                                   : 0.0));
+  o.Add("shutdown_s", JsonNumber(finish_s));
+}
+
+}  // namespace
+
+bool RunBatchJob(const BatchJob& job, const XmlRpc::XmlRpcValue& base_config, std::string* error) {
+  const Clock::time_point started = Clock::now();
+  JsonObject result;
+  result.Add("setting", JsonString(job.setting));
+  result.Add("run", std::to_string(job.run));
+  result.Add("seed", std::to_string(job.seed));
+  result.Add("robots", std::to_string(job.robots));
+  result.Add("mission_id",
+             job.has_mission ? std::to_string(job.mission.mission_id) : std::string("null"));
+  bool ok = false;
+  {
+    Run run(job);
+    if (run.SetUp(base_config, error)) {
+      const double setup_s = Seconds(started);
+      const Clock::time_point ticking = Clock::now();
+      while (!run.over()) run.Tick();
+      const double ticking_s = Seconds(ticking);
+      const Clock::time_point finishing = Clock::now();
+      ok = run.Finish(error);
+      run.AddResult(setup_s, ticking_s, Seconds(finishing), &result);
+    }
+  }
+  result.Add("status", JsonString(ok ? "ok" : "error"));
+  result.Add("error", JsonString(ok ? "" : *error));
+  result.Add("wall_s", JsonNumber(Seconds(started)));
+  const std::string text = result.Text();
+  std::ofstream out(job.run_dir + "/result.json");
+  out << text << "\n";
+  if (!out) {
+    if (ok) *error = "cannot write " + job.run_dir + "/result.json";
+    return false;
+  }
+  return ok;
+}
+
+}  // namespace swarm_transport

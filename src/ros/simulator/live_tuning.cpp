@@ -1,0 +1,23 @@
+#include "swarm_transport/ros/simulator/live_tuning.h"
+
+#include "swarm_transport/ros/common/names.h"
+
+namespace swarm_transport {
+
+void LiveTuning::Connect(ros::NodeHandle nh, ros::NodeHandle private_nh) {
+  pub_ = nh.advertise<Flocking_Tuning>(names::kTuning, 1, true);
+  server_ = std::make_unique<FlockingTuningServer>(private_nh, &relay_);
+}
+
+void LiveTuning::Shutdown() {
+  server_.reset();
+  pub_.shutdown();
+}
+
+std::optional<Flocking_Tuning> LiveTuning::BeginRound(std::uint64_t tick) {
+  std::optional<Flocking_Tuning> tuned = relay_.BeginRound(tick);
+  if (tuned) pub_.publish(*tuned);
+  return tuned;
+}
+
+}  // namespace swarm_transport

@@ -1,0 +1,468 @@
+#include "swarm_transport/ros/simulator/lockstep_session.h"
+
+#include <algorithm>
+#include <string>
+#include <type_traits>
+
+#include "swarm_transport/Delete_Object.h"
+#include "swarm_transport/Mission_Event.h"
+#include "swarm_transport/Robot_Continue.h"
+#include "swarm_transport/Robot_Freeze.h"
+#include "swarm_transport/Update_Object.h"
+#include "swarm_transport/ros/common/conversions.h"
+#include "swarm_transport/ros/common/graph.h"
+#include "swarm_transport/ros/common/names.h"
+
+namespace swarm_transport {
+namespace {
+
+// Relay sender of a scenario's timed events (sorted before the robots' "robot_NNNNN").
+constexpr char kEventsSender[] = "events";
+
+constexpr std::uint32_t kMissionQueue = 100;
+// Polling period of the lock-step waits (s): also bounds a robot-less tick to ~1 ms.
+constexpr double kPollS = 0.001;
+// Period of the start wait (s).
+constexpr double kIdleS = 0.01;
+// A robot must be connected this long (wall s) before lock-step counts on its answers.
+constexpr double kSettleS = 0.2;
+
+}  // namespace
+
+LockstepSession::LockstepSession(ros::NodeHandle nh, const SimulatorParams& params,
+                                 RobotLinks* links, ros::CallbackQueue* command_queue,
+                                 LockstepEngine* engine, LockstepHooks hooks)
+    : nh_(nh),
+      params_(params),
+      links_(links),
+      command_queue_(command_queue),
+      engine_(engine),
+      hooks_(std::move(hooks)) {}
+
+void LockstepSession::Connect() {
+  // The lock-step barrier for mission messages: what arrives during tick k is relayed in every
+  // Neighbors of tick k + 1 (robots in lock-step do not subscribe to these topics). The relay
+  // orders messages by their publishing node (and skips what this node publishes itself), so
+  // the callbacks must get the connection header: a lambda given to subscribe<M>() would be
+  // wrapped as a `const M::ConstPtr&` callback, whose MessageEvent names every sender
+  // "unknown_publisher" (the dispatcher's statuses then counted as a robot's).
+  auto relay = [this](const char* topic, auto type) {
+    using M = decltype(type);
+    ros::SubscribeOptions ops;
+    ops.initByFullCallbackType<const ros::MessageEvent<const M>&>(
+        topic, kMissionQueue, [this](const ros::MessageEvent<const M>& event) { Relay<M>(event); });
+    relay_subs_.push_back(nh_.subscribe(ops));
+  };
+  relay(names::kMissionNew, New_Mission());
+  relay(names::kObjectUpdate, Update_Object());
+  relay(names::kObjectDelete, Delete_Object());
+  relay(names::kFreeze, Robot_Freeze());
+  relay(names::kContinue, Robot_Continue());
+  relay(names::kMissionEvent, Mission_Event());
+  relay(names::kMissionStatus, Mission_Status());
+  status_pub_ = nh_.advertise<Mission_Status>(names::kMissionStatus, kMissionQueue);
+  progress_pub_ = nh_.advertise<Mission_Status>(names::kMissionProgress, kMissionQueue);
+  update_pub_ = nh_.advertise<Update_Object>(names::kObjectUpdate, kMissionQueue);
+  delete_pub_ = nh_.advertise<Delete_Object>(names::kObjectDelete, kMissionQueue);
+  freeze_pub_ = nh_.advertise<Robot_Freeze>(names::kFreeze, kMissionQueue);
+  continue_pub_ = nh_.advertise<Robot_Continue>(names::kContinue, kMissionQueue);
+  if (params_.lockstep_dispatcher) {
+    // Its file missions enter at stamped ticks; tick 1 on waits for its schedule.
+    barrier_.ExpectSchedule();
+    schedule_sub_ = nh_.subscribe(names::kMissionSchedule, kMissionQueue,
+                                  &LockstepSession::OnSchedule, this);
+    ROS_INFO("lockstep: a dispatcher sends LOADED %s, UNLOADED %s; ticks wait for them",
+             params_.swarm.loaded_delay_s >= 0.0 ? "on its own" : "never (waits for you)",
+             params_.swarm.unloaded_delay_s >= 0.0 ? "on its own" : "never (waits for you)");
+  }
+}
+
+void LockstepSession::Inject(const Robot_Freeze& msg) {
+  engine_->relay().Add(kEventsSender, msg);
+  freeze_pub_.publish(msg);
+}
+
+void LockstepSession::Inject(const Robot_Continue& msg) {
+  engine_->relay().Add(kEventsSender, msg);
+  continue_pub_.publish(msg);
+}
+
+void LockstepSession::Inject(const Update_Object& msg) {
+  engine_->relay().Add(kEventsSender, msg);
+  update_pub_.publish(msg);
+}
+
+void LockstepSession::Inject(const Mission_Event& msg) { engine_->relay().Add(kEventsSender, msg); }
+
+void LockstepSession::Shutdown() {
+  for (ros::Subscriber& sub : relay_subs_) sub.shutdown();
+  schedule_sub_.shutdown();
+}
+
+void LockstepSession::AddRobot(std::uint16_t id) {
+  barrier_.Add(id);
+  if (started_) joining_.insert(id);
+}
+
+void LockstepSession::RemoveRobot(std::uint16_t id) {
+  barrier_.Remove(id);
+  joining_.erase(id);
+  connected_.erase(id);
+}
+
+void LockstepSession::Round(std::size_t index, std::uint16_t id, Neighbors* round) {
+  const std::size_t standing = engine_->Round(index, connected_.erase(id) > 0, round);
+  if (standing > 0 && round->tick > 0) {
+    ROS_INFO("lockstep: robot %u connected: its first round (tick %llu) carries the orders of "
+             "the %zu mission(s) sent before that have not ended", id,
+             static_cast<unsigned long long>(round->tick), standing);
+  }
+}
+
+void LockstepSession::BeginTick(std::uint64_t tick) {
+  WaitForJoining(tick);
+  UpdateLiveness(tick);
+  // A phase status relayed now makes its dispatcher event due in this tick's relay.
+  WaitForDispatcher(tick);
+}
+
+void LockstepSession::Finish() {
+  finished_ = true;
+  barrier_.EndAll();
+}
+
+bool LockstepSession::RelaysConnected(const ros::Publisher& robot_list) const {
+  TopicNodeCounts graph;
+  if (!QueryTopicNodeCounts(&graph)) return false;
+  for (const ros::Subscriber& sub : relay_subs_) {
+    if (!graph.AllConnected(sub)) return false;
+  }
+  // Every observer of the robots' mission messages (a recorder, an experiment's runner) hears
+  // them from the first tick: not latched, and a short lock-step mission may be over in a
+  // fraction of a wall second, before a connection still under way is up.
+  for (const ros::Publisher* pub : {&status_pub_, &progress_pub_, &update_pub_, &delete_pub_,
+                                    &freeze_pub_, &continue_pub_}) {
+    if (!graph.AllConnected(*pub)) return false;
+  }
+  // Every subscriber of the (latched) robot list has it: a robot checks a mission's robots
+  // against it, and one without it would accept an order naming a robot that does not exist.
+  return graph.AllConnected(robot_list);
+}
+
+void LockstepSession::WaitForStart(const ros::Publisher& positions,
+                                   const ros::Publisher& robot_list) {
+  const ros::WallTime deadline =
+      ros::WallTime::now() + ros::WallDuration(params_.lockstep_start_timeout_s);
+  std::size_t connected = 0;
+  ros::WallTime ready_since;
+  while (hooks_.running()) {
+    connected = 0;
+    for (auto& entry : *links_) {
+      if (RobotLinks::Ready(&entry.second, kSettleS)) ++connected;
+    }
+    const bool observed = params_.lockstep_observers == 0 ||
+                          positions.getNumSubscribers() >=
+                              static_cast<std::uint32_t>(params_.lockstep_observers);
+    const ros::WallTime now = ros::WallTime::now();
+    // Asks the master only once the cheap conditions hold.
+    const bool ready = connected == links_->size() && observed && RelaysConnected(robot_list);
+    if (ready) {
+      // A link counts before its handshake is done (see Ready), and what was published before
+      // the last observer subscribed (a latched mission, one sent just before an experiment's
+      // runner subscribes) may still be on its way: everything must stay connected a moment,
+      // taking it in, so that it is relayed at tick 0 whatever the scheduling.
+      if (ready_since.isZero()) ready_since = now;
+      hooks_.spin(0.0);
+      if ((now - ready_since).toSec() >= kSettleS) break;
+      ros::WallDuration(kIdleS).sleep();
+      continue;
+    }
+    ready_since = ros::WallTime();
+    if (ros::WallTime::now() >= deadline) {
+      ROS_WARN(
+          "lockstep: only %zu of %zu robots connected (mission relays %s) after %.1f s; "
+          "starting anyway (the others join when they connect)",
+          connected, links_->size(), RelaysConnected(robot_list) ? "connected" : "not all connected",
+          params_.lockstep_start_timeout_s);
+      break;
+    }
+    hooks_.spin(0.0);
+    hooks_.visuals();
+    ros::WallDuration(kIdleS).sleep();
+  }
+  ROS_INFO("lockstep: %zu robots connected", connected);
+  started_ = true;
+}
+
+void LockstepSession::WaitForJoining(std::uint64_t tick) {
+  // A robot spawned while a process for its id runs (`robot.launch id:=N` started first idles
+  // until the id is listed) is waited for as the robots are at the start, so that it answers
+  // from its first tick in the world whatever the scheduling (issue 11: a new robot flocks
+  // within a tick of appearing). A robot spawned before its process starts stands until the
+  // process connects (UpdateLiveness); directly linked robots answer at once.
+  std::vector<std::uint16_t> awaited;
+  for (std::uint16_t id : joining_) {
+    const RobotLink* link = links_->Find(id);
+    if (link != nullptr && !link->direct && link->answer) awaited.push_back(id);
+  }
+  joining_.clear();
+  TopicNodeCounts graph;
+  if (awaited.empty() || !QueryTopicNodeCounts(&graph)) return;
+  awaited.erase(std::remove_if(awaited.begin(), awaited.end(),
+                               [this, &graph](std::uint16_t id) {
+                                 return graph.Publishers(links_->Find(id)->answer.getTopic()) == 0;
+                               }),
+                awaited.end());
+  const auto connected = [this, &awaited] {
+    for (std::uint16_t id : awaited) {
+      RobotLink* link = links_->Find(id);  // a /kill meanwhile removes it
+      if (link != nullptr && !RobotLinks::Ready(link, kSettleS)) return false;
+    }
+    return true;
+  };
+  const ros::WallTime deadline =
+      ros::WallTime::now() + ros::WallDuration(params_.lockstep_start_timeout_s);
+  while (!connected() && hooks_.running() && ros::WallTime::now() < deadline) {
+    hooks_.spin(kPollS);
+  }
+  if (!connected() && hooks_.running()) {
+    ROS_WARN("lockstep tick %llu: a joining robot's process did not connect within %.1f s; "
+             "it stands until it does", static_cast<unsigned long long>(tick),
+             params_.lockstep_start_timeout_s);
+  }
+}
+
+void LockstepSession::UpdateLiveness(std::uint64_t tick) {
+  for (auto& entry : *links_) {
+    const std::uint16_t id = entry.first;
+    RobotLink& link = entry.second;
+    const bool live = barrier_.Live(id);
+    if (link.silent && !link.Listening()) {
+      link.silent = false;  // gone: a process that connects under its id is a fresh start
+      link.connected_since = ros::WallTime();
+    }
+    if (!live && !link.silent && RobotLinks::Ready(&link, kSettleS)) {
+      barrier_.MakeLive(id);
+      connected_.insert(id);
+      if (tick > 0) {
+        ROS_INFO("lockstep: robot %u connected at tick %llu", id,
+                 static_cast<unsigned long long>(tick));
+      }
+    } else if (live && !link.Listening()) {
+      barrier_.MakeNotLive(id);
+      link.connected_since = ros::WallTime();
+      ROS_WARN("lockstep: robot %u disconnected at tick %llu", id,
+               static_cast<unsigned long long>(tick));
+    }
+  }
+}
+
+void LockstepSession::WaitForAnswers(std::uint64_t tick) {
+  const ros::WallTime deadline =
+      ros::WallTime::now() + ros::WallDuration(params_.lockstep_timeout_s);
+  bool complete = false;
+  do {
+    // Directly linked robots tick here; their answers are in when this returns.
+    hooks_.spin_robots();
+    ros::spinOnce();
+    complete = barrier_.AllAnswered();
+    // Block for answers only while some are missing (with direct robots only: none are).
+    command_queue_->callAvailable(ros::WallDuration(complete ? 0.0 : kPollS));
+    complete = barrier_.AllAnswered();
+    hooks_.visuals();
+  } while (!complete && hooks_.running() && ros::WallTime::now() < deadline);
+  // Whatever robots sent besides their answers (virtual copies) is in before the next round.
+  ros::spinOnce();
+  TakeAnswers();
+  if (barrier_.AllAnswered() || !hooks_.running()) return;
+  const std::vector<std::uint16_t> late = barrier_.Late();
+  const std::size_t live = barrier_.LiveCount();
+  // Out of the barrier until they answer again: a hung or dead robot must not cost the
+  // timeout every tick. They stand; they still are in the world and heard by the others.
+  for (std::uint16_t id : late) {
+    barrier_.MakeNotLive(id);
+    if (RobotLink* link = links_->Find(id)) link->silent = true;
+  }
+  if (late_warning_.Due()) {
+    ROS_WARN(
+        "lockstep tick %llu: %zu of %zu robots did not answer within %.2f s (first: robot "
+        "%d); they stand and are not waited for until they answer again",
+        static_cast<unsigned long long>(tick), late.size(), live, params_.lockstep_timeout_s,
+        late.empty() ? -1 : static_cast<int>(late.front()));
+  }
+}
+
+
+template <typename M>
+void LockstepSession::Relay(const ros::MessageEvent<const M>& event) {
+  const std::string& from = event.getPublisherName();
+  // What this node publishes are its robots' answers, relayed by TakeAnswers already.
+  if (from == ros::this_node::getName()) return;
+  const M& msg = *event.getConstMessage();
+  // Robots send their mission messages inside their answers; on the topics only the
+  // dispatcher's orders (with admission by the robots anyone's) and its statuses, object deletes
+  // and updates count (core::MayOrder, core::MayReport): a hand-made status or object message
+  // never reaches the robots.
+  const core::Sender sender = SenderOf(from);
+  if constexpr (std::is_same_v<M, New_Mission>) {
+    if (!core::MayOrder(params_.swarm.admission, sender)) return;
+  }
+  if constexpr (std::is_same_v<M, Mission_Status> || std::is_same_v<M, Update_Object> ||
+                std::is_same_v<M, Delete_Object>) {
+    if (sender.kind != core::SenderKind::kDispatcher) {
+      if (refused_warning_.Due()) {
+        ROS_WARN("lockstep: ignored a mission message of mission %u from %s: only the mission's "
+                 "robots and the dispatcher may send it",
+                 msg.mission_id, from.c_str());
+      }
+      return;
+    }
+  }
+  if constexpr (std::is_same_v<M, New_Mission>) {
+    engine_->relay().AddOrder(from, msg);
+    barrier_.OrderArrived(msg.mission_id);
+  } else {
+    engine_->relay().Add(from, msg);
+  }
+  if constexpr (std::is_same_v<M, Mission_Status>) NoteStatus(msg);
+  if constexpr (std::is_same_v<M, Mission_Event>) {
+    if (params_.lockstep_dispatcher) barrier_.Seen({msg.mission_id, msg.event});
+  }
+}
+
+void LockstepSession::NoteStatus(const Mission_Status& status) {
+  if (!params_.lockstep_dispatcher) return;
+  barrier_.OnPhase(status.mission_id, static_cast<core::MissionPhase>(status.state),
+                   params_.swarm.loaded_delay_s >= 0.0, params_.swarm.unloaded_delay_s >= 0.0);
+}
+
+void LockstepSession::WaitForDispatcher(std::uint64_t tick) {
+  const auto holding = [this, tick] {
+    return barrier_.EventsAwaited() || barrier_.OrdersMissing(tick) ||
+           barrier_.RecruitsUnchecked(tick);
+  };
+  if (!holding()) return;
+  // An order or the schedule is due once per run and may wait for the dispatcher's listeners:
+  // the start-up timeout; a LOADED / UNLOADED the tick timeout.
+  const double timeout_s = barrier_.OrdersMissing(tick) ? params_.lockstep_start_timeout_s
+                                                         : params_.lockstep_timeout_s;
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout_s);
+  while (holding() && hooks_.running() && ros::WallTime::now() < deadline) {
+    hooks_.spin(kPollS);
+  }
+  if (!holding() || !hooks_.running()) return;
+  if (barrier_.ScheduleMissing() && tick >= 1) {
+    ROS_WARN("lockstep tick %llu: no %s from the dispatcher within %.2f s; not waiting for it "
+             "any longer", static_cast<unsigned long long>(tick), names::kMissionSchedule,
+             timeout_s);
+  }
+  for (std::uint16_t id : barrier_.GiveUpOrders(tick)) {
+    ROS_WARN("lockstep tick %llu: the order of scheduled mission %u did not arrive within "
+             "%.2f s; not waiting for it any longer", static_cast<unsigned long long>(tick), id,
+             timeout_s);
+  }
+  if (barrier_.RecruitsUnchecked(tick)) {
+    ROS_WARN("lockstep tick %llu: the dispatcher did not watch tick %llu for its recruiting "
+             "missions within %.2f s; not waiting for it at this tick",
+             static_cast<unsigned long long>(tick), static_cast<unsigned long long>(tick - 1),
+             timeout_s);
+    barrier_.GiveUpRecruits(tick);
+  }
+  for (const auto& key : barrier_.GiveUpEvents()) {
+    ROS_WARN("lockstep tick %llu: no %s for mission %u from the dispatcher within %.2f s; "
+             "not waiting for it any longer",
+             static_cast<unsigned long long>(tick),
+             key.second == Mission_Event::LOADED ? "LOADED" : "UNLOADED", key.first, timeout_s);
+  }
+}
+
+void LockstepSession::OnSchedule(const Mission_Schedule::ConstPtr& msg) {
+  std::vector<std::pair<std::uint16_t, std::uint64_t>> orders;
+  const std::size_t n = std::min(msg->mission_ids.size(), msg->start_ticks.size());
+  for (std::size_t i = 0; i < n; ++i) orders.emplace_back(msg->mission_ids[i], msg->start_ticks[i]);
+  barrier_.OnSchedule(orders);
+  // The recruiting missions (SPEC 9.4): the whole list each time, with their statists.
+  std::vector<std::pair<std::uint16_t, std::uint64_t>> recruiting;
+  recruit_statists_.clear();
+  const std::size_t r = std::min({msg->recruiting.size(), msg->recruit_start_ticks.size(),
+                                  msg->statist_x.size(), msg->statist_y.size(),
+                                  msg->statist_ids.size(), msg->statist_copies.size()});
+  for (std::size_t i = 0; i < r; ++i) {
+    recruiting.emplace_back(msg->recruiting[i], msg->recruit_start_ticks[i]);
+    Robot_Position statist;
+    statist.robot_id = msg->statist_ids[i];
+    statist.type = Robot_Position::TYPE_STATIST;
+    statist.pos_x = msg->statist_x[i];
+    statist.pos_y = msg->statist_y[i];
+    for (int copy = 0; copy < msg->statist_copies[i]; ++copy) {
+      statist.sub_id = static_cast<std::uint8_t>(copy);
+      recruit_statists_.emplace_back(msg->recruit_start_ticks[i], statist);
+    }
+  }
+  barrier_.OnRecruits(msg->checked_tick, recruiting);
+}
+
+std::vector<Robot_Position> LockstepSession::RecruitStatists(std::uint64_t tick) const {
+  std::vector<Robot_Position> standing;
+  for (const auto& s : recruit_statists_) {
+    if (s.first <= tick) standing.push_back(s.second);
+  }
+  return standing;
+}
+
+
+void LockstepSession::OnAnswer(std::uint16_t id, const Tick_Answer& answer,
+                               std::uint64_t tick) {
+  RobotLink* link = links_->Find(id);
+  if (finished_ || link == nullptr) return;
+  const bool finite = IsFinite(answer.command);
+  if (!finite && bad_answer_warning_.Due()) {
+    ROS_WARN("lockstep: robot %u answered with a non-finite command; it stands instead", id);
+  }
+  const auto result =
+      barrier_.OnAnswer(id, answer.tick, LockstepEngine::CommandOf(answer));
+  switch (result) {
+    case sim::LockstepBarrier::Answer::kAnswer:
+    case sim::LockstepBarrier::Answer::kStale:
+      // A late answer's command is past, but what it says still holds: relayed a tick late.
+      answers_.emplace_back(id, answer);
+      break;
+    case sim::LockstepBarrier::Answer::kOutside:
+      if (link->silent) {
+        // A robot that let a tick time out answered at last (its late answer): it is waited
+        // for again from the next tick on. What it said still holds.
+        link->silent = false;
+        answers_.emplace_back(id, answer);
+        ROS_INFO("lockstep: robot %u answers again (tick %llu, its answer to tick %llu)", id,
+                 static_cast<unsigned long long>(tick),
+                 static_cast<unsigned long long>(answer.tick));
+        break;
+      }
+      [[fallthrough]];
+    case sim::LockstepBarrier::Answer::kUnsolicited:
+      if (unsolicited_warning_.Due()) {
+        ROS_WARN("lockstep: robot %u answered tick %llu, which it was not asked (tick %llu); "
+                 "ignored", id, static_cast<unsigned long long>(answer.tick),
+                 static_cast<unsigned long long>(tick));
+      }
+      break;
+  }
+}
+
+void LockstepSession::TakeAnswers() {
+  // By robot id, then in arrival order (a late answer before the robot's current one).
+  engine_->TakeAnswers(&answers_, [this](std::uint16_t, const Tick_Answer& a) {
+    for (const Update_Object& u : a.object_updates) update_pub_.publish(u);
+    for (const Robot_Freeze& f : a.freezes) freeze_pub_.publish(f);
+    for (const Robot_Continue& c : a.continues) continue_pub_.publish(c);
+    for (const Delete_Object& d : a.object_deletes) delete_pub_.publish(d);
+    for (const Mission_Status& st : a.statuses) {
+      NoteStatus(st);
+      status_pub_.publish(st);
+    }
+    for (const Mission_Status& st : a.progress) progress_pub_.publish(st);
+  });
+}
+
+
+}  // namespace swarm_transport
