@@ -13,6 +13,7 @@ hands its path to one experiment_batch process on stdin, and measures:
   cpu_us_per_robot_tick  the process's CPU time during the ticks / (robots * ticks), from
                          /proc/<pid>/task/*/schedstat sampled around the ticking window
   cpu_s                  the process's whole CPU time (wait4's rusage: set-up, ticks, files)
+  startup_cpu_s, ticking_cpu_s, files_cpu_s   its CPU time in each phase (the same samples)
   peak_rss_mb            the process's peak resident memory (rusage ru_maxrss)
 
 The last line is one `RESULT key=value ...` line. Figures only, no pass/fail."""
@@ -31,8 +32,8 @@ from swarm_transport import st_ros
 
 BATCH_KEYS = ('robots', 'clock', 'deploy', 'ticks', 'arena_m', 'neighbourhood', 'chain_hops',
               'lockstep_ticks_per_s', 'cpu_us_per_robot_tick', 'cpu_us_per_robot_tick_whole',
-              'ticking_s', 'startup_s', 'files_s', 'wall_s', 'cpu_s', 'ticking_cpu_s',
-              'peak_rss_mb', 'background_cpu_pct', 'final_swarm_count', 'binary')
+              'ticking_s', 'startup_s', 'files_s', 'wall_s', 'cpu_s', 'startup_cpu_s',
+              'ticking_cpu_s', 'files_cpu_s', 'peak_rss_mb', 'background_cpu_pct', 'final_swarm_count', 'binary')
 
 
 def default_binary():
@@ -186,10 +187,14 @@ def run_batch(a, log):
     stats = result.get('final_stats') or {}
     out['final_swarm_count'] = stats.get('swarm_count')
     robot_ticks = float(a.robots * ticks)
-    start = t_job + out['startup_s']
-    c0, c1 = sampler.at(start), sampler.at(start + out['ticking_s'])
-    if c0 is not None and c1 is not None and robot_ticks > 0:
-        out['ticking_cpu_s'] = (c1 - c0) / 1e9
+    # The process's CPU time in each phase (less sensitive to other jobs than the wall times).
+    ends = [t_job, t_job + out['startup_s']]
+    ends += [ends[-1] + out['ticking_s'], ends[-1] + out['ticking_s'] + out['files_s']]
+    cpu = [sampler.at(t) for t in ends]
+    if None not in cpu and robot_ticks > 0:
+        out['startup_cpu_s'] = (cpu[1] - cpu[0]) / 1e9
+        out['ticking_cpu_s'] = (cpu[2] - cpu[1]) / 1e9
+        out['files_cpu_s'] = (cpu[3] - cpu[2]) / 1e9
         out['cpu_us_per_robot_tick'] = 1e6 * out['ticking_cpu_s'] / robot_ticks
     out['cpu_us_per_robot_tick_whole'] = 1e6 * out['cpu_s'] / robot_ticks if robot_ticks else None
     out['ok'] = p.returncode == 0
@@ -225,7 +230,8 @@ def main(a, log, fmt):
     for key, unit in (('lockstep_ticks_per_s', 'ticks/s'), ('cpu_us_per_robot_tick', 'us'),
                       ('cpu_us_per_robot_tick_whole', 'us (whole process)'),
                       ('startup_s', 's'), ('ticking_s', 's'), ('files_s', 's'),
-                      ('wall_s', 's'), ('cpu_s', 's'), ('ticking_cpu_s', 's'),
+                      ('wall_s', 's'), ('cpu_s', 's'), ('startup_cpu_s', 's'),
+                      ('ticking_cpu_s', 's'), ('files_cpu_s', 's'),
                       ('peak_rss_mb', 'MiB'), ('background_cpu_pct', '%'),
                       ('final_swarm_count', '')):
         print('  %-28s %12s %s' % (key, fmt(r.get(key), '%.3f'), unit))
