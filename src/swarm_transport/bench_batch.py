@@ -20,7 +20,6 @@ The last line is one `RESULT key=value ...` line. Figures only, no pass/fail."""
 
 import json
 import os
-import resource
 import shutil
 import subprocess
 import sys
@@ -33,7 +32,8 @@ from swarm_transport import st_ros
 BATCH_KEYS = ('robots', 'clock', 'deploy', 'ticks', 'arena_m', 'neighbourhood', 'chain_hops',
               'lockstep_ticks_per_s', 'cpu_us_per_robot_tick', 'cpu_us_per_robot_tick_whole',
               'ticking_s', 'startup_s', 'files_s', 'wall_s', 'cpu_s', 'startup_cpu_s',
-              'ticking_cpu_s', 'files_cpu_s', 'peak_rss_mb', 'background_cpu_pct', 'final_swarm_count', 'binary')
+              'ticking_cpu_s', 'files_cpu_s', 'peak_rss_mb', 'background_cpu_pct',
+              'final_swarm_count', 'binary')
 
 
 def default_binary():
