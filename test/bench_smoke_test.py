@@ -20,31 +20,38 @@ PERCENTAGES = ('late_pct', 'delivered_pct', 'cpu_pct')
 POSITIVE = ('tick_hz', 'rss_mb_per_robot', 'lockstep_ticks_per_s', 'startup_s')
 
 
+def run_bench(args):
+    """scripts/bench with these arguments: (its output, the RESULT line's dict); asserts the
+    exit status and that the last line is the one RESULT line."""
+    # The package folder in the workspace links to the repository: scripts/ must be
+    # reached through its real path so that it finds the workspace.
+    pkg = rospkg.RosPack().get_path('swarm_transport')
+    bench = os.path.realpath(os.path.join(pkg, 'scripts', 'bench'))
+    env = os.environ.copy()
+    env.pop('ROS_MASTER_URI', None)  # the bench starts its own private master
+    p = subprocess.run([bench, '--no-build'] + args, stdout=subprocess.PIPE,
+                       stderr=subprocess.STDOUT, env=env, timeout=rospy.get_param('~timeout_s'))
+    out = p.stdout.decode(errors='replace')
+    case = unittest.TestCase()
+    case.assertEqual(p.returncode, 0, out)
+    lines = out.strip().splitlines()
+    case.assertTrue(lines[-1].startswith('RESULT '), out)
+    case.assertEqual(sum(1 for l in lines if l.startswith('RESULT ')), 1, out)
+    return out, dict(item.split('=', 1) for item in lines[-1].split()[1:])
+
+
 class BenchSmoke(unittest.TestCase):
 
     def test_result_line_is_complete_and_sane(self):
         robots = rospy.get_param('~robots')
-        # The package folder in the workspace links to the repository: scripts/ must be
-        # reached through its real path so that it finds the workspace.
-        pkg = rospkg.RosPack().get_path('swarm_transport')
-        bench = os.path.realpath(os.path.join(pkg, 'scripts', 'bench'))
         out_csv = tempfile.NamedTemporaryFile(suffix='.csv', delete=False).name
-        env = os.environ.copy()
-        env.pop('ROS_MASTER_URI', None)  # the bench starts its own private master
-        p = subprocess.run(
-            [bench, '--no-build', '--robots', str(robots), '--clock', 'both',
+        out, result = run_bench(
+            ['--robots', str(robots), '--clock', 'both',
              '--deploy', rospy.get_param('~deploy'), '--comm', 'local',
              '--seconds', str(rospy.get_param('~seconds')),
              '--warmup', str(rospy.get_param('~warmup')), '--csv', out_csv,
-             '--chain-hops', str(rospy.get_param('~chain_hops'))],
-            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=env,
-            timeout=rospy.get_param('~timeout_s'))
-        out = p.stdout.decode(errors='replace')
-        self.assertEqual(p.returncode, 0, out)
+             '--chain-hops', str(rospy.get_param('~chain_hops'))])
         lines = out.strip().splitlines()
-        self.assertTrue(lines[-1].startswith('RESULT '), out)
-        self.assertEqual(sum(1 for l in lines if l.startswith('RESULT ')), 1, out)
-        result = dict(item.split('=', 1) for item in lines[-1].split()[1:])
         for key in KEYS:
             self.assertIn(key, result, lines[-1])
         self.assertEqual(int(result['robots']), robots)
@@ -66,6 +73,44 @@ class BenchSmoke(unittest.TestCase):
         self.assertTrue(all(r['ok'] == 'True' for r in rows), rows)
 
 
+BATCH_KEYS = ('robots', 'deploy', 'ticks', 'arena_m', 'lockstep_ticks_per_s',
+              'cpu_us_per_robot_tick', 'cpu_s', 'ticking_s', 'startup_s', 'files_s', 'wall_s',
+              'peak_rss_mb', 'final_swarm_count', 'runs_ok')
+
+
+class BenchBatchSmoke(unittest.TestCase):
+    """--deploy batch: one flocking job through experiment_batch (no master of its own)."""
+
+    def test_batch_result_line_is_complete_and_sane(self):
+        robots, ticks = rospy.get_param('~robots'), rospy.get_param('~ticks')
+        _, result = run_bench(['--deploy', 'batch', '--robots', str(robots),
+                               '--ticks', str(ticks)])
+        for key in BATCH_KEYS:
+            self.assertIn(key, result)
+            self.assertNotEqual(result[key], 'na', key)
+        self.assertEqual(int(result['robots']), robots)
+        self.assertEqual(result['deploy'], 'batch')
+        self.assertEqual(result['clock'], 'lockstep')
+        self.assertEqual(int(result['ticks']), ticks)
+        self.assertEqual(int(result['runs_ok']), 1)
+        # The thesis's density: 25 robots per 11.09 m room.
+        self.assertAlmostEqual(float(result['arena_m']), 11.088889 * math.sqrt(robots / 25.0),
+                               places=3)
+        for key in ('lockstep_ticks_per_s', 'ticking_s', 'cpu_s', 'peak_rss_mb'):
+            value = float(result[key])
+            self.assertTrue(math.isfinite(value) and value > 0.0, '%s=%s' % (key, value))
+        for key in ('startup_s', 'files_s', 'cpu_us_per_robot_tick'):
+            value = float(result[key])
+            self.assertTrue(math.isfinite(value) and value >= 0.0, '%s=%s' % (key, value))
+        # The phases lie inside the job's wall time; the ticks' rate is the ticks over them.
+        self.assertLessEqual(float(result['startup_s']) + float(result['ticking_s']) +
+                             float(result['files_s']), float(result['wall_s']) + 1e-3)
+        self.assertAlmostEqual(float(result['lockstep_ticks_per_s']) * float(result['ticking_s']),
+                               ticks, delta=0.01 * ticks)
+        self.assertTrue(1 <= int(result['final_swarm_count']) <= robots, result)
+
+
 if __name__ == '__main__':
     rospy.init_node('bench_smoke_test')
-    rostest.rosrun('swarm_transport', 'bench_smoke', BenchSmoke, sys.argv)
+    case = BenchBatchSmoke if rospy.get_param('~deploy') == 'batch' else BenchSmoke
+    rostest.rosrun('swarm_transport', 'bench_smoke', case, sys.argv)

@@ -62,7 +62,108 @@ double MeanOfRange(std::vector<double>::const_iterator begin,
   return std::accumulate(begin, end, 0.0) / static_cast<double>(end - begin);
 }
 
+// Nearest neighbours with a k-d tree [issue 25]: every node holds the bounding box of its
+// points, a query visits the nearer child first and skips a node whose box is certainly
+// farther than the best Distance() found so far. "Certainly": its squared box distance exceeds
+// the best distance squared by a relative 1e-9, far more than the rounding of either, so no
+// point whose computed Distance() could be below the best is skipped, and the minimum is the
+// all-pairs minimum bit for bit (Distance(a, b) == Distance(b, a) exactly).
+class NearestTree {
+ public:
+  explicit NearestTree(const std::vector<Vec2>& points) : points_(points) {
+    order_.resize(points.size());
+    std::iota(order_.begin(), order_.end(), std::size_t{0});
+    if (!points.empty()) Build(0, points.size());
+  }
+
+  // Distance() from points[i] to its nearest other point (+inf when none).
+  double Nearest(std::size_t i) const {
+    double best = std::numeric_limits<double>::infinity();
+    Search(0, points_[i], i, &best);
+    return best;
+  }
+
+ private:
+  static constexpr std::size_t kLeaf = 8;
+  struct Node {
+    std::size_t begin, end;  // range of order_
+    double min_x, min_y, max_x, max_y;
+    std::size_t left = 0, right = 0;  // children (0: a leaf; node 0 is the root)
+  };
+
+  std::size_t Build(std::size_t begin, std::size_t end) {
+    Node node{begin, end, 0.0, 0.0, 0.0, 0.0};
+    node.min_x = node.max_x = points_[order_[begin]].x;
+    node.min_y = node.max_y = points_[order_[begin]].y;
+    for (std::size_t k = begin + 1; k < end; ++k) {
+      const Vec2 p = points_[order_[k]];
+      node.min_x = std::min(node.min_x, p.x);
+      node.max_x = std::max(node.max_x, p.x);
+      node.min_y = std::min(node.min_y, p.y);
+      node.max_y = std::max(node.max_y, p.y);
+    }
+    const std::size_t at = nodes_.size();
+    nodes_.push_back(node);
+    if (end - begin <= kLeaf) return at;
+    // Split the wider side at the median.
+    const bool by_x = node.max_x - node.min_x >= node.max_y - node.min_y;
+    const std::size_t middle = begin + (end - begin) / 2;
+    std::nth_element(order_.begin() + static_cast<std::ptrdiff_t>(begin),
+                     order_.begin() + static_cast<std::ptrdiff_t>(middle),
+                     order_.begin() + static_cast<std::ptrdiff_t>(end),
+                     [this, by_x](std::size_t a, std::size_t b) {
+                       return by_x ? points_[a].x < points_[b].x : points_[a].y < points_[b].y;
+                     });
+    const std::size_t left = Build(begin, middle);
+    const std::size_t right = Build(middle, end);
+    nodes_[at].left = left;
+    nodes_[at].right = right;
+    return at;
+  }
+
+  // Squared distance from p to the node's box (0 inside).
+  static double BoxDistance2(const Node& n, Vec2 p) {
+    const double dx = std::max({0.0, n.min_x - p.x, p.x - n.max_x});
+    const double dy = std::max({0.0, n.min_y - p.y, p.y - n.max_y});
+    return dx * dx + dy * dy;
+  }
+
+  bool Skip(const Node& n, Vec2 p, double best) const {
+    return BoxDistance2(n, p) > best * best * (1.0 + 1e-9);
+  }
+
+  void Search(std::size_t at, Vec2 p, std::size_t self, double* best) const {
+    const Node& n = nodes_[at];
+    // Nothing is nearer than a point at the same place (all at one place: no N^2 walk).
+    if (*best == 0.0 || Skip(n, p, *best)) return;
+    if (n.left == 0) {
+      for (std::size_t k = n.begin; k < n.end; ++k) {
+        const std::size_t j = order_[k];
+        if (j != self) *best = std::min(*best, Distance(p, points_[j]));
+      }
+      return;
+    }
+    std::size_t first = n.left;
+    std::size_t second = n.right;
+    if (BoxDistance2(nodes_[second], p) < BoxDistance2(nodes_[first], p)) std::swap(first, second);
+    Search(first, p, self, best);
+    Search(second, p, self, best);
+  }
+
+  const std::vector<Vec2>& points_;
+  std::vector<std::size_t> order_;
+  std::vector<Node> nodes_;
+};
+
 }  // namespace
+
+std::vector<double> NearestNeighbourDistances(const std::vector<Vec2>& positions) {
+  std::vector<double> nearest(positions.size(), std::numeric_limits<double>::infinity());
+  if (positions.size() < 2) return nearest;
+  const NearestTree tree(positions);
+  for (std::size_t i = 0; i < positions.size(); ++i) nearest[i] = tree.Nearest(i);
+  return nearest;
+}
 
 SwarmComponents::SwarmComponents(const std::vector<Vec2>& positions, double local_range_m) {
   const std::size_t n = positions.size();
@@ -138,14 +239,7 @@ Dispersion DispersionOf(const std::vector<Vec2>& positions, double world_size_m,
   d.coverage_fraction = static_cast<double>(std::count(covered.begin(), covered.end(), 1)) /
                         static_cast<double>(covered.size());
   if (at.size() < 2) return d;
-  std::vector<double> nearest(at.size(), std::numeric_limits<double>::infinity());
-  for (std::size_t i = 0; i < at.size(); ++i) {
-    for (std::size_t j = i + 1; j < at.size(); ++j) {
-      const double gap = Distance(at[i], at[j]);
-      nearest[i] = std::min(nearest[i], gap);
-      nearest[j] = std::min(nearest[j], gap);
-    }
-  }
+  const std::vector<double> nearest = NearestNeighbourDistances(at);
   const double mean = Mean(nearest);
   double squares = 0.0;
   for (const double v : nearest) squares += (v - mean) * (v - mean);
@@ -197,6 +291,11 @@ bool TransportTracker::Feed(std::uint64_t tick, const std::vector<Vec2>& positio
     centroid_delta = centroid_delta + (positions[i] - previous_[i]);
   }
   centroid_delta = centroid_delta * (1.0 / static_cast<double>(n));
+  // A passive robot's contact looks at the leaders only: O(robots x leaders), not robots^2.
+  std::vector<std::size_t> leaders;
+  for (std::size_t j = 0; j < n; ++j) {
+    if (is_leader[j]) leaders.push_back(j);
+  }
   for (std::size_t i = 0; i < n; ++i) {
     const Vec2 delta = positions[i] - previous_[i];
     slip_sum_ += Norm(delta - centroid_delta);
@@ -205,8 +304,8 @@ bool TransportTracker::Feed(std::uint64_t tick, const std::vector<Vec2>& positio
     if (is_leader[i] && moved < kLeaderWaitM) ++leader_waits_;
     if (is_leader[i] || contact_range_m_ <= 0.0) continue;
     ++passive_ticks_;
-    for (std::size_t j = 0; j < n; ++j) {
-      if (is_leader[j] && !FartherThan(positions[i], positions[j], contact_range_m_)) {
+    for (std::size_t j : leaders) {
+      if (!FartherThan(positions[i], positions[j], contact_range_m_)) {
         ++contact_ticks_;
         break;
       }

@@ -20,7 +20,8 @@ private ROS master, lets them tick, and measures over a window of --seconds:
 The robots publish these figures themselves (~diagnostics: true), once per second on
 /flock/robot_stats; --comm broadcast switches them to the thesis's all-to-all wiring.
 Each run uses its own master in a child process; all processes are stopped by pid. Figures
-only, no pass/fail. The last line is one `RESULT key=value ...` line."""
+only, no pass/fail. The last line is one `RESULT key=value ...` line. --deploy batch runs the
+lock-step swarm in the experiments' batch engine instead, without ROS (bench_batch.py)."""
 
 import argparse
 import csv
@@ -34,7 +35,7 @@ import sys
 import tempfile
 import time
 
-from swarm_transport import st_ros
+from swarm_transport import bench_batch, st_ros
 
 PYTHON = '/usr/bin/python3'
 STATS_TOPIC = '/flock/robot_stats'
@@ -71,10 +72,14 @@ def parse_args(argv):
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument('--robots', type=int, default=25, help='robots (default 25)')
     p.add_argument('--clock', default='realtime', choices=('realtime', 'lockstep', 'both'))
-    p.add_argument('--deploy', default='process', choices=('process', 'host', 'host_sim'),
+    p.add_argument('--deploy', default='process',
+                   choices=('process', 'host', 'host_sim', 'batch'),
                    help='process: a process per robot; host: all robots in one robot_host '
                         'process (both via swarm.launch); host_sim: robots and simulator in '
-                        'one robot_host process (~deploy host_sim)')
+                        'one robot_host process (~deploy host_sim); batch: lock-step in the '
+                        'experiments\' batch engine, no ROS (bench_batch.py)')
+    p.add_argument('--ticks', type=int, default=40, help='batch: ticks of the run (default 40)')
+    p.add_argument('--batch-binary', default='', help=argparse.SUPPRESS)  # another build's
     p.add_argument('--comm', default='local', choices=('local', 'broadcast', 'both'),
                    help='local: the radio relays in-range positions (SPEC 7); broadcast: every '
                         'robot hears every /flock/position (the thesis); both: run both and '
@@ -83,10 +88,11 @@ def parse_args(argv):
     p.add_argument('--warmup', type=float, default=3.0,
                    help='s after every robot ticks before the window opens (default 3)')
     p.add_argument('--seed', type=int, default=1, help='seed (default 1)')
-    p.add_argument('--arena', default='room',
+    p.add_argument('--arena', default=None,
                    help="room: the thesis's 11.09 m room for any N (crowded at large N); "
                         "density: the side grows with sqrt(N / 25), so every N has the "
-                        "thesis's 25 robots per room area; or a side in m (default room)")
+                        "thesis's 25 robots per room area; or a side in m (default room, "
+                        "--deploy batch density)")
     p.add_argument('--neighbourhood', choices=['chain', 'disc'], default='chain',
                    help='whom a robot flocks with (config neighbourhood): chain relays '
                    'positions hop by hop up to --chain-hops, disc hears only robots in range '
@@ -111,6 +117,10 @@ def parse_args(argv):
         p.error('--chain-hops must be >= 1')
     if not a.seconds > 0 or a.warmup < 0 or not 1 <= a.threads <= 64:
         p.error('--seconds must be > 0, --warmup >= 0, --threads in [1, 64]')
+    if a.ticks < 1:
+        p.error('--ticks must be >= 1')
+    if a.arena is None:
+        a.arena = 'density' if a.deploy == 'batch' else 'room'
     if a.startup_timeout <= 0:
         a.startup_timeout = 60.0 + 0.5 * a.robots
     try:
@@ -534,6 +544,8 @@ def main(argv):
         with open(a.child, 'w') as f:
             json.dump(result, f)
         return 0 if result.get('ok') else 1
+    if a.deploy == 'batch':
+        return bench_batch.main(a, log, fmt)
     clocks = ['realtime', 'lockstep'] if a.clock == 'both' else [a.clock]
     comms = ['local', 'broadcast'] if a.comm == 'both' else [a.comm]
     rows = [child_run(a, clock, comm) for clock in clocks for comm in comms]

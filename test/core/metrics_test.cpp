@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <random>
 #include <vector>
 
 namespace swarm_transport {
@@ -316,6 +318,122 @@ TEST(DispersionTest, CoverageAndNearestNeighbourSpread) {
   EXPECT_DOUBLE_EQ(DispersionOf({{0.5, 0.5}, {0.5, 0.5}, {nan, 1.0}}, 10.0, 0.6, 1.0)
                        .coverage_fraction,
                    0.01);
+}
+
+// The all-pairs nearest-neighbour search the k-d tree replaced (DispersionOf before issue 25).
+std::vector<double> AllPairsNearest(const Points& at) {
+  std::vector<double> nearest(at.size(), std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < at.size(); ++i) {
+    for (std::size_t j = i + 1; j < at.size(); ++j) {
+      const double gap = Distance(at[i], at[j]);
+      nearest[i] = std::min(nearest[i], gap);
+      nearest[j] = std::min(nearest[j], gap);
+    }
+  }
+  return nearest;
+}
+
+// Random crowds of every shape the tree must take: uniform, clustered (many robots in one
+// spot, duplicates), on a line, a grid of exact ties, huge and tiny coordinates.
+std::vector<Points> RandomCrowds() {
+  std::mt19937_64 rng(2025);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<Points> crowds;
+  for (int n : {0, 1, 2, 3, 9, 17, 100, 1000, 3000}) {
+    Points uniform;
+    for (int i = 0; i < n; ++i) uniform.push_back({unit(rng) * 50.0, unit(rng) * 50.0});
+    crowds.push_back(uniform);
+  }
+  Points clustered;
+  for (int i = 0; i < 2000; ++i) {
+    if (i % 3 == 0) {
+      clustered.push_back({unit(rng) * 100.0, unit(rng) * 100.0});
+    } else if (i % 3 == 1) {
+      clustered.push_back({5.0 + unit(rng) * 1e-6, 5.0 + unit(rng) * 1e-6});
+    } else {
+      clustered.push_back({70.0, 30.0 + (i % 7) * 0.25});  // duplicates
+    }
+  }
+  crowds.push_back(clustered);
+  Points line, grid, wide, same;
+  for (int i = 0; i < 500; ++i) line.push_back({unit(rng) * 10.0, 3.0});
+  for (int i = 0; i < 40; ++i) {
+    for (int j = 0; j < 40; ++j) grid.push_back({i * 0.1, j * 0.1});  // every spacing ties
+  }
+  for (int i = 0; i < 500; ++i) {
+    const double scale = i % 2 ? 1e150 : 1e-150;
+    wide.push_back({(unit(rng) - 0.5) * scale, (unit(rng) - 0.5) * scale});
+  }
+  for (int i = 0; i < 300; ++i) same.push_back({1.5, -2.5});
+  for (const Points* p : {&line, &grid, &wide, &same}) crowds.push_back(*p);
+  return crowds;
+}
+
+TEST(NearestNeighbourTest, TreeIsBitIdenticalToAllPairsOnRandomCrowds) {
+  for (const Points& crowd : RandomCrowds()) {
+    const std::vector<double> tree = NearestNeighbourDistances(crowd);
+    const std::vector<double> brute = AllPairsNearest(crowd);
+    ASSERT_EQ(tree.size(), brute.size());
+    for (std::size_t i = 0; i < tree.size(); ++i) {
+      // Bit for bit (EXPECT_EQ on doubles is exact; +inf equals +inf).
+      ASSERT_EQ(tree[i], brute[i]) << "robot " << i << " of " << crowd.size();
+    }
+  }
+}
+
+TEST(NearestNeighbourTest, DispersionOfARandomCrowdMatchesTheAllPairsFormula) {
+  // DispersionOf's nearest-neighbour mean and CV, computed as before issue 25.
+  for (const Points& crowd : RandomCrowds()) {
+    const std::vector<double> nearest = AllPairsNearest(crowd);
+    const Dispersion d = DispersionOf(crowd, 50.0, 1.0, 0.5);
+    if (crowd.size() < 2) {
+      EXPECT_TRUE(std::isnan(d.nn_mean_m));
+      continue;
+    }
+    const double mean = Mean(nearest);
+    double squares = 0.0;
+    for (const double v : nearest) squares += (v - mean) * (v - mean);
+    const double cv = mean > 0.0 ? std::sqrt(squares / static_cast<double>(nearest.size())) / mean
+                                 : std::numeric_limits<double>::quiet_NaN();
+    EXPECT_EQ(d.nn_mean_m, mean) << crowd.size();
+    if (std::isnan(cv)) {
+      EXPECT_TRUE(std::isnan(d.nn_cv));
+    } else {
+      EXPECT_EQ(d.nn_cv, cv) << crowd.size();
+    }
+  }
+}
+
+TEST(TransportTrackerTest, LeaderContactMatchesEveryPairOnARandomCrowd) {
+  // The contact count looks at the leaders only; it is the count over all pairs.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double range = 1.0;
+  TransportTracker t(range);
+  std::uint64_t passive = 0, contact = 0;
+  std::vector<bool> leaders(600);
+  for (std::size_t i = 0; i < leaders.size(); ++i) leaders[i] = i % 37 == 0;
+  for (std::uint64_t tick = 0; tick < 5; ++tick) {
+    Points p;
+    for (std::size_t i = 0; i < leaders.size(); ++i) {
+      p.push_back({unit(rng) * 20.0, unit(rng) * 20.0});
+    }
+    ASSERT_TRUE(t.Feed(tick, p, leaders));
+    if (tick == 0) continue;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (leaders[i]) continue;
+      ++passive;
+      for (std::size_t j = 0; j < p.size(); ++j) {
+        if (leaders[j] && !FartherThan(p[i], p[j], range)) {
+          ++contact;
+          break;
+        }
+      }
+    }
+  }
+  ASSERT_TRUE(t.LeaderContact().has_value());
+  EXPECT_GT(contact, 0u);
+  EXPECT_EQ(*t.LeaderContact(), static_cast<double>(contact) / static_cast<double>(passive));
 }
 
 }  // namespace
