@@ -163,9 +163,9 @@ std::string ValidateMission(const MissionSpec& m, const MissionContext& ctx) {
        << ctx.world_size_m << "]";
   } else if (ctx.live_missions.count(m.id) > 0) {
     os << "mission_id " << m.id << " is already live";
-  } else if (!ctx.known_robots.empty()) {
+  } else if (!ctx.Known().empty()) {
     for (std::uint16_t id : assigned) {
-      if (ctx.known_robots.count(id) == 0) {
+      if (ctx.Known().count(id) == 0) {
         os << "robot " << id << " is unknown";
         break;
       }

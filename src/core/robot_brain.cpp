@@ -86,7 +86,7 @@ std::string RobotBrain::OnNewMission(const MissionSpec& mission,
                                      MissionTaken* taken) {
   MissionContext context;
   context.world_size_m = params_.flocking.world_size_m;
-  context.known_robots = known_robots;
+  context.known_robots_view = &known_robots;  // not copied: every robot checks every order
   context.live_missions = agent_.LiveIds();
   context.static_zones = params_.danger_zones;
   // Admitted by the dispatcher already, or admitted here with the dispatcher's own decision.

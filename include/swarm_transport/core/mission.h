@@ -83,6 +83,12 @@ struct MissionContext {
   double world_size_m = 11.088889;
   // Robots known to exist; empty = unknown (the check is skipped).
   std::set<std::uint16_t> known_robots;
+  // When set, the robots known to exist instead of known_robots, not copied: every robot of a
+  // swarm checks an order against the whole swarm's ids (a copy each was N^2 at N robots).
+  const std::set<std::uint16_t>* known_robots_view = nullptr;
+  const std::set<std::uint16_t>& Known() const {
+    return known_robots_view != nullptr ? *known_robots_view : known_robots;
+  }
   // Ids of live missions (neither DONE, ABORTED nor REJECTED).
   std::set<std::uint16_t> live_missions;
   // AdmitMission: at most this many live missions (0: no limit).
