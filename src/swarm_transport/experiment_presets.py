@@ -39,7 +39,11 @@ DISPERSION_METRICS = ['coverage_fraction', 'nn_spacing_mean_m', 'nn_spacing_cv']
 # (ext, SPEC 9.5) Metrics of a kind that join a preset's runs.csv and summary only when its
 # `table:` names them: loading_nn_cv, the mission robots' nearest-neighbour spacing CV at the
 # transport's first frame (the recorder's missions.csv; loading_spread).
-OPTIONAL_METRICS = {'transport': ['loading_nn_cv']}
+# first_leader_waits: the leader waits as the thesis plotted them (fig. 7.9: its file's
+# LeaderDidntMove - 1): transport ticks in which robot 0, the first leader, moved less than
+# 1 mm, from the run's trace.csv (a preset whose table names it is run with --trace).
+OPTIONAL_METRICS = {'transport': ['loading_nn_cv', 'first_leader_waits']}
+TRACED_METRICS = {'first_leader_waits'}
 TOP_KEYS = {'description', 'kind', 'order', 'section', 'figures', 'runs', 'seed_base',
             'base_config', 'config', 'robots', 'placement', 'cluster', 'max_ticks',
             'trim_each_end', 'x_label', 'group_label', 'thesis', 'note', 'expect', 'mission',
@@ -64,6 +68,11 @@ def metrics_of(preset):
     table = preset.get('table') or []
     return METRICS[preset['kind']] + [
         m for m in OPTIONAL_METRICS.get(preset['kind'], []) + DISPERSION_METRICS if m in table]
+
+
+def needs_trace(preset):
+    """Whether a preset's runs must write trace.csv: its table names a metric taken from it."""
+    return any(m in TRACED_METRICS for m in metrics_of(preset))
 
 
 def preset_path(name):

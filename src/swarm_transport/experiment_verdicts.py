@@ -31,6 +31,7 @@ TITLES = {
     'nn_spacing_mean_m': 'nearest neighbour (m)',
     'nn_spacing_cv': 'nearest-neighbour spread (CV)',
     'loading_nn_cv': 'spacing spread at transport start (CV)',
+    'first_leader_waits': 'first leader waits (thesis count)',
 }
 PERCENT = {'path_fraction_attached', 'leader_contact', 'aborted', 'coverage_fraction'}   # stored as fractions, shown in %
 FLAT_TOLERANCE = 0.10   # "flat": (max - min) / mean of the trimmed means at most this
