@@ -89,9 +89,10 @@ def classify(ys):
 
 def trend_results(preset, summary):
     """One dict per expected trend and group: 'text' (the line of the page) and 'verdict'
-    ('agrees' / 'differs'). An expectation names the source of what it expects (`source`:
-    'thesis text', 'thesis fig. 7.9', 'raw file', ...; default: the thesis) and may say why
-    ours differs (`because`, shown only when it does)."""
+    ('agrees' / 'differs'). An expectation may name the source of what it expects (`source`:
+    'thesis text', 'thesis (text + fig. 7.9)', 'raw file f5599e6', ...: it opens the line; without
+    one the line says 'thesis') and may say why ours differs (`because`, shown only when it
+    does)."""
     out = []
     views = views_with_data(preset, summary)
     for e in preset.get('expect', []):
@@ -116,10 +117,12 @@ def trend_results(preset, summary):
                 got = 'high_at_last'
             verdict = 'agrees' if got == e['trend'] else 'differs'
             seq = ' → '.join('%s %s' % (v['label'], _num(_scale(metric, t))) for v, t in pts)
-            source = ' '.join(str(e.get('source') or 'thesis').split())
-            text = ('%s%s: %s — measured %s (ρ = %+.2f, spread %.0f %%), %s %s: %s'
-                    % ('%s, ' % group if group else '', TITLES.get(metric, metric), seq,
-                       got.replace('_', ' '), rho, 100 * spread, source,
+            # A named source opens the line; without one it is the thesis('s text).
+            source = ' '.join(str(e.get('source', '')).split())
+            text = ('%s%s%s: %s — measured %s (ρ = %+.2f, spread %.0f %%), %s %s: %s'
+                    % ('%s — ' % source if source else '', '%s, ' % group if group else '',
+                       TITLES.get(metric, metric), seq, got.replace('_', ' '), rho,
+                       100 * spread, 'expected' if source else 'thesis',
                        e['trend'].replace('_', ' '), verdict))
             if verdict == 'differs' and e.get('because'):
                 text += ', because %s' % ' '.join(str(e['because']).split())

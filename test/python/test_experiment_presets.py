@@ -103,10 +103,13 @@ class Presets(unittest.TestCase):
         rs = results([1.0, 2.0, 2.5, 5.0])
         self.assertTrue(rs[0]['text'].endswith('thesis increasing: agrees'))
         self.assertEqual(rs[1]['verdict'], 'differs')
+        self.assertTrue(rs[1]['text'].startswith('thesis fig. 9 — final swarm count: a 1.00'))
         self.assertTrue(rs[1]['text'].endswith(
-            'thesis fig. 9 decreasing: differs, because ours gathers less'))
-        self.assertTrue(rs[2]['text'].endswith('thesis text high at last: agrees'))
-        self.assertTrue(rs[3]['text'].endswith('raw file mixed: differs'))
+            'expected decreasing: differs, because ours gathers less'))
+        self.assertTrue(rs[2]['text'].startswith('thesis text — '))
+        self.assertTrue(rs[2]['text'].endswith('expected high at last: agrees'))
+        self.assertTrue(rs[3]['text'].startswith('raw file — '))
+        self.assertTrue(rs[3]['text'].endswith('expected mixed: differs'))
         rs = results([4.0, 3.0, 2.0, 1.0])
         self.assertEqual([r['verdict'] for r in rs], ['differs', 'agrees', 'differs', 'differs'])
         self.assertNotIn('because', rs[1]['text'])   # only a verdict that differs says why
