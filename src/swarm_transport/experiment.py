@@ -380,7 +380,8 @@ def cmd_run(a):
     thesis_runs = preset['runs']
     preset['runs'] = runs  # what the tables and the trimmed mean refer to
     deploy = 'batch' if a.engine == 'batch' else a.deploy
-    jobs = prepare_jobs(preset, out, runs, seed_base, only, a.keep_logs, a.trace, deploy)
+    jobs = prepare_jobs(preset, out, runs, seed_base, only, a.keep_logs,
+                        a.trace or presets.needs_trace(preset), deploy)
     settings_run = sorted({j['setting'] for j in jobs}, key=[
         v['name'] for v in presets.settings(preset)].index)
     log('experiment %s: %s' % (preset['name'], preset['description']))

@@ -17,9 +17,12 @@ CONFIG_DIR = os.path.join(ROOT, 'config')
 
 KINDS = ('flocking', 'leader', 'transport')
 PLACEMENTS = ('random', 'corner', 'cluster')
-# 'high_at_last': low over the settings, then clearly higher at the last one (the thesis's
-# words for its largest leader groups: "only at 40 % cohesion do the values stay fairly high").
-TRENDS = ('increasing', 'decreasing', 'flat', 'high_at_last')
+# An expectation's trend: the direction its source gives along the settings. 'mixed': neither
+# flat nor monotone by the page's classifier (what a source's own numbers can show);
+# 'high_at_last': clearly higher at the last setting than at every other (an extra line beside
+# a direction, for a source that says "only at the last value do they stay high").
+TRENDS = ('increasing', 'decreasing', 'flat', 'mixed', 'high_at_last')
+EXPECT_KEYS = {'metric', 'trend', 'settings', 'groups', 'source', 'because'}
 # The metrics of each kind, in the order of the tables (SPEC 8; docs/experiments.md).
 METRICS = {
     'flocking': ['final_swarm_count', 'mean_swarm_count', 'swarm_count_slope_per_h',
@@ -36,13 +39,18 @@ DISPERSION_METRICS = ['coverage_fraction', 'nn_spacing_mean_m', 'nn_spacing_cv']
 # (ext, SPEC 9.5) Metrics of a kind that join a preset's runs.csv and summary only when its
 # `table:` names them: loading_nn_cv, the mission robots' nearest-neighbour spacing CV at the
 # transport's first frame (the recorder's missions.csv; loading_spread).
-OPTIONAL_METRICS = {'transport': ['loading_nn_cv']}
+# first_leader_waits: the leader waits as the thesis plotted them (fig. 7.9: its file's
+# LeaderDidntMove - 1): transport ticks in which robot 0, the first leader, moved less than
+# 1 mm, from the run's trace.csv (a preset whose table names it is run with --trace).
+OPTIONAL_METRICS = {'transport': ['loading_nn_cv', 'first_leader_waits']}
+TRACED_METRICS = {'first_leader_waits'}
 TOP_KEYS = {'description', 'kind', 'order', 'section', 'figures', 'runs', 'seed_base',
             'base_config', 'config', 'robots', 'placement', 'cluster', 'max_ticks',
             'trim_each_end', 'x_label', 'group_label', 'thesis', 'note', 'expect', 'mission',
             'settings', 'jobs', 'name', 'thesis_measured', 'table'}
-# thesis_measured: the thesis's own figures per setting where its raw data survives
-# ({source: text, metrics: [metric, ...], rows: [{setting: name, label: text, <metric>: value}]}).
+# thesis_measured: the thesis's own figures per setting where its raw data survives, and its
+# published values where they do not ({source: text, metrics: [metric, ...], rows: [{label:
+# text, <metric>: value}]}; a row may lack a metric: shown as -).
 MEASURED_KEYS = {'source', 'metrics', 'rows'}
 SETTING_KEYS = {'name', 'label', 'x', 'group', 'robots', 'config', 'mission', 'placement',
                 'max_ticks'}
@@ -60,6 +68,11 @@ def metrics_of(preset):
     table = preset.get('table') or []
     return METRICS[preset['kind']] + [
         m for m in OPTIONAL_METRICS.get(preset['kind'], []) + DISPERSION_METRICS if m in table]
+
+
+def needs_trace(preset):
+    """Whether a preset's runs must write trace.csv: its table names a metric taken from it."""
+    return any(m in TRACED_METRICS for m in metrics_of(preset))
 
 
 def preset_path(name):
@@ -170,9 +183,14 @@ def validate(preset, name):
                     fail('setting %s: a transport needs an object and 1 <= leaders <= group '
                          '<= robots' % s['name'])
     for e in p['expect']:
-        if e.get('trend') not in TRENDS or e.get('metric') not in metrics_of(p) + [
-                'swarm_count_slope_per_h']:
+        if not isinstance(e, dict) or e.get('trend') not in TRENDS or \
+                e.get('metric') not in metrics_of(p) + ['swarm_count_slope_per_h']:
             fail('expect entries need metric (one of the kind\'s) and trend %s' % (TRENDS,))
+        if set(e) - EXPECT_KEYS:
+            fail('expect: unknown keys %s' % sorted(set(e) - EXPECT_KEYS))
+        for key in ('source', 'because'):
+            if key in e and not (isinstance(e[key], str) and e[key].strip()):
+                fail('expect: %s must be a text' % key)
     measured = p.get('thesis_measured')
     if measured is not None:
         if not isinstance(measured, dict) or set(measured) - MEASURED_KEYS or \
@@ -182,9 +200,12 @@ def validate(preset, name):
         for row in measured['rows']:
             if not isinstance(row, dict) or 'label' not in row:
                 fail('thesis_measured: every row is a mapping with a label')
+            if not any(m in row for m in measured['metrics']):
+                fail('thesis_measured: row %s has none of the metrics' % row.get('label'))
             for m in measured['metrics']:
-                if not isinstance(row.get(m), (int, float)) or isinstance(row.get(m), bool):
-                    fail('thesis_measured: row %s has no number for %s' % (row.get('label'), m))
+                if m in row and (not isinstance(row[m], (int, float)) or
+                                 isinstance(row[m], bool)):
+                    fail('thesis_measured: row %s: %s is not a number' % (row.get('label'), m))
     if p.get('cluster') is not None and set(p['cluster']) - CLUSTER_KEYS:
         fail('unknown cluster keys %s' % sorted(set(p['cluster']) - CLUSTER_KEYS))
     return p

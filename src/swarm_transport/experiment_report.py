@@ -8,35 +8,10 @@ import sys
 
 from swarm_transport import experiment_presets as presets
 from swarm_transport import experiment_stats as stats
+from swarm_transport.experiment_verdicts import (  # noqa: F401 (used by the tests too)
+    FLAT_TOLERANCE, PERCENT, TITLES, _num, _scale, _setting_title, _trim_text, high_at_last,
+    measured_table, trend_lines, trend_results, views_with_data)
 
-# Short column titles and units of the metrics (tables and plot axes).
-TITLES = {
-    'final_swarm_count': 'final swarm count',
-    'mean_swarm_count': 'mean swarm count',
-    'swarm_count_slope_per_h': 'trend (swarms/h)',
-    'initial_swarm_count': 'initial swarm count',
-    'final_largest_swarm': 'largest swarm at end',
-    'path_fraction_attached': 'path with whole swarm (%)',
-    'leader_swarm_at_arrival': 'leader swarm at arrival',
-    'leader_waits': 'leader waits',
-    'leader_ticks': 'leader ticks to goal',
-    'transport_ticks': 'transport ticks',
-    'transport_ticks_median': 'median transport ticks',
-    'runs_over_2x_median': 'runs > 2x median',
-    'slip_per_robot_m': 'slip per robot (m)',
-    'distance_per_robot_m': 'distance per robot (m)',
-    'object_error_m': 'object error (m)',
-    'gathering_ticks': 'gathering ticks',
-    'leader_contact': 'leader contact (%)',
-    'aborted': 'aborted (%)',
-    'gathering_swerves': 'swerves while gathering',
-    'mission_ticks': 'mission ticks',
-    'coverage_fraction': 'area covered (%)',
-    'nn_spacing_mean_m': 'nearest neighbour (m)',
-    'nn_spacing_cv': 'nearest-neighbour spread (CV)',
-    'loading_nn_cv': 'spacing spread at transport start (CV)',
-}
-PERCENT = {'path_fraction_attached', 'leader_contact', 'aborted', 'coverage_fraction'}   # stored as fractions, shown in %
 PANELS = {   # the metrics drawn as bars, in the thesis's order of diagrams
     'flocking': ['final_swarm_count', 'mean_swarm_count', 'swarm_count_slope_per_h'],
     'leader': ['path_fraction_attached', 'leader_swarm_at_arrival', 'leader_waits'],
@@ -51,16 +26,11 @@ TABLE = {
     'transport': ['transport_ticks', 'slip_per_robot_m', 'distance_per_robot_m',
                   'leader_waits', 'leader_contact', 'object_error_m', 'aborted'],
 }
-FLAT_TOLERANCE = 0.10   # "flat": (max - min) / mean of the trimmed means at most this
 
 
 def log(msg=''):
     sys.stdout.write(msg + '\n')
     sys.stdout.flush()
-
-
-def _scale(metric, v):
-    return None if v is None else (100.0 * v if metric in PERCENT else v)
 
 
 def aggregate_dir(out, preset, print_table=False):
@@ -84,11 +54,6 @@ def aggregate_dir(out, preset, print_table=False):
         log('plots: %s' % ', '.join(plots))
         log('summary: %s' % os.path.join(out, 'summary.csv'))
     return summary, plots
-
-
-def views_with_data(preset, summary):
-    have = {s for s, _ in summary}
-    return [v for v in presets.settings(preset) if v['name'] in have]
 
 
 def table_metrics(preset):
@@ -135,98 +100,6 @@ def markdown_table(preset, summary):
         lines.append('| %s | %d | %s |' % (_setting_title(v), n, ' | '.join(cells)))
     return lines
 
-
-def measured_table(preset):
-    """The thesis's own figures (its raw data, where it survives) beside ours: one row per
-    setting it measured, the same metrics and units as the table above."""
-    m = preset.get('thesis_measured')
-    if not m:
-        return []
-    cols = m['metrics']
-    lines = ['**Thesis, measured** (%s):' % ' '.join(str(m.get('source', '')).split()), '',
-             '| thesis setting | ' + ' | '.join(TITLES.get(c, c) for c in cols) + ' |',
-             '|---|' + '---:|' * len(cols)]
-    for row in m['rows']:
-        # Whole numbers as the file gives them (a count of runs is 1, not 1.00).
-        lines.append('| %s | %s |' % (row['label'], ' | '.join(
-            str(row[c]) if isinstance(row[c], int) and not isinstance(row[c], bool)
-            else _num(row[c]) for c in cols)))
-    lines.append('')
-    return lines
-
-
-def _setting_title(v):
-    return ('%s %s' % (v['group'], v['label'])).strip() if v['group'] else v['label']
-
-
-def _trim_text(preset):
-    n = preset.get('runs', 0)
-    k = presets.trim_each_end(n, preset.get('trim_each_end'))
-    return 'mean of the middle %d of %d runs' % (n - 2 * k, n) if k else 'plain mean'
-
-
-def _num(v):
-    if v is None:
-        return '–'
-    a = abs(v)
-    if a >= 100:
-        return '%.0f' % v
-    if a >= 10:
-        return '%.1f' % v
-    if a >= 0.1 or a == 0:
-        return '%.2f' % v
-    return '%.3g' % v
-
-
-def high_at_last(ys):
-    """The last value clearly above every other: by more than FLAT_TOLERANCE of the highest
-    of the others."""
-    return len(ys) >= 2 and ys[-1] > (1.0 + FLAT_TOLERANCE) * max(ys[:-1])
-
-
-def trend_lines(preset, summary):
-    """One line per expected trend: the measured trimmed means along the settings, their
-    direction (Spearman's rank correlation with the settings' order) and whether it agrees
-    with what the thesis's text says."""
-    out = []
-    views = views_with_data(preset, summary)
-    for e in preset.get('expect', []):
-        metric = e['metric']
-        groups = []
-        for v in views:
-            if e.get('settings') and v['name'] not in e['settings']:
-                continue
-            if e.get('groups') and v['group'] not in [str(g) for g in e['groups']]:
-                continue
-            if not groups or groups[-1][0] != v['group']:
-                groups.append((v['group'], []))
-            t = summary.get((v['name'], metric), {}).get('trimmed_mean')
-            if t is not None:
-                groups[-1][1].append((v, t))
-        for group, pts in groups:
-            if len(pts) < 2:
-                continue
-            ys = [t for _, t in pts]
-            rho = stats.spearman(list(range(len(ys))), ys)
-            mean = sum(abs(y) for y in ys) / len(ys)
-            spread = (max(ys) - min(ys)) / mean if mean > 0 else 0.0
-            if spread <= FLAT_TOLERANCE:
-                got = 'flat'
-            else:
-                got = 'increasing' if rho >= 0.5 else 'decreasing' if rho <= -0.5 else 'mixed'
-            if e['trend'] == 'high_at_last' and high_at_last(ys):
-                got = 'high_at_last'
-            verdict = 'agrees' if got == e['trend'] else 'differs'
-            seq = ' → '.join('%s %s' % (v['label'], _num(_scale(metric, t))) for v, t in pts)
-            out.append('%s%s: %s — measured %s (ρ = %+.2f, spread %.0f %%), thesis %s: %s'
-                       % ('%s, ' % group if group else '', TITLES.get(metric, metric), seq,
-                          got.replace('_', ' '), rho, 100 * spread,
-                          e['trend'].replace('_', ' '), verdict))
-    return out
-
-
-# ---------------------------------------------------------------------------------------------
-# plots
 
 def _pyplot():
     import matplotlib
@@ -379,11 +252,13 @@ def cmd_report(dirs, out_md):
             meta = json.load(f)
         preset = presets.validate(meta['preset'], meta['preset']['name'])
         preset['runs'] = meta.get('runs', preset['runs'])
-        # The prose (the thesis's claim, our note) may have been written after the run: take
-        # it from the preset as it is now, when it still exists.
+        # The prose (the thesis's claim, our note) and the expectations judged against it may
+        # have been written after the run: take them from the preset as it is now, when it
+        # still exists.
         try:
             current = presets.load_preset(preset['name'])
             preset['thesis'], preset['note'] = current['thesis'], current['note']
+            preset['expect'] = current['expect']
             if current.get('thesis_measured'):
                 preset['thesis_measured'] = current['thesis_measured']
         except presets.PresetError:
@@ -397,9 +272,11 @@ def cmd_report(dirs, out_md):
              'Generated by `scripts/experiment report` (see docs/experiments.md for the presets, '
              'the metrics and how to regenerate this page). Every table cell is the thesis\'s '
              '"mean of the middle runs" (trimmed mean) with <sub>(mean / median)</sub>; bars '
-             'show all three. The trend line compares the measured direction along the '
-             'settings with what the thesis says: its text, or its own raw measurement where that '
-             'survives and disagrees with the text (then tabled as "Thesis, measured").', '']
+             'show all three. Each trend line compares the measured direction along the '
+             'settings with what its source says, and names the source when it is more than '
+             '"thesis" (the thesis\'s text): its published figure, or its own raw measurement '
+             'where that survives (then tabled as "Thesis, measured"). An expectation is what '
+             'its source says, never chosen to fit our result; "differs" is an answer.', '']
     for preset, meta, summary, plots, d in entries:
         t = meta.get('timing', {})
         lines.append('## `%s`: %s' % (preset['name'], preset['description']))
@@ -430,15 +307,15 @@ def cmd_report(dirs, out_md):
             lines.append('**Thesis:** %s' % preset['thesis'].strip())
             lines.append('')
         lines.extend(measured_table(preset))
-        trends = trend_lines(preset, summary)
+        trends = trend_results(preset, summary)
         if trends:
             lines.append('**Measured trend:**')
             lines.append('')
-            lines.extend('- %s' % t for t in trends)
+            lines.extend('- %s' % t['text'] for t in trends)
             lines.append('')
         if preset.get('note'):
             # "Why it differs" only above a section with a trend line that differs.
-            differs = any(t.endswith(': differs') for t in trends)
+            differs = any(t['verdict'] == 'differs' for t in trends)
             lines.append('**%s:** %s' % ('Why it differs' if differs else 'Note',
                                          ' '.join(preset['note'].split())))
             lines.append('')

@@ -156,6 +156,10 @@ def _mission(kind, run_dir, info):
                                         done_tick is not None else None)
             # Counted by the batch engine only (result.json); launched runs leave it empty.
             metrics['gathering_swerves'] = number(info.get('gathering_swerves'))
+            if 'first_leader_waits' in metrics:
+                metrics['first_leader_waits'] = first_leader_waits(
+                    run_dir, number(row.get('transport_tick')),
+                    number(row.get('unloading_tick')))
     if kind == 'leader':
         track = read_csv(os.path.join(run_dir, 'leader_track.csv'))
         points = [(number(r['path_fraction']), number(r['leader_swarm'])) for r in track]
@@ -170,6 +174,32 @@ def _mission(kind, run_dir, info):
         if curve:
             series['leader_swarm_p'] = curve
     return metrics, series
+
+
+THESIS_WAIT_M = 0.001   # the thesis's LeaderDidntMove: robot 0 moved less than this
+
+
+def first_leader_waits(run_dir, start, stop, robot=0, below_m=THESIS_WAIT_M):
+    """Ticks in (start, stop] in which `robot` moved less than below_m since the tick before,
+    from the run's trace.csv: the thesis's leader waits as its figure 7.9 plotted them (its
+    LeaderDidntMove counted robot 0 in every sample, the baseline sample included, and the
+    figure shows the count - 1). None without a trace or a window."""
+    if start is None or stop is None:
+        return None
+    poses = {}
+    for r in read_csv(os.path.join(run_dir, 'trace.csv')):
+        if number(r.get('robot_id')) == robot:
+            tick, x, y = number(r.get('tick')), number(r.get('x')), number(r.get('y'))
+            if tick is not None and x is not None and y is not None and start <= tick <= stop:
+                poses[int(tick)] = (x, y)
+    if not poses or min(poses) > start or max(poses) < stop:
+        return None
+    waits = 0
+    for t in range(int(start) + 1, int(stop) + 1):
+        if t - 1 in poses and t in poses:
+            (x0, y0), (x1, y1) = poses[t - 1], poses[t]
+            waits += math.hypot(x1 - x0, y1 - y0) < below_m
+    return float(waits)
 
 
 def trimmed_mean(values, trim=None):

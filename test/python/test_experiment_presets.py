@@ -69,27 +69,58 @@ class Presets(unittest.TestCase):
         with self.assertRaises(presets.PresetError):
             presets.validate(q, 'bad')  # not in its table: not among its metrics
 
-    def test_high_at_last_needs_the_last_setting_clearly_above_every_other(self):
-        from swarm_transport import experiment_report as report
-        p = presets.load_preset('leader_group_cohesion')
-        names = ['p25_c000', 'p25_c005', 'p25_c010', 'p25_c020', 'p25_c040']
+    def test_trend_kinds_on_made_up_series(self):
+        """The page's classifier and its trend kinds on invented numbers (never measured
+        ones: a test must not fix what a measurement happens to give)."""
+        from swarm_transport import experiment_verdicts as verdicts
+        self.assertEqual(verdicts.classify([1.0, 2.0, 3.0, 4.0])[0], 'increasing')
+        self.assertEqual(verdicts.classify([4.0, 3.0, 2.0, 1.0])[0], 'decreasing')
+        self.assertEqual(verdicts.classify([10.0, 10.5, 10.2, 10.9])[0], 'flat')  # 8 % spread
+        got, rho, _ = verdicts.classify([2.0, 3.0, 1.0, 4.0])  # ranks 1, 2, 0, 3
+        self.assertEqual(got, 'mixed')
+        self.assertAlmostEqual(rho, 0.4)
+        self.assertTrue(verdicts.high_at_last([1.0, 2.0, 1.5, 2.0, 5.0]))
+        self.assertFalse(verdicts.high_at_last([1.0, 2.0, 1.5, 4.7, 5.0]))  # not clearly
+        self.assertFalse(verdicts.high_at_last([5.0, 2.0, 1.5, 2.0, 1.0]))
 
-        def line(values):
-            summary = {(n, 'leader_swarm_at_arrival'): {'trimmed_mean': v}
-                       for n, v in zip(names, values)}
-            return [x for x in report.trend_lines(p, summary)
-                    if x.startswith('25 passive, leader swarm')]
+    def test_a_verdict_names_its_source_and_says_why_it_differs(self):
+        from swarm_transport import experiment_verdicts as verdicts
+        p = copy.deepcopy(GOOD)
+        p['settings'] = [{'name': n} for n in 'abcd']
+        p['expect'] = [
+            {'metric': 'final_swarm_count', 'trend': 'increasing'},
+            {'metric': 'final_swarm_count', 'trend': 'decreasing', 'source': 'thesis fig. 9',
+             'because': 'ours gathers less'},
+            {'metric': 'final_swarm_count', 'trend': 'high_at_last', 'source': 'thesis text'},
+            {'metric': 'final_swarm_count', 'trend': 'mixed', 'source': 'raw file'}]
+        p = presets.validate(p, 'good')
 
-        self.assertTrue(report.high_at_last([11.4, 4.55, 9.09, 4.55, 22.7]))
-        self.assertFalse(report.high_at_last([11.4, 4.55, 9.09, 21.0, 22.7]))  # not clearly
-        self.assertFalse(report.high_at_last([22.7, 4.55, 9.09, 4.55, 11.4]))
-        self.assertIn('thesis high at last: agrees', line([11.4, 4.55, 9.09, 4.55, 22.7])[0])
-        self.assertIn('differs', line([11.4, 4.55, 9.09, 21.0, 22.7])[0])
-        self.assertIn('differs', line([25.0, 20.0, 15.0, 10.0, 5.0])[0])
-        bad = copy.deepcopy(GOOD)
-        bad['expect'] = [{'metric': 'final_swarm_count', 'trend': 'upwards'}]
-        with self.assertRaises(presets.PresetError):
-            presets.validate(bad, 'bad')
+        def results(values):
+            summary = {(n, 'final_swarm_count'): {'trimmed_mean': v}
+                       for n, v in zip('abcd', values)}
+            return verdicts.trend_results(p, summary)
+
+        rs = results([1.0, 2.0, 2.5, 5.0])
+        self.assertTrue(rs[0]['text'].endswith('thesis increasing: agrees'))
+        self.assertEqual(rs[1]['verdict'], 'differs')
+        self.assertTrue(rs[1]['text'].startswith('thesis fig. 9 — final swarm count: a 1.00'))
+        self.assertTrue(rs[1]['text'].endswith(
+            'expected decreasing: differs, because ours gathers less'))
+        self.assertTrue(rs[2]['text'].startswith('thesis text — '))
+        self.assertTrue(rs[2]['text'].endswith('expected high at last: agrees'))
+        self.assertTrue(rs[3]['text'].startswith('raw file — '))
+        self.assertTrue(rs[3]['text'].endswith('expected mixed: differs'))
+        rs = results([4.0, 3.0, 2.0, 1.0])
+        self.assertEqual([r['verdict'] for r in rs], ['differs', 'agrees', 'differs', 'differs'])
+        self.assertNotIn('because', rs[1]['text'])   # only a verdict that differs says why
+        self.assertEqual(results([2.0, 3.0, 1.0, 4.0])[3]['verdict'], 'agrees')
+        for bad in ({'metric': 'final_swarm_count', 'trend': 'upwards'},
+                    {'metric': 'final_swarm_count', 'trend': 'flat', 'colour': 1},
+                    {'metric': 'final_swarm_count', 'trend': 'flat', 'source': ''}):
+            q = copy.deepcopy(GOOD)
+            q['expect'] = [bad]
+            with self.assertRaises(presets.PresetError):
+                presets.validate(q, 'bad')
 
     def test_the_thesis_measured_table_is_checked_and_rendered(self):
         from swarm_transport import experiment_report as report
@@ -102,18 +133,26 @@ class Presets(unittest.TestCase):
         p['thesis_measured']['metrics'] = ['transport_ticks', 'runs_over_2x_median']
         p['thesis_measured']['rows'][0]['runs_over_2x_median'] = 1
         self.assertIn('| 10R 2L | 60.7 | 1 |', report.measured_table(presets.validate(p, 'good')))
+        # A published value whose runs are lost: the row lacks the other metrics.
+        p['thesis_measured']['rows'].append({'label': '5R 1L, fig.', 'transport_ticks': 65.6})
+        self.assertIn('| 5R 1L, fig. | 65.6 | – |',
+                      report.measured_table(presets.validate(p, 'good')))
         self.assertEqual(report.measured_table(copy.deepcopy(GOOD)), [])
         for bad in ({'rows': []}, {'source': 'x', 'metrics': ['transport_ticks'],
                                    'rows': [{'label': 'a'}]},
+                    {'source': 'x', 'metrics': ['transport_ticks'],
+                     'rows': [{'label': 'a', 'transport_ticks': 'many'}]},
                     {'source': 'x', 'metrics': [], 'rows': [], 'colour': 1}):
             q = copy.deepcopy(p)
             q['thesis_measured'] = bad
             with self.assertRaises(presets.PresetError) as cm:
                 presets.validate(q, 'bad')
             self.assertIn('thesis_measured', str(cm.exception))
-        # The shipped composition preset carries the evaluated code's raw statistics.
+        # The shipped composition preset carries the evaluated code's raw statistics and the
+        # figure's three published values whose runs are not in it.
         rows = presets.load_preset('transport_composition')['thesis_measured']['rows']
-        self.assertEqual(len(rows), 7)
+        labels = [r['label'] for r in rows]
+        self.assertEqual(len([l for l in labels if 'published' in l]), 3)  # fig. 7.9's lost runs
 
     def test_components_link_hop_by_hop_within_range(self):
         # A chain 0.9 m apart is one swarm though its ends are 1.8 m apart; a robot 1.01 m

@@ -83,6 +83,24 @@ class Stats(unittest.TestCase):
         self.assertAlmostEqual(summary[('t1', 'gathering_swerves')]['mean'], 12.0)
         self.assertEqual(summary[('t1', 'gathering_swerves')]['runs'], 1)  # the DONE run only
 
+    def test_first_leader_waits_count_robot_0_as_the_thesis_plotted(self):
+        """Ticks of the transport window in which robot 0 moved less than 1 mm since the tick
+        before (the thesis's LeaderDidntMove without its baseline sample); other robots and
+        ticks outside the window do not count."""
+        d = os.path.join(self.tmp, 'traced')
+        os.makedirs(d)
+        x0 = [0.0, 0.0, 0.1, 0.1005, 0.2, 0.2, 0.2]   # ticks 0..6
+        with open(os.path.join(d, 'trace.csv'), 'w') as f:
+            f.write('tick,robot_id,x,y,heading_deg\n')
+            for t, x in enumerate(x0):
+                f.write('%d,0,%.4f,1.0,0\n%d,1,5.0,5.0,0\n' % (t, x, t))
+        # Window (1, 5]: ticks 2 (moved 0.1), 3 (0.5 mm: waits), 4 (moved), 5 (waits).
+        self.assertEqual(stats.first_leader_waits(d, 1, 5), 2.0)
+        self.assertEqual(stats.first_leader_waits(d, 0, 6), 4.0)   # ticks 1 and 6 too
+        self.assertIsNone(stats.first_leader_waits(d, 1, 9))       # the trace ends before
+        self.assertIsNone(stats.first_leader_waits(d, None, 5))
+        self.assertIsNone(stats.first_leader_waits(self.tmp, 1, 5))  # no trace
+
 
 if __name__ == '__main__':
     unittest.main()
