@@ -89,8 +89,8 @@ TEST(RobotBrainTest, ABalloonLoadingMemberSpreadsUnderItsObjectUntilTheFreeze) {
   RobotBrain standing(1, Params());
   MissionTaken taken;
   for (RobotBrain* brain : {&spreading, &standing}) {
-    ASSERT_EQ(brain->OnNewMission(Thesis(), {0, 1, 2}, &taken), "");
-    brain->OnStatus(7, MissionPhase::kLoading);
+    ASSERT_EQ(brain->Take(Thesis(), {0, 1, 2}, &taken), "");
+    brain->Take(PhaseStatus{7, MissionPhase::kLoading});
   }
   // none: the first leader froze the group at LOADING.
   ASSERT_EQ(standing.Take(Freeze{0, 3}), "");
@@ -219,8 +219,8 @@ TEST(RobotBrainTest, DeletingAMissionsObjectReleasesItsFrozenRobotsOnly) {
   RobotBrain member(1, Params());
   RobotBrain other(5, Params());
   for (RobotBrain* brain : {&member, &other}) {
-    ASSERT_EQ(brain->OnNewMission(Thesis(), {}, nullptr), "");
-    ASSERT_EQ(brain->OnFreeze(0, 10), "");
+    ASSERT_EQ(brain->Take(Thesis(), {}, nullptr), "");
+    ASSERT_EQ(brain->Take(Freeze{0, 10}), "");
     ASSERT_TRUE(brain->frozen());
   }
   // A Delete_Object without the Robot_Continue before it (forged, or the leader lost).
