@@ -66,6 +66,8 @@ def parse_args(argv):
                         'one robot_host process (~deploy host_sim); batch: lock-step in the '
                         'experiments\' batch engine, no ROS (bench_batch.py)')
     p.add_argument('--ticks', type=int, default=40, help='batch: ticks of the run (default 40)')
+    p.add_argument('--mission', action='store_true',
+                   help='batch: a transport mission of robots 0-11 (2 leaders) from tick 0')
     p.add_argument('--batch-binary', default='', help=argparse.SUPPRESS)  # another build's
     p.add_argument('--comm', default='local', choices=('local', 'broadcast', 'both'),
                    help='local: the radio relays in-range positions (SPEC 7); broadcast: every '

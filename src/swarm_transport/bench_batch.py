@@ -42,7 +42,8 @@ def default_binary():
 
 
 def write_job(a, run_dir):
-    """The job of one flocking run, as experiment.prepare_jobs writes it; returns its path."""
+    """The job of one flocking run (with --mission a transport run), as
+    experiment.prepare_jobs writes it; returns its path."""
     config_path = os.path.join(run_dir, 'config.yaml')
     with open(config_path, 'w') as f:
         f.write('# scripts/bench --deploy batch: config/swarm.yaml + these\n'
@@ -52,6 +53,12 @@ def write_job(a, run_dir):
            'seed': a.seed, 'robots': a.robots, 'max_ticks': a.ticks,
            'config_path': config_path, 'run_dir': run_dir, 'record_dir': run_dir,
            'run_name': 'run_0', 'placement': 'random', 'placement_file': '', 'trace': False}
+    if getattr(a, 'mission', False):
+        # Every robot checks the order against the swarm at tick 0 (what a mission costs).
+        c = a.arena_m / 2.0
+        job.update(kind='transport', mission={
+            'id': 7, 'group': min(12, a.robots), 'leaders': 2, 'mode': 0,
+            'object': [c, c, 1.0, 1.0], 'target': [c / 2.0, c / 2.0]})
     path = os.path.join(run_dir, 'job.json')
     with open(path, 'w') as f:
         json.dump(job, f, indent=1, sort_keys=True)
