@@ -10,8 +10,8 @@
 #include <string>
 
 #include "swarm_transport/core/metrics_query.h"
-#include "swarm_transport/ros/engine/batch_run.h"
 #include "swarm_transport/ros/common/params.h"
+#include "swarm_transport/ros/engine/batch_run.h"
 
 int main(int argc, char** argv) {
   std::string base_path;

@@ -9,14 +9,22 @@ namespace core {
 
 const char* PhaseName(MissionPhase phase) {
   switch (phase) {
-    case MissionPhase::kQueued: return "QUEUED";
-    case MissionPhase::kGathering: return "GATHERING";
-    case MissionPhase::kLoading: return "LOADING";
-    case MissionPhase::kTransport: return "TRANSPORT";
-    case MissionPhase::kUnloading: return "UNLOADING";
-    case MissionPhase::kDone: return "DONE";
-    case MissionPhase::kAborted: return "ABORTED";
-    case MissionPhase::kRejected: return "REJECTED";
+    case MissionPhase::kQueued:
+      return "QUEUED";
+    case MissionPhase::kGathering:
+      return "GATHERING";
+    case MissionPhase::kLoading:
+      return "LOADING";
+    case MissionPhase::kTransport:
+      return "TRANSPORT";
+    case MissionPhase::kUnloading:
+      return "UNLOADING";
+    case MissionPhase::kDone:
+      return "DONE";
+    case MissionPhase::kAborted:
+      return "ABORTED";
+    case MissionPhase::kRejected:
+      return "REJECTED";
   }
   return "UNKNOWN";
 }
@@ -26,7 +34,8 @@ std::vector<std::uint16_t> MissionSpec::Assigned() const {
   if (!robot_ids.empty()) {
     ids = robot_ids;
   } else {
-    for (std::uint32_t i = range_from; i < range_to; ++i) ids.push_back(static_cast<std::uint16_t>(i));
+    for (std::uint32_t i = range_from; i < range_to; ++i)
+      ids.push_back(static_cast<std::uint16_t>(i));
   }
   std::sort(ids.begin(), ids.end());
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
@@ -140,8 +149,8 @@ std::string ValidateMission(const MissionSpec& m, const MissionContext& ctx) {
   } else if (m.leader_number < 1) {
     os << "leader_number must be >= 1";
   } else if (static_cast<std::size_t>(m.leader_number) > assigned.size()) {
-    os << "leader_number " << m.leader_number << " is larger than the group of "
-       << assigned.size() << " robots";
+    os << "leader_number " << m.leader_number << " is larger than the group of " << assigned.size()
+       << " robots";
   } else if (!leader_ids_problem.empty()) {
     os << leader_ids_problem;
   } else if (m.transport_mode > 1) {
@@ -179,13 +188,11 @@ std::uint64_t SignalTick(std::uint64_t phase_tick, double delay_s, double tick_p
 }
 
 std::optional<std::vector<Vec2>> ObjectRoute(const MissionSpec& mission,
-                                             const std::vector<Zone>& zones,
-                                             double world_size_m) {
+                                             const std::vector<Zone>& zones, double world_size_m) {
   if (zones.empty() || mission.LeaderOnly()) return std::vector<Vec2>{mission.target};
   PathParams p;
   p.world_size_m = world_size_m;
-  p.clearance_m =
-      0.5 * std::hypot(mission.object_size.x, mission.object_size.y) + kRouteClearanceM;
+  p.clearance_m = 0.5 * std::hypot(mission.object_size.x, mission.object_size.y) + kRouteClearanceM;
   return PlanPath(mission.object_centre, mission.target, zones, p);
 }
 

@@ -198,8 +198,7 @@ bool MissionAgent::LeadsFirst(const Live& live) const {
   return false;
 }
 
-bool MissionAgent::Heartbeats(Live* live, const std::vector<Neighbour>& heard,
-                              std::uint64_t tick) {
+bool MissionAgent::Heartbeats(Live* live, const std::vector<Neighbour>& heard, std::uint64_t tick) {
   const MissionSpec& spec = live->spec;
   const std::size_t lost_before = live->lost.size();
   // A robot that missed ticks for as long (hung, then resumed) was lost for the others: it
@@ -360,8 +359,8 @@ void MissionAgent::RunFirstLeader(Live* live, const Pose2& self, const Group& gr
       outbox->statuses.push_back(Report(*live, inside));
     }
     if (live->promoted) {
-      outbox->statuses.back().reason = "robot " + std::to_string(self_id_) +
-                                       " leads: robot(s) " + lost.str() + lost_for;
+      outbox->statuses.back().reason =
+          "robot " + std::to_string(self_id_) + " leads: robot(s) " + lost.str() + lost_for;
       live->lost_told = live->lost.size();
     }
   }
@@ -377,11 +376,10 @@ void MissionAgent::RunFirstLeader(Live* live, const Pose2& self, const Group& gr
     return;
   }
 
-  if (tick - live->phase_tick > params_.phase_timeout_ticks &&
-      live->phase != MissionPhase::kDone) {
+  if (tick - live->phase_tick > params_.phase_timeout_ticks && live->phase != MissionPhase::kDone) {
     std::ostringstream why;
-    why << "phase " << PhaseName(live->phase) << " lasted more than "
-        << params_.phase_timeout_ticks << " ticks";
+    why << "phase " << PhaseName(live->phase) << " lasted more than " << params_.phase_timeout_ticks
+        << " ticks";
     outbox->resume = spec.AssignedRuns();
     outbox->delete_object = spec.id;
     EnterPhase(live, MissionPhase::kAborted, tick, inside, outbox);
@@ -392,10 +390,10 @@ void MissionAgent::RunFirstLeader(Live* live, const Pose2& self, const Group& gr
   // Lost members are dropped: the rest goes on without them, unless too few are left to staff
   // the leaders (or fewer than min_robots).
   const std::size_t left = Left(*live).size();
-  const std::size_t needed = static_cast<std::size_t>(std::max(spec.leader_number,
-                                                               params_.min_robots));
-  if (!live->lost.empty() && left < needed &&
-      live->phase >= MissionPhase::kGathering && live->phase <= MissionPhase::kUnloading) {
+  const std::size_t needed =
+      static_cast<std::size_t>(std::max(spec.leader_number, params_.min_robots));
+  if (!live->lost.empty() && left < needed && live->phase >= MissionPhase::kGathering &&
+      live->phase <= MissionPhase::kUnloading) {
     outbox->resume = spec.AssignedRuns();
     outbox->delete_object = spec.id;
     EnterPhase(live, MissionPhase::kAborted, tick, inside, outbox);
@@ -410,8 +408,8 @@ void MissionAgent::RunFirstLeader(Live* live, const Pose2& self, const Group& gr
 
   // A member newly lost: the first leader says so at once, with its phase again (a progress
   // report: /flock/mission/progress), and the mission goes on without it.
-  if (live->lost.size() > live->lost_told &&
-      live->phase >= MissionPhase::kGathering && live->phase <= MissionPhase::kUnloading) {
+  if (live->lost.size() > live->lost_told && live->phase >= MissionPhase::kGathering &&
+      live->phase <= MissionPhase::kUnloading) {
     live->lost_told = live->lost.size();
     outbox->statuses.push_back(Report(*live, inside));
     outbox->statuses.back().reason =
@@ -428,9 +426,9 @@ void MissionAgent::RunFirstLeader(Live* live, const Pose2& self, const Group& gr
         if (live->spread_frozen) outbox->freeze = spec.AssignedRuns();
         EnterPhase(live, MissionPhase::kLoading, tick, inside, outbox);
         if (!live->lost.empty()) {
-          outbox->statuses.back().reason =
-              "without robot(s) " + lost.str() + " (lost: not heard for " +
-              std::to_string(params_.lost_after_ticks) + " ticks)";
+          outbox->statuses.back().reason = "without robot(s) " + lost.str() +
+                                           " (lost: not heard for " +
+                                           std::to_string(params_.lost_after_ticks) + " ticks)";
         }
       } else if (periodic) {
         outbox->statuses.push_back(Report(*live, inside));

@@ -86,9 +86,8 @@ std::uint16_t MissionBook::NextFreeId() {
   return next_id_;
 }
 
-MissionBook::Verdict MissionBook::Submit(MissionSpec spec, const std::string& source,
-                                         bool auto_id, bool attach,
-                                         const std::set<std::uint16_t>& known_robots,
+MissionBook::Verdict MissionBook::Submit(MissionSpec spec, const std::string& source, bool auto_id,
+                                         bool attach, const std::set<std::uint16_t>& known_robots,
                                          double now_s) {
   Verdict verdict;
   const std::uint16_t next_id = next_id_;

@@ -14,8 +14,8 @@ Overloaded(F...) -> Overloaded<F...>;
 }  // namespace
 
 const char* KindName(const MissionMessage& message) {
-  static const char* const kNames[] = {"New_Mission",    "Update_Object", "Delete_Object",
-                                       "Robot_Freeze",   "Robot_Continue", "Mission_Event",
+  static const char* const kNames[] = {"New_Mission",   "Update_Object",  "Delete_Object",
+                                       "Robot_Freeze",  "Robot_Continue", "Mission_Event",
                                        "Mission_Status"};
   static_assert(sizeof(kNames) / sizeof(kNames[0]) == std::variant_size_v<MissionMessage>);
   return kNames[message.index()];

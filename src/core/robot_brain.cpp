@@ -23,8 +23,8 @@ MissionAgentParams MissionParams(const SwarmConfig& p) {
   m.min_robots = p.mission_min_robots;
   m.loading_spread = p.loading_spread;
   m.loading_spread_ticks = p.loading_spread_ticks;
-  m.lost_after_ticks = static_cast<std::uint64_t>(
-      std::max(1.0, std::ceil(p.lost_after_s / p.tick_period_s - 1e-9)));
+  m.lost_after_ticks =
+      static_cast<std::uint64_t>(std::max(1.0, std::ceil(p.lost_after_s / p.tick_period_s - 1e-9)));
   return m;
 }
 
@@ -90,7 +90,8 @@ std::string RobotBrain::OnNewMission(const MissionSpec& mission,
   context.live_missions = agent_.LiveIds();
   context.static_zones = params_.danger_zones;
   // Admitted by the dispatcher already, or admitted here with the dispatcher's own decision.
-  if (params_.admission == Admission::kRobots) context.max_live_missions = params_.max_live_missions;
+  if (params_.admission == Admission::kRobots)
+    context.max_live_missions = params_.max_live_missions;
   std::string why = AdmitMission(mission, context);
   if (!why.empty() || !agent_.OnNewMission(mission, &why)) return why;
   if (taken != nullptr) {
@@ -161,8 +162,8 @@ BrainTick RobotBrain::Tick(Perception in, std::uint64_t tick, bool publish) {
   last_plan_ = plan;
 
   const double dt = params_.tick_period_s;
-  const bool balloon = params_.standby == StandbyMode::kBalloon && !plan.active &&
-                       !plan.carry && !plan.lead;
+  const bool balloon =
+      params_.standby == StandbyMode::kBalloon && !plan.active && !plan.carry && !plan.lead;
   // Loading spread (SPEC 9.5): until the first leader's freeze, a mission robot in LOADING
   // spreads under its object.
   const bool spreading = params_.loading_spread == LoadingSpread::kBalloon && plan.carry &&
@@ -186,8 +187,8 @@ BrainTick RobotBrain::Tick(Perception in, std::uint64_t tick, bool publish) {
     }
     LeaderParams leader = params_.leader;
     leader.keep_flock = leader.keep_flock && plan.keep_flock;
-    const LeaderDecision d = LeaderStep(in, params_.flocking, leader, plan.goal, plan.steer, rng_,
-                                        dt, &leader_memory_);
+    const LeaderDecision d =
+        LeaderStep(in, params_.flocking, leader, plan.goal, plan.steer, rng_, dt, &leader_memory_);
     out.move = d.move;
     if (d.arrived) {
       agent_.LeaderArrived(*plan.active, &out.outbox);
@@ -200,8 +201,8 @@ BrainTick RobotBrain::Tick(Perception in, std::uint64_t tick, bool publish) {
         StackLeaders(in, agent_.LeadingAlone(), params_.leader.virtual_copies);
     bool fleeing = false;
     int neighbourhood_size = 0;
-    const Angle desired = DesiredHeading(weighted, params_.flocking, rng_, &fleeing,
-                                         &neighbourhood_size);
+    const Angle desired =
+        DesiredHeading(weighted, params_.flocking, rng_, &fleeing, &neighbourhood_size);
     out.move = AvoidCollisions(in, params_.flocking, desired, dt);
     out.move.fleeing = fleeing;
     out.move.neighbours_in_range = neighbourhood_size;

@@ -88,8 +88,8 @@ void LockstepBarrier::Forget(std::uint16_t mission_id) {
   }
 }
 
-void LockstepBarrier::OnPhase(std::uint16_t mission_id, core::MissionPhase phase,
-                              bool loaded_auto, bool unloaded_auto) {
+void LockstepBarrier::OnPhase(std::uint16_t mission_id, core::MissionPhase phase, bool loaded_auto,
+                              bool unloaded_auto) {
   using core::MissionEventKind;
   using core::MissionPhase;
   switch (phase) {

@@ -97,10 +97,9 @@ class Grid {
     return std::min(side_ - 1, std::max(0, c));
   }
   std::uint32_t Bucket(int x, int y) const {
-    const std::uint64_t h = (static_cast<std::uint64_t>(static_cast<std::uint32_t>(x)) *
-                             0x9E3779B97F4A7C15ULL) ^
-                            (static_cast<std::uint64_t>(static_cast<std::uint32_t>(y)) *
-                             0xC2B2AE3D27D4EB4FULL);
+    const std::uint64_t h =
+        (static_cast<std::uint64_t>(static_cast<std::uint32_t>(x)) * 0x9E3779B97F4A7C15ULL) ^
+        (static_cast<std::uint64_t>(static_cast<std::uint32_t>(y)) * 0xC2B2AE3D27D4EB4FULL);
     return static_cast<std::uint32_t>((h ^ (h >> 29)) & mask_);
   }
 
@@ -226,8 +225,8 @@ bool World2D::SetCommand(std::uint16_t id, core::Velocity velocity, std::string*
   }
   // Turn in place at once, then drive straight for the command's duration: the thesis's tick
   // (teleport_relative, then 1 s of driving) and exactly what core::TurnThenDrive predicts.
-  it->second.pose.heading =
-      it->second.pose.heading + core::Angle::FromRadians(velocity.angular * params_.command_duration_s);
+  it->second.pose.heading = it->second.pose.heading +
+                            core::Angle::FromRadians(velocity.angular * params_.command_duration_s);
   it->second.command = core::Velocity{velocity.linear, 0.0};
   it->second.command_remaining_s = params_.command_duration_s;
   return true;

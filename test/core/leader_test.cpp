@@ -178,8 +178,7 @@ TEST(LeaderStepTest, WithWaitBehindWaitsOnlyForASwarmBehindIt) {
     in.others = {Robot(2, c.x, c.y)};
     Rng rng(1, 0);
     LeaderMemory memory;
-    const LeaderDecision d =
-        LeaderStep(in, Params(), behind, goal, Angle(0), rng, kTick, &memory);
+    const LeaderDecision d = LeaderStep(in, Params(), behind, goal, Angle(0), rng, kTick, &memory);
     EXPECT_EQ(memory.swarm_waits, c.waits ? 1u : 0u) << c.x << ", " << c.y;
     EXPECT_EQ(d.move.outcome, c.waits ? MoveOutcome::kStand : MoveOutcome::kStraight);
     // Without the option it waits for every one of them.

@@ -68,7 +68,7 @@ TEST(LockstepBarrierTest, ALateAnswerIsIgnoredAndTheRobotStands) {
   b.StartTick(2);
   b.Ask(3);
   b.Ask(7);
-  EXPECT_DOUBLE_EQ(b.CommandOf(7).linear, 0.0);  // not answered yet: it would stand
+  EXPECT_DOUBLE_EQ(b.CommandOf(7).linear, 0.0);               // not answered yet: it would stand
   EXPECT_EQ(b.OnAnswer(7, 1, Forward(0.5)), Answer::kStale);  // its answer to tick 1
   EXPECT_FALSE(b.AllAnswered());
   EXPECT_DOUBLE_EQ(b.CommandOf(7).linear, 0.0);

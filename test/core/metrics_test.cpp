@@ -315,9 +315,8 @@ TEST(DispersionTest, CoverageAndNearestNeighbourSpread) {
   EXPECT_NEAR(uneven.nn_cv, std::sqrt(2.0) / 2.0, 1e-12);
   // Non-finite positions are left out; two robots in the same cell cover it once.
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_DOUBLE_EQ(DispersionOf({{0.5, 0.5}, {0.5, 0.5}, {nan, 1.0}}, 10.0, 0.6, 1.0)
-                       .coverage_fraction,
-                   0.01);
+  EXPECT_DOUBLE_EQ(
+      DispersionOf({{0.5, 0.5}, {0.5, 0.5}, {nan, 1.0}}, 10.0, 0.6, 1.0).coverage_fraction, 0.01);
 }
 
 // The all-pairs nearest-neighbour search the k-d tree replaced (DispersionOf before issue 25).

@@ -1,13 +1,14 @@
 // The robot side of missions: zones, roles, FIFO, and the first leader's phase machine.
+#include "swarm_transport/core/mission_agent.h"
+
 #include <gtest/gtest.h>
 
 #include <set>
-#include <utility>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fixtures.h"
-#include "swarm_transport/core/mission_agent.h"
 
 namespace swarm_transport {
 namespace core {
@@ -514,8 +515,7 @@ TEST(MissionAgentTest, AFirstLeaderDropsAMemberSilentInGatheringOrAbortsWithoutE
   }
   // Gathered without it once it was silent for more than 5 ticks (from the first tick on): the
   // first leader names it at once (GATHERING again: a progress report), then loads.
-  ASSERT_EQ(phases, (std::vector<MissionPhase>{MissionPhase::kGathering,
-                                               MissionPhase::kGathering,
+  ASSERT_EQ(phases, (std::vector<MissionPhase>{MissionPhase::kGathering, MissionPhase::kGathering,
                                                MissionPhase::kLoading}));
   EXPECT_EQ(notice_tick, 7u);
   EXPECT_EQ(notice, "robot(s) 2 lost (not heard for 5 ticks): the mission goes on without them");
@@ -548,8 +548,7 @@ TEST(MissionAgentTest, AFirstLeaderDropsAMemberSilentInGatheringOrAbortsWithoutE
       }
     }
   }
-  ASSERT_EQ(phases, (std::vector<MissionPhase>{MissionPhase::kGathering,
-                                               MissionPhase::kAborted}));
+  ASSERT_EQ(phases, (std::vector<MissionPhase>{MissionPhase::kGathering, MissionPhase::kAborted}));
   EXPECT_NE(reason.find("robot(s) 1, 2 lost"), std::string::npos) << reason;
 }
 
@@ -768,8 +767,7 @@ TEST(MissionAgentTest, AMissionBelowMinRobotsEndsAbortedNamingTheLost) {
       if (!out.statuses.empty() && Phases(out).back() == "ABORTED") {
         EXPECT_NE(out.statuses.back().reason.find("robot(s) 0 lost"), std::string::npos)
             << out.statuses.back().reason;
-        EXPECT_NE(out.statuses.back().reason.find(
-                      "2 robots left, fewer than mission_min_robots 3"),
+        EXPECT_NE(out.statuses.back().reason.find("2 robots left, fewer than mission_min_robots 3"),
                   std::string::npos)
             << out.statuses.back().reason;
       }

@@ -1,12 +1,13 @@
 // The dispatcher's bookkeeping: verdicts, ids, phases from first leaders' reports, the
 // LOADED / UNLOADED signals and the status table.
+#include "swarm_transport/core/mission_book.h"
+
 #include <gtest/gtest.h>
 
 #include <set>
 #include <string>
 
 #include "fixtures.h"
-#include "swarm_transport/core/mission_book.h"
 
 namespace swarm_transport {
 namespace core {

@@ -1,4 +1,5 @@
-// Clock, comm, placement and deploy modes: every name parses to its mode and back; anything else is refused.
+// Clock, comm, placement and deploy modes: every name parses to its mode and back; anything else is
+// refused.
 #include "swarm_transport/core/modes.h"
 
 #include <gtest/gtest.h>

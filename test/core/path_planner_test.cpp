@@ -27,8 +27,8 @@ void ExpectClearPath(Vec2 from, Vec2 to, const std::vector<Vec2>& path,
   EXPECT_NEAR(Distance(path.back(), to), 0.0, 1e-9);
   Vec2 at = from;
   for (const Vec2& w : path) {
-    EXPECT_TRUE(SegmentClear(at, w, zones, p)) << "(" << at.x << ", " << at.y << ") -> ("
-                                               << w.x << ", " << w.y << ")";
+    EXPECT_TRUE(SegmentClear(at, w, zones, p))
+        << "(" << at.x << ", " << at.y << ") -> (" << w.x << ", " << w.y << ")";
     at = w;
   }
 }

@@ -55,7 +55,7 @@ TEST(RadioTest, AChainPassesOnWhatItsRobotsHeardUpToTheHopLimit) {
   chain.Begin(world, {}, {});
   const RadioRound first = HearOne(&chain, 0);
   EXPECT_EQ(first.in_range, (Indices{1}));
-  EXPECT_EQ(first.chain, (Indices{2, 3}));  // robot 4 is beyond the gap
+  EXPECT_EQ(first.chain, (Indices{2, 3}));            // robot 4 is beyond the gap
   EXPECT_EQ(HearOne(&chain, 2).chain, (Indices{0}));  // 1 and 3 in range; 4 not linked
   Radio two_hops(Range(1.0, 2), &rng);
   two_hops.Begin(world, {}, {});
@@ -129,7 +129,7 @@ TEST(RadioTest, AQuietRobotIsHeardByNobodyButHearsTheOthers) {
   const RadioRound first = HearOne(&radio, 0);
   EXPECT_TRUE(first.in_range.empty());  // not 1; 2 is beyond range without 1 to relay it
   EXPECT_TRUE(first.chain.empty());
-  EXPECT_EQ(first.peers, (Indices{3}));  // not 1 over the mission channel either
+  EXPECT_EQ(first.peers, (Indices{3}));                     // not 1 over the mission channel either
   EXPECT_EQ(HearOne(&radio, 1).in_range, (Indices{0, 2}));  // it still hears
   EXPECT_EQ(HearOne(&radio, 3).peers, (Indices{0}));
 }

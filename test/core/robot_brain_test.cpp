@@ -271,8 +271,8 @@ TEST(RobotBrainTest, VirtualLeaderCopiesWeighInAlignmentOnly) {
   trip.leader_number = 1;
   trip.target = {9.0, 9.0};
   trip.object_centre = trip.target;
-  const Perception in = Sees(5.0, 5.0, 90.0, {At(9, 5.5, 5.0, 0.0), At(1, 4.5, 5.0, 90.0),
-                                               At(2, 5.0, 5.5, 90.0)});
+  const Perception in =
+      Sees(5.0, 5.0, 90.0, {At(9, 5.5, 5.0, 0.0), At(1, 4.5, 5.0, 90.0), At(2, 5.0, 5.5, 90.0)});
   double desired[2];
   for (const int k : {1, 4}) {
     p.leader.virtual_copies = k;
@@ -301,8 +301,8 @@ TEST(RobotBrainTest, AFlockingTuningAppliesFromTheNextTickAndABadOneChangesNothi
   double strayed = 0.0;
   for (std::uint64_t tick = 0; tick < 20; ++tick) {
     const BrainTick t = brain.Tick(alone, tick, true);
-    strayed = std::max(strayed, std::abs(Angle::SignedDifference(t.move.desired_heading,
-                                                                 Angle(30.0))));
+    strayed =
+        std::max(strayed, std::abs(Angle::SignedDifference(t.move.desired_heading, Angle(30.0))));
     EXPECT_NEAR(t.move.distance_m, 0.1, 1e-12);
   }
   EXPECT_GT(strayed, 10.0);

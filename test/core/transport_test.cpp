@@ -189,8 +189,8 @@ TEST(CarryStepTest, InsideTheObjectASlotRobotSwervesOnlyOntoMovesThatStayInside)
   s.in.others.clear();
   for (int k = 0; k <= 6; ++k) {
     const double a = k * 30.0 * M_PI / 180.0;
-    s.in.others.push_back(At(static_cast<std::uint16_t>(2 + k), 7.0 + 0.12 * std::cos(a),
-                             6.02 + 0.12 * std::sin(a)));
+    s.in.others.push_back(
+        At(static_cast<std::uint16_t>(2 + k), 7.0 + 0.12 * std::cos(a), 6.02 + 0.12 * std::sin(a)));
   }
   d = CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick);
   EXPECT_EQ(d.outcome, MoveOutcome::kStand);
@@ -291,9 +291,9 @@ TEST(CarryStepTest, APassiveRobotWeighsItsLeadersHeadingsKTimes) {
   EXPECT_NEAR(d.desired_heading.degrees(), std::atan2(1.0, -2.0) * 180.0 / M_PI, 1e-9);
   // The default, 4: (-3, 1) -> 161.6 degrees.
   EXPECT_EQ(TransportParams().transport_leader_weight, 4);
-  EXPECT_NEAR(CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick)
-                  .desired_heading.degrees(),
-              std::atan2(1.0, -3.0) * 180.0 / M_PI, 1e-9);
+  EXPECT_NEAR(
+      CarryStep(s.in, Quiet(), TransportParams(), s.carry, rng, kTick).desired_heading.degrees(),
+      std::atan2(1.0, -3.0) * 180.0 / M_PI, 1e-9);
   EXPECT_EQ(d.neighbours_in_range, 3);
   TransportParams bad;
   bad.transport_leader_weight = 0;

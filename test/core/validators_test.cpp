@@ -55,8 +55,8 @@ template <typename Params>
 void AddRange(std::vector<Violation<Params>>* out, const std::string& field, double Params::*m,
               std::vector<double> bad) {
   for (double value : bad) {
-    out->push_back({field + " = " + std::to_string(value), [m, value](Params* p) { p->*m = value; },
-                    field});
+    out->push_back(
+        {field + " = " + std::to_string(value), [m, value](Params* p) { p->*m = value; }, field});
   }
 }
 
@@ -113,8 +113,8 @@ TEST(ValidatorsTest, LeaderParams) {
 TEST(ValidatorsTest, TransportParams) {
   using P = core::TransportParams;
   std::vector<Violation<P>> v;
-  v.push_back({"replan_period_ticks = 0", [](P* p) { p->replan_period_ticks = 0; },
-               "replan_period"});
+  v.push_back(
+      {"replan_period_ticks = 0", [](P* p) { p->replan_period_ticks = 0; }, "replan_period"});
   AddRange<P>(&v, "planner_turn_deg_per_tick", &P::planner_turn_deg_per_tick,
               {0.0, -1.0, kNan, kInf});
   AddRange<P>(&v, "lookahead", &P::lookahead, {0.99, kNan, kInf});
@@ -175,8 +175,8 @@ TEST(ValidatorsTest, SwarmConfig) {
   v.push_back({"flocking", [](P* p) { p->flocking.cohesion = 2.0; }, "cohesion"});
   v.push_back({"leader", [](P* p) { p->leader.wait_fraction = 0.0; }, "wait_fraction"});
   v.push_back({"transport", [](P* p) { p->transport.leader_tries = -1; }, "leader_tries"});
-  v.push_back({"balloon", [](P* p) { p->balloon.growth_m_per_tick = 0.0; },
-               "balloon_growth_m_per_tick"});
+  v.push_back(
+      {"balloon", [](P* p) { p->balloon.growth_m_per_tick = 0.0; }, "balloon_growth_m_per_tick"});
   AddRange<P>(&v, "tick_period_s", &P::tick_period_s, {0.0, -0.1, kNan, kInf});
   for (double bad : {kNan, kInf, -kInf}) {
     v.push_back({"loaded_delay_s = " + std::to_string(bad),
@@ -184,8 +184,8 @@ TEST(ValidatorsTest, SwarmConfig) {
     v.push_back({"unloaded_delay_s = " + std::to_string(bad),
                  [bad](P* p) { p->unloaded_delay_s = bad; }, "unloaded_delay_s"});
   }
-  v.push_back({"object_update_ticks = 0", [](P* p) { p->object_update_ticks = 0; },
-               "object_update_ticks"});
+  v.push_back(
+      {"object_update_ticks = 0", [](P* p) { p->object_update_ticks = 0; }, "object_update_ticks"});
   v.push_back({"chain_hops = 0", [](P* p) { p->chain_hops = 0; }, "chain_hops"});
   AddRange<P>(&v, "lost_after_s", &P::lost_after_s, {0.0, -1.0, kNan, kInf});
   for (int bad : {-1, 65536}) {

@@ -27,7 +27,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         const std::uint16_t to = in.ConsumeIntegralInRange<std::uint16_t>(0, 10);
         const bool was = brain.frozen();
         const bool freeze = in.ConsumeBool();
-        const std::string why = freeze ? brain.Take(core::Freeze{from, to}) : brain.Take(core::Continue{from, to});
+        const std::string why =
+            freeze ? brain.Take(core::Freeze{from, to}) : brain.Take(core::Continue{from, to});
         fuzz::Require(why.empty() == (from < to));
         if (!why.empty()) fuzz::Require(brain.frozen() == was);
         break;
@@ -38,16 +39,22 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         break;
       }
       case 3:
-        brain.Take(core::ObjectUpdate{in.ConsumeIntegralInRange<std::uint16_t>(0, 5), {fuzz::AnyFloat(&in), fuzz::AnyFloat(&in)}});
+        brain.Take(core::ObjectUpdate{in.ConsumeIntegralInRange<std::uint16_t>(0, 5),
+                                      {fuzz::AnyFloat(&in), fuzz::AnyFloat(&in)}});
         break;
       case 4:
         brain.Take(core::ObjectDelete{in.ConsumeIntegralInRange<std::uint16_t>(0, 5)});
         break;
       case 5:
-        brain.Take(core::Signal{in.ConsumeIntegralInRange<std::uint16_t>(0, 5), static_cast<core::MissionEventKind>(in.ConsumeIntegral<std::uint8_t>()), in.ConsumeIntegral<std::uint64_t>()});
+        brain.Take(
+            core::Signal{in.ConsumeIntegralInRange<std::uint16_t>(0, 5),
+                         static_cast<core::MissionEventKind>(in.ConsumeIntegral<std::uint8_t>()),
+                         in.ConsumeIntegral<std::uint64_t>()});
         break;
       case 6:
-        brain.Take(core::PhaseStatus{in.ConsumeIntegralInRange<std::uint16_t>(0, 5), static_cast<core::MissionPhase>(in.ConsumeIntegral<std::uint8_t>())});
+        brain.Take(
+            core::PhaseStatus{in.ConsumeIntegralInRange<std::uint16_t>(0, 5),
+                              static_cast<core::MissionPhase>(in.ConsumeIntegral<std::uint8_t>())});
         break;
       case 7: {
         // Any value, NaN and infinities included.

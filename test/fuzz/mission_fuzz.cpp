@@ -102,7 +102,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (status.state < 8 && std::isfinite(status.distance_to_target)) {
       book.OnStatus(ToMissionReport(status), 1.0 * k);
     }
-    member.Take(core::PhaseStatus{status.mission_id, static_cast<core::MissionPhase>(status.state)});
+    member.Take(
+        core::PhaseStatus{status.mission_id, static_cast<core::MissionPhase>(status.state)});
   }
   // A few ticks of both robots on finite positions.
   for (std::uint64_t tick = 0; tick < 3; ++tick) {

@@ -52,7 +52,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   sim::Radio radio(radio_params, &rng);
   radio.Begin(world, relayed.Extras(), sim::LiveMissions());
   std::vector<Robot_Position> truth;
-  for (const auto& entry : world.robots()) truth.push_back(ToRobotPosition(entry.first, entry.second.pose));
+  for (const auto& entry : world.robots())
+    truth.push_back(ToRobotPosition(entry.first, entry.second.pose));
   const std::vector<Robot_Position> at = relayed.AtOwners(radio.extra_owner(), truth);
   sim::RadioRound round;
   std::size_t i = 0;

@@ -22,7 +22,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::uint16_t id = in.ConsumeIntegralInRange<std::uint16_t>(0, 6);
     switch (in.ConsumeIntegralInRange<int>(0, 5)) {
       case 0:
-        world.Spawn(id, {{fuzz::AnyFloat(&in), fuzz::AnyFloat(&in)}, core::Angle(fuzz::AnyFloat(&in))},
+        world.Spawn(id,
+                    {{fuzz::AnyFloat(&in), fuzz::AnyFloat(&in)}, core::Angle(fuzz::AnyFloat(&in))},
                     &error);
         break;
       case 1:

@@ -1,8 +1,9 @@
 // The batch engine's inputs and one small run (the rows against launched runs are compared by
 // test/experiment.test): job.json reading with clear errors, the rosparam-like merge, and a run
 // whose files say what the swarm did.
-#include <gtest/gtest.h>
+#include "swarm_transport/ros/engine/batch_run.h"
 
+#include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -12,7 +13,6 @@
 #include <string>
 #include <vector>
 
-#include "swarm_transport/ros/engine/batch_run.h"
 #include "swarm_transport/ros/common/params.h"
 
 namespace swarm_transport {

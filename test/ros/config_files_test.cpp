@@ -1,11 +1,9 @@
 // Every shipped config/*.yaml loads and validates; broken configurations are rejected with a
 // message naming the key (like cartographer_ros configuration_files_test).
+#include <dirent.h>
 #include <gtest/gtest.h>
 
-#include <dirent.h>
-
 #include <cmath>
-
 #include <string>
 #include <vector>
 

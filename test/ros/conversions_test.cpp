@@ -69,8 +69,8 @@ TEST(ConversionsTest, EveryNonFiniteFloatIsCaught) {
   }
   geometry_msgs::Twist t;
   EXPECT_TRUE(IsFinite(t));
-  for (double* field : {&t.linear.x, &t.linear.y, &t.linear.z, &t.angular.x, &t.angular.y,
-                        &t.angular.z}) {
+  for (double* field :
+       {&t.linear.x, &t.linear.y, &t.linear.z, &t.angular.x, &t.angular.y, &t.angular.z}) {
     const double old = *field;
     *field = std::numeric_limits<double>::infinity();
     EXPECT_FALSE(IsFinite(t));
@@ -134,9 +134,9 @@ TEST(ConversionsTest, SenderOfTellsTheDispatcherRelaysRobotsAndOthers) {
   EXPECT_EQ(robot.kind, core::SenderKind::kRobot);
   EXPECT_EQ(robot.robot_id, 17);
   EXPECT_EQ(SenderOf("/robot_65535/robot").robot_id, 65535);
-  for (const char* other : {"/robot_65536/robot", "/robot_/robot", "/robot_1x/robot",
-                            "/robot_3/robotx", "/robot_3", "/rostopic_123_456",
-                            "/mission_dispatcher_2", "", "/robot_-1/robot"}) {
+  for (const char* other :
+       {"/robot_65536/robot", "/robot_/robot", "/robot_1x/robot", "/robot_3/robotx", "/robot_3",
+        "/rostopic_123_456", "/mission_dispatcher_2", "", "/robot_-1/robot"}) {
     EXPECT_EQ(SenderOf(other).kind, core::SenderKind::kOther) << other;
   }
 }

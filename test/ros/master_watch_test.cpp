@@ -1,6 +1,6 @@
-// The master watch (ros/common/master_watch.h) asks the master for its pid with a deadline: a master
-// that accepts the connection but never answers (stopped, hung, or still starting on its port)
-// does not hold it. roscpp's own calls to the master (ros::master::execute) wait for as long
+// The master watch (ros/common/master_watch.h) asks the master for its pid with a deadline: a
+// master that accepts the connection but never answers (stopped, hung, or still starting on its
+// port) does not hold it. roscpp's own calls to the master (ros::master::execute) wait for as long
 // as such a connection stays open.
 #include "swarm_transport/ros/common/master_watch.h"
 
@@ -67,8 +67,9 @@ TEST(MasterWatchTest, AMasterThatNeverAnswersDoesNotHoldTheWatch) {
   // Each call ends after 2 s; 30 s is far beyond that. A watch held for good would hold this
   // test too (the future's destructor waits): it fails the whole binary instead.
   if (watched.wait_for(std::chrono::seconds(30)) != std::future_status::ready) {
-    std::fprintf(stderr, "MasterWatchTest: the watch still waits for a master that never "
-                         "answers after 30 s\n");
+    std::fprintf(stderr,
+                 "MasterWatchTest: the watch still waits for a master that never "
+                 "answers after 30 s\n");
     std::fflush(stderr);
     std::_Exit(1);
   }

@@ -123,8 +123,10 @@ TEST(MissionRelayTest, AConnectingRobotGetsTheOrdersOfTheMissionsThatHaveNotEnde
   relay.Clear();
   EXPECT_EQ(relay.standing_orders(), 5u);
   Tick_Answer leader;
-  leader.statuses = {Status(1, Mission_Status::QUEUED), Status(1, Mission_Status::GATHERING),
-                     Status(1, Mission_Status::TRANSPORT), Status(2, Mission_Status::DONE),
+  leader.statuses = {Status(1, Mission_Status::QUEUED),
+                     Status(1, Mission_Status::GATHERING),
+                     Status(1, Mission_Status::TRANSPORT),
+                     Status(2, Mission_Status::DONE),
                      Status(3, Mission_Status::ABORTED),
                      Status(1, Mission_Status::LOADING)};  // late: not back to LOADING
   Update_Object moved;
@@ -211,7 +213,7 @@ TEST(RelayedPositionsTest, KeepsCopiesAndStatistsAndRejectsBadOnes) {
   ASSERT_EQ(extras.size(), 3u);
   EXPECT_TRUE(extras[0].virtual_copy);  // (1, 1)
   EXPECT_EQ(extras[0].owner, 1);
-  EXPECT_FALSE(extras[1].virtual_copy);  // (1, 2)
+  EXPECT_FALSE(extras[1].virtual_copy);         // (1, 2)
   EXPECT_DOUBLE_EQ(extras[2].position.x, 3.0);  // (4, 1)
 
   // A virtual copy is relayed at its owner's true pose, the others where announced.

@@ -1,16 +1,15 @@
 // Every shipped missions file (config/missions/*.yaml) parses, and each of its missions is valid
 // in the thesis's arena with robots 0..24 and unique ids (what the dispatcher checks at start).
-#include <gtest/gtest.h>
-
 #include <dirent.h>
+#include <gtest/gtest.h>
 
 #include <set>
 #include <string>
 #include <vector>
 
 #include "swarm_transport/core/mission.h"
-#include "swarm_transport/ros/dispatcher/dispatcher_options.h"
 #include "swarm_transport/ros/common/params.h"
+#include "swarm_transport/ros/dispatcher/dispatcher_options.h"
 
 namespace swarm_transport {
 namespace {
@@ -51,9 +50,7 @@ TEST_P(MissionsFileTest, ParsesAndEveryMissionIsValid) {
 
 INSTANTIATE_TEST_SUITE_P(ShippedMissions, MissionsFileTest, ::testing::ValuesIn(MissionsFiles()));
 
-TEST(MissionsFiles, TheThesisTransportAndTwoMissionsShip) {
-  EXPECT_GE(MissionsFiles().size(), 2u);
-}
+TEST(MissionsFiles, TheThesisTransportAndTwoMissionsShip) { EXPECT_GE(MissionsFiles().size(), 2u); }
 
 TEST(MissionsFiles, AMalformedEntryIsNamed) {
   XmlRpc::XmlRpcValue file;
@@ -72,11 +69,11 @@ TEST(MissionsFiles, AMalformedEntryIsNamed) {
 TEST(MissionsFiles, AtTickIsReadPerMissionAndChecked) {
   XmlRpc::XmlRpcValue file;
   std::string error;
-  ASSERT_TRUE(XmlRpcFromYamlText(
-      "missions:\n"
-      "  - {id: 1, robot_ids: [0], leaders: 1, target: [2, 2], at_tick: 40}\n"
-      "  - {id: 2, robot_ids: [1], leaders: 1, target: [3, 3]}\n",
-      &file, &error))
+  ASSERT_TRUE(
+      XmlRpcFromYamlText("missions:\n"
+                         "  - {id: 1, robot_ids: [0], leaders: 1, target: [2, 2], at_tick: 40}\n"
+                         "  - {id: 2, robot_ids: [1], leaders: 1, target: [3, 3]}\n",
+                         &file, &error))
       << error;
   std::vector<core::MissionSpec> missions;
   std::vector<std::uint64_t> ticks;

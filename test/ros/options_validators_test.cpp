@@ -47,16 +47,16 @@ template <typename Params, typename T>
 void Add(std::vector<Violation<Params>>* out, const std::string& field, T Params::*m,
          std::vector<T> bad) {
   for (T value : bad) {
-    out->push_back({field + " = " + std::to_string(value), [m, value](Params* p) { p->*m = value; },
-                    field});
+    out->push_back(
+        {field + " = " + std::to_string(value), [m, value](Params* p) { p->*m = value; }, field});
   }
 }
 
 TEST(OptionsValidatorsTest, SimulatorParams) {
   using P = SimulatorParams;
   std::vector<Violation<P>> v;
-  v.push_back({"a bad /swarm key", [](P* p) { p->swarm.flocking.cohesion = 3.0; },
-               "/swarm: cohesion"});
+  v.push_back(
+      {"a bad /swarm key", [](P* p) { p->swarm.flocking.cohesion = 3.0; }, "/swarm: cohesion"});
   Add<P, double>(&v, "/swarm/radio_loss", &P::radio_loss, {-0.01, 1.01, kNan, kInf});
   v.push_back({"placement file without a file",
                [](P* p) {
@@ -68,8 +68,7 @@ TEST(OptionsValidatorsTest, SimulatorParams) {
   Add<P, double>(&v, "~lockstep_timeout_s", &P::lockstep_timeout_s, {0.0, -1.0, kNan, kInf});
   Add<P, int>(&v, "~lockstep_max_ticks", &P::lockstep_max_ticks, {-1});
   Add<P, int>(&v, "~lockstep_observers", &P::lockstep_observers, {-1});
-  Add<P, double>(&v, "~lockstep_start_timeout_s", &P::lockstep_start_timeout_s,
-                 {-0.1, kNan, kInf});
+  Add<P, double>(&v, "~lockstep_start_timeout_s", &P::lockstep_start_timeout_s, {-0.1, kNan, kInf});
   Add<P, double>(&v, "~real_time_factor", &P::real_time_factor, {-0.1, kNan, kInf});
   Add<P, int>(&v, "~hold_at", &P::hold_at, {-1});
   // ~integration_step_s in (0, tick_period_s = 0.1]
@@ -152,8 +151,8 @@ TEST(OptionsValidatorsTest, RobotHostOptions) {
   Add<P, int>(&v, "~to", &P::to, {0, -1, 65537});
   Add<P, int>(&v, "~threads", &P::threads, {0, 65});
   for (core::Deploy bad : {core::Deploy::kProcess, core::Deploy::kNone}) {
-    v.push_back({std::string("deploy ") + core::DeployName(bad),
-                 [bad](P* p) { p->deploy = bad; }, "~deploy"});
+    v.push_back({std::string("deploy ") + core::DeployName(bad), [bad](P* p) { p->deploy = bad; },
+                 "~deploy"});
   }
   ExpectEachViolationNamed(baseline, v);
 

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "swarm_transport/ros/dispatcher/dispatcher_options.h"
 #include "swarm_transport/ros/common/event_schedule.h"
 #include "swarm_transport/ros/common/params.h"
+#include "swarm_transport/ros/dispatcher/dispatcher_options.h"
 
 namespace swarm_transport {
 namespace {
@@ -137,11 +137,10 @@ TEST(XmlRpcNumberTest, TheMissionsFileReadsNumbersThroughIt) {
   EXPECT_EQ(missions[0].target.x, 2.0);
   EXPECT_EQ(missions[0].target.y, 2.5);
   EXPECT_EQ(missions[0].object_size.x, 0.5);
-  for (const std::string entry :
-       {"{id: 1, robot_ids: [0], leaders: 1, target: [.nan, 2]}",
-        "{id: 1, robot_ids: [0], leaders: 1, target: [2, .inf]}",
-        "{id: 1, robot_ids: [0], leaders: 1, target: ['2', 2]}",
-        "{id: 1, robot_ids: [0], leaders: 1, target: [true, 2]}"}) {
+  for (const std::string entry : {"{id: 1, robot_ids: [0], leaders: 1, target: [.nan, 2]}",
+                                  "{id: 1, robot_ids: [0], leaders: 1, target: [2, .inf]}",
+                                  "{id: 1, robot_ids: [0], leaders: 1, target: ['2', 2]}",
+                                  "{id: 1, robot_ids: [0], leaders: 1, target: [true, 2]}"}) {
     EXPECT_FALSE(read(entry, &missions, &error)) << entry;
     EXPECT_EQ(error.rfind("missions[0]: 'target' must be [x, y], finite numbers", 0), 0u)
         << entry << " -> " << error;

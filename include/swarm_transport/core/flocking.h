@@ -24,17 +24,17 @@ const char* NeighbourhoodName(Neighbourhood n);
 
 // The behaviour parameters of a robot, with units in the names.
 struct FlockingParams {
-  double local_range_m = 1.0;         // neighbourhood radius
-  double speed_m_per_tick = 0.1;      // distance driven per tick
-  double free_will_deg = 90.0;        // width of the uniform heading noise, [0, 360]
-  double cohesion = 0.0;              // fraction of the turn towards the centroid, [-1, 1]
-  double robot_radius_m = 0.05;       // disc radius
-  double collision_margin = 0.1;      // keep >= 2 * radius * (1 + margin) between centres
-  double world_size_m = 11.088889;    // square arena [0, world_size]^2
-  double speed_reduction = 0.5;       // factor applied to the speed on each retry, (0, 1)
-  int speed_retries = 2;              // retries at lower speed after a failed +-180 search
-  bool check_path = true;             // also reject moves whose path crosses a robot's disc
-  double zone_margin_m = 0.02;        // flight aims this far inside the allowed region
+  double local_range_m = 1.0;       // neighbourhood radius
+  double speed_m_per_tick = 0.1;    // distance driven per tick
+  double free_will_deg = 90.0;      // width of the uniform heading noise, [0, 360]
+  double cohesion = 0.0;            // fraction of the turn towards the centroid, [-1, 1]
+  double robot_radius_m = 0.05;     // disc radius
+  double collision_margin = 0.1;    // keep >= 2 * radius * (1 + margin) between centres
+  double world_size_m = 11.088889;  // square arena [0, world_size]^2
+  double speed_reduction = 0.5;     // factor applied to the speed on each retry, (0, 1)
+  int speed_retries = 2;            // retries at lower speed after a failed +-180 search
+  bool check_path = true;           // also reject moves whose path crosses a robot's disc
+  double zone_margin_m = 0.02;      // flight aims this far inside the allowed region
   Neighbourhood neighbourhood = Neighbourhood::kChain;  // whom alignment and cohesion run over
 
   // Empty when valid, else one sentence naming the first bad field and the accepted range.
@@ -78,11 +78,11 @@ enum class MoveOutcome { kStraight, kSwerved, kSlowed, kStand };
 
 // The result of a tick's computation.
 struct MoveDecision {
-  Angle desired_heading;      // after alignment, free will, cohesion / flight
-  Angle heading;              // heading of the executed move
-  double distance_m = 0.0;    // distance of the executed move (0 = stand)
+  Angle desired_heading;    // after alignment, free will, cohesion / flight
+  Angle heading;            // heading of the executed move
+  double distance_m = 0.0;  // distance of the executed move (0 = stand)
   MoveOutcome outcome = MoveOutcome::kStand;
-  bool fleeing = false;       // step 4 applied
+  bool fleeing = false;         // step 4 applied
   int neighbours_in_range = 0;  // its neighbourhood's robots and statists, itself included
 };
 

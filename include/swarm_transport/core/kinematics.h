@@ -49,8 +49,7 @@ Velocity CommandFor(const Pose2& pose, Angle heading, double distance, double du
 
 // Points along the arc from `pose` under `velocity` for `duration_s`, `samples` >= 2 of them,
 // the first being the start and the last the destination.
-std::vector<Vec2> SampleArc(const Pose2& pose, Velocity velocity, double duration_s,
-                            int samples);
+std::vector<Vec2> SampleArc(const Pose2& pose, Velocity velocity, double duration_s, int samples);
 
 }  // namespace core
 }  // namespace swarm_transport

@@ -30,10 +30,10 @@ struct LeaderParams {
 
 // What a leader remembers between ticks.
 struct LeaderMemory {
-  bool gave_up = false;          // the swarm left its range: it goes on alone
-  std::uint64_t blocked_waits = 0;  // ticks it stood because every speed collided
+  bool gave_up = false;                // the swarm left its range: it goes on alone
+  std::uint64_t blocked_waits = 0;     // ticks it stood because every speed collided
   std::uint64_t blocked_in_a_row = 0;  // blocked ticks since it last drove its course
-  std::uint64_t swarm_waits = 0;    // ticks it stood waiting for its swarm
+  std::uint64_t swarm_waits = 0;       // ticks it stood waiting for its swarm
 };
 
 // Result of one leader tick.

@@ -117,8 +117,7 @@ std::string AdmitMission(const MissionSpec& mission, const MissionContext& conte
 // from the same order and configuration.
 constexpr double kRouteClearanceM = 0.1;
 std::optional<std::vector<Vec2>> ObjectRoute(const MissionSpec& mission,
-                                             const std::vector<Zone>& zones,
-                                             double world_size_m);
+                                             const std::vector<Zone>& zones, double world_size_m);
 
 // Who admits orders (/swarm/mission_admission): the dispatcher (robots act only on the orders it
 // publishes; a hand-made New_Mission reaches them after it admitted it), or, with no dispatcher

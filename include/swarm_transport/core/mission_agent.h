@@ -23,16 +23,16 @@ namespace core {
 
 // Parameters of the robot-side mission logic.
 struct MissionAgentParams {
-  double goal_tolerance_m = 0.05;    // object centre (or leader) at the target within this
-  int object_update_ticks = 1;       // first leader publishes Update_Object every N ticks
-  int progress_every_ticks = 50;     // first leader repeats its status with progress every N
+  double goal_tolerance_m = 0.05;  // object centre (or leader) at the target within this
+  int object_update_ticks = 1;     // first leader publishes Update_Object every N ticks
+  int progress_every_ticks = 50;   // first leader repeats its status with progress every N
   std::uint64_t phase_timeout_ticks = 20000;  // a phase that lasts longer aborts the mission
-  TransportParams transport;        // gathering and carrying (leaders bound or not)
-  double local_range_m = 1.0;       // the flocking's: whether the gathered group is one chain
+  TransportParams transport;                  // gathering and carrying (leaders bound or not)
+  double local_range_m = 1.0;  // the flocking's: whether the gathered group is one chain
   // Plausible Update_Object: inside the arena [0, world_size_m]^2, and no farther from the
   // last known centre than the object's robots can carry it in the ticks since (issue 11).
   double world_size_m = 11.088889;
-  double speed_m_per_tick = 0.1;    // the robots' top speed: the object moves no faster
+  double speed_m_per_tick = 0.1;  // the robots' top speed: the object moves no faster
   // A member of a running transport mission not heard for this many ticks is lost for the
   // mission (its radio is silent: a dead, hung or deleted robot) [SPEC 9.7]. Every member is
   // heard every tick over the mission channel while it answers its ticks, so every member
@@ -82,14 +82,13 @@ struct StatusReport {
 
 // Messages the robot must publish after this tick (only a first leader fills them).
 struct MissionOutbox {
-  std::vector<std::pair<std::uint16_t, std::uint16_t>> freeze;     // [from, to) runs
-  std::vector<std::pair<std::uint16_t, std::uint16_t>> resume;     // Robot_Continue runs
-  std::optional<std::pair<std::uint16_t, Vec2>> update_object;     // mission id, centre
-  std::optional<std::uint16_t> delete_object;                      // mission id
+  std::vector<std::pair<std::uint16_t, std::uint16_t>> freeze;  // [from, to) runs
+  std::vector<std::pair<std::uint16_t, std::uint16_t>> resume;  // Robot_Continue runs
+  std::optional<std::pair<std::uint16_t, Vec2>> update_object;  // mission id, centre
+  std::optional<std::uint16_t> delete_object;                   // mission id
   std::vector<StatusReport> statuses;
   bool empty() const {
-    return freeze.empty() && resume.empty() && !update_object && !delete_object &&
-           statuses.empty();
+    return freeze.empty() && resume.empty() && !update_object && !delete_object && statuses.empty();
   }
 };
 
@@ -113,13 +112,13 @@ class StatusSequencer {
 
 // How the robot behaves this tick.
 struct MissionPlan {
-  std::vector<Zone> zones;   // objects: safety for its active mission, danger for all others
-  FlockGroup group;          // its swarm's candidates: its mission group, or all but others'
+  std::vector<Zone> zones;     // objects: safety for its active mission, danger for all others
+  FlockGroup group;            // its swarm's candidates: its mission group, or all but others'
   std::optional<Carry> carry;  // a transport mission's robot: use CarryStep
-  bool lead = false;         // a leader-only mission's leader: use LeaderStep
-  bool keep_flock = false;   // leader-only missions wait for / give up on the swarm
-  Vec2 goal;                 // leader's goal
-  Angle steer;               // leader's heading
+  bool lead = false;           // a leader-only mission's leader: use LeaderStep
+  bool keep_flock = false;     // leader-only missions wait for / give up on the swarm
+  Vec2 goal;                   // leader's goal
+  Angle steer;                 // leader's heading
   std::optional<std::uint16_t> active;  // the mission it works on, if any
 };
 
@@ -175,32 +174,32 @@ class MissionAgent {
   struct Live {
     MissionSpec spec;
     Vec2 centre;
-    std::uint64_t centre_tick = 0;             // the tick `centre` was last set at
+    std::uint64_t centre_tick = 0;               // the tick `centre` was last set at
     MissionPhase phase = MissionPhase::kQueued;  // as known by this robot
-    std::uint64_t phase_tick = 0;               // first-leader: tick the phase began
+    std::uint64_t phase_tick = 0;                // first-leader: tick the phase began
     bool phase_started = false;
-    bool anchored = false;     // transport began for this robot: `offset`, `place` are set
-    Vec2 offset;               // centre - centroid of the mission's robots at transport start
-    Vec2 place;                // formation: this robot's position - centre at transport start
+    bool anchored = false;  // transport began for this robot: `offset`, `place` are set
+    Vec2 offset;            // centre - centroid of the mission's robots at transport start
+    Vec2 place;             // formation: this robot's position - centre at transport start
     std::uint64_t transport_ticks = 0;
-    bool loaded = false;       // first-leader: LOADED arrived during LOADING
-    bool unloaded = false;     // first-leader: UNLOADED arrived during UNLOADING
+    bool loaded = false;    // first-leader: LOADED arrived during LOADING
+    bool unloaded = false;  // first-leader: UNLOADED arrived during UNLOADING
     // first-leader, loading_spread balloon: the tick the freeze goes out, and whether it did
     std::uint64_t spread_end_tick = 0;
     bool spread_frozen = false;
-    std::uint64_t signal_tick = 0;  // ... and takes effect at this tick
-    bool self_arrived = false; // this leader reached its leader-only goal
+    std::uint64_t signal_tick = 0;                      // ... and takes effect at this tick
+    bool self_arrived = false;                          // this leader reached its leader-only goal
     std::map<std::uint16_t, std::uint64_t> heard_tick;  // each member's last tick heard
-    std::map<std::uint16_t, Vec2> last_seen;   // ... and where
-    std::set<std::uint16_t> lost;              // members lost for the mission (for good)
-    bool reanchor = false;     // a member was lost in transport: anchor the object anew
+    std::map<std::uint16_t, Vec2> last_seen;            // ... and where
+    std::set<std::uint16_t> lost;                       // members lost for the mission (for good)
+    bool reanchor = false;          // a member was lost in transport: anchor the object anew
     std::uint64_t first_since = 0;  // tick it became first leader by promotion (0: none)
-    bool promoted = false;     // it leads as first leader because the first leader was lost
-    bool announced = false;    // ... and said so
-    std::size_t lost_told = 0; // first-leader: lost robots it has named in a report so far
-    std::vector<Vec2> route;   // transport: the object's waypoints, the target last
-    std::size_t leg = 0;       // ... the one it heads for now
-    std::optional<Vec2> slot;  // planned gathering: its own slot under the object
+    bool promoted = false;          // it leads as first leader because the first leader was lost
+    bool announced = false;         // ... and said so
+    std::size_t lost_told = 0;      // first-leader: lost robots it has named in a report so far
+    std::vector<Vec2> route;        // transport: the object's waypoints, the target last
+    std::size_t leg = 0;            // ... the one it heads for now
+    std::optional<Vec2> slot;       // planned gathering: its own slot under the object
   };
   // Of a live mission, with its lost robots: the robots left (ascending), its leaders now (the
   // first leader_number of them in MissionSpec::LeadOrder) and its first leader now (the first
@@ -215,7 +214,7 @@ class MissionAgent {
   struct Group {
     std::map<std::uint16_t, Vec2> where;  // itself and every assigned robot heard
     Vec2 centroid;
-    std::uint16_t inside = 0;  // of them inside the object at its current centre
+    std::uint16_t inside = 0;           // of them inside the object at its current centre
     bool OneChain(double range) const;  // every robot linked to every other within range
   };
   void Drop(std::uint16_t mission_id);

@@ -1,7 +1,7 @@
 // One mission message as a robot takes it in, whatever carried it: a lock-step round (the
 // relay), a topic (real time), a host's shared subscription or a fuzzer. RobotBrain::Take is
-// the one inbox; the ROS side only converts (ros/common/conversions.h). A new kind of mission message
-// is a new alternative here, its conversion, and its case in RobotBrain::Take.
+// the one inbox; the ROS side only converts (ros/common/conversions.h). A new kind of mission
+// message is a new alternative here, its conversion, and its case in RobotBrain::Take.
 #ifndef SWARM_TRANSPORT_CORE_MISSION_MESSAGE_H_
 #define SWARM_TRANSPORT_CORE_MISSION_MESSAGE_H_
 

@@ -33,8 +33,8 @@ struct MissionTaken {
 
 // The outcome of one tick.
 struct BrainTick {
-  Velocity command;     // zero while frozen (a leader under its object may turn in place)
-  MoveDecision move;    // what its behaviour decided (also while frozen)
+  Velocity command;      // zero while frozen (a leader under its object may turn in place)
+  MoveDecision move;     // what its behaviour decided (also while frozen)
   MissionOutbox outbox;  // what a first leader must send before the command
   // A leader-only mission's leader arrived this tick (its outbox holds the DONE).
   bool arrived = false;
@@ -50,8 +50,7 @@ class RobotBrain {
   // empty or inverted range is rejected; a phase beyond kRejected is ignored. `known_robots`:
   // the physical robots the swarm has now (a mission must name only those); `taken` (may be
   // null) is filled for a mission taken.
-  std::string Take(const MissionMessage& message,
-                   const std::set<std::uint16_t>& known_robots = {},
+  std::string Take(const MissionMessage& message, const std::set<std::uint16_t>& known_robots = {},
                    MissionTaken* taken = nullptr);
 
   // New flocking parameters (dynamic_reconfigure, issue 13), used from the next Tick on: empty

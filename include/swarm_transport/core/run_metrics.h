@@ -111,10 +111,10 @@ class RunMetrics {
     bool has_spec = false;
     std::optional<std::uint64_t> known_tick;              // its order arrived
     std::array<std::optional<std::uint64_t>, 8> entered;  // first tick of each phase
-    std::optional<std::uint64_t> arrival_tick;      // leader-only: leader seen within tolerance
-    std::optional<MissionPhase> final_state;        // DONE or ABORTED once reported
-    std::optional<Vec2> object;                     // last reported object centre
-    std::optional<std::uint64_t> fed_through;       // last frame fed to the trackers
+    std::optional<std::uint64_t> arrival_tick;  // leader-only: leader seen within tolerance
+    std::optional<MissionPhase> final_state;    // DONE or ABORTED once reported
+    std::optional<Vec2> object;                 // last reported object centre
+    std::optional<std::uint64_t> fed_through;   // last frame fed to the trackers
     TransportTracker transport;
     // Transport: the nearest-neighbour spacing CV of its robots at the transport's first frame.
     std::optional<double> loading_nn_cv;

@@ -102,7 +102,7 @@ struct Carry {
   Vec2 target;
   double goal_tolerance_m = 0.05;
   Vec2 formation_offset;  // formation: its place relative to the centre, fixed at the start
-  std::vector<std::uint16_t> peers;  // the mission's other robots, ascending
+  std::vector<std::uint16_t> peers;    // the mission's other robots, ascending
   std::vector<std::uint16_t> leaders;  // the mission's leaders, ascending
   // Gathering by a plan (gather_planner not nearest): its own slot under the object.
   std::optional<Vec2> slot;

@@ -5,9 +5,8 @@
 
 #include <cstdint>
 #include <map>
-#include <vector>
-
 #include <string>
+#include <vector>
 
 #include "swarm_transport/core/geometry.h"
 #include "swarm_transport/core/mission.h"
@@ -20,7 +19,7 @@ struct LiveMission {
   std::vector<std::uint16_t> members;  // ascending
   std::vector<std::uint16_t> leaders;  // highlighted in rviz
   core::Vec2 object_position;
-  core::Vec2 object_size;              // 0 x 0: a leader-only mission
+  core::Vec2 object_size;  // 0 x 0: a leader-only mission
   core::Vec2 target;
   int phase = -1;  // the last phase its robots reported (Mission_Status state); -1: none yet
 };

@@ -105,7 +105,7 @@ class LockstepBarrier {
   bool expect_schedule_ = false;
   bool have_schedule_ = false;
   std::map<std::uint16_t, std::uint64_t> orders_due_;  // scheduled, not arrived: start tick
-  std::set<std::uint16_t> orders_early_;  // arrived before the schedule named them
+  std::set<std::uint16_t> orders_early_;               // arrived before the schedule named them
   std::set<EventKey> events_awaited_;
   std::map<std::uint16_t, std::uint64_t> recruits_;  // recruiting mission: statist's first tick
   std::uint64_t recruit_checked_ = 0;

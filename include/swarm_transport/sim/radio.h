@@ -8,9 +8,9 @@
 #include <set>
 #include <vector>
 
-#include "swarm_transport/sim/live_mission.h"
 #include "swarm_transport/core/geometry.h"
 #include "swarm_transport/core/random.h"
+#include "swarm_transport/sim/live_mission.h"
 #include "swarm_transport/sim/world2d.h"
 
 namespace swarm_transport {

@@ -3,7 +3,6 @@
 #define SWARM_TRANSPORT_SIM_WORLD2D_H_
 
 #include <boost/container/flat_map.hpp>
-
 #include <cstdint>
 #include <string>
 #include <utility>

@@ -164,8 +164,7 @@ New_Mission ToNewMission(const core::MissionSpec& spec) {
 }
 
 Neighbors RadioRoundMessage(std::uint64_t tick, double sim_time, const sim::Robot& robot,
-                            const sim::RadioRound& round,
-                            const std::vector<Robot_Position>& truth,
+                            const sim::RadioRound& round, const std::vector<Robot_Position>& truth,
                             const std::vector<Robot_Position>& extras) {
   Neighbors msg;
   msg.tick = tick;
@@ -182,8 +181,8 @@ Neighbors RadioRoundMessage(std::uint64_t tick, double sim_time, const sim::Robo
 }
 
 Tick_Answer ToAnswerMessages(const core::MissionOutbox& outbox,
-                             const std::vector<core::StatusReport>& progress,
-                             std::uint64_t tick, const ros::Time& stamp) {
+                             const std::vector<core::StatusReport>& progress, std::uint64_t tick,
+                             const ros::Time& stamp) {
   const auto status = [tick, &stamp](const core::StatusReport& r) {
     Mission_Status m;
     m.mission_id = r.mission_id;

@@ -28,15 +28,15 @@ bool Id(XmlRpcValue& e, const char* key, std::uint16_t* out) {
 }
 
 bool EventFromXmlRpc(XmlRpcValue& e, TimedEvent* event, std::string* error) {
-  static const std::map<std::string, std::pair<TimedEvent::Kind, std::set<std::string>>> kKinds =
-      {{"freeze", {TimedEvent::Kind::kFreeze, {"from", "to"}}},
-       {"continue", {TimedEvent::Kind::kContinue, {"from", "to"}}},
-       {"kill", {TimedEvent::Kind::kKill, {"robot"}}},
-       {"spawn", {TimedEvent::Kind::kSpawn, {"robot", "x", "y", "theta_deg"}}},
-       {"object_update", {TimedEvent::Kind::kObjectUpdate, {"mission", "x", "y"}}},
-       {"signal", {TimedEvent::Kind::kSignal, {"mission", "event"}}},
-       {"statist", {TimedEvent::Kind::kStatist, {"robot", "sub_id", "x", "y"}}},
-       {"remove_statist", {TimedEvent::Kind::kRemoveStatist, {"robot", "sub_id"}}}};
+  static const std::map<std::string, std::pair<TimedEvent::Kind, std::set<std::string>>> kKinds = {
+      {"freeze", {TimedEvent::Kind::kFreeze, {"from", "to"}}},
+      {"continue", {TimedEvent::Kind::kContinue, {"from", "to"}}},
+      {"kill", {TimedEvent::Kind::kKill, {"robot"}}},
+      {"spawn", {TimedEvent::Kind::kSpawn, {"robot", "x", "y", "theta_deg"}}},
+      {"object_update", {TimedEvent::Kind::kObjectUpdate, {"mission", "x", "y"}}},
+      {"signal", {TimedEvent::Kind::kSignal, {"mission", "event"}}},
+      {"statist", {TimedEvent::Kind::kStatist, {"robot", "sub_id", "x", "y"}}},
+      {"remove_statist", {TimedEvent::Kind::kRemoveStatist, {"robot", "sub_id"}}}};
   if (e.getType() != XmlRpcValue::TypeStruct || !e.hasMember("kind") ||
       e["kind"].getType() != XmlRpcValue::TypeString ||
       kKinds.count(static_cast<std::string>(e["kind"])) == 0) {
@@ -127,8 +127,7 @@ bool EventsFromXmlRpc(XmlRpcValue& file, std::vector<TimedEvent>* events, std::s
   return true;
 }
 
-bool ReadEventsFile(const std::string& path, std::vector<TimedEvent>* events,
-                    std::string* error) {
+bool ReadEventsFile(const std::string& path, std::vector<TimedEvent>* events, std::string* error) {
   XmlRpcValue file;
   if (!XmlRpcFromYamlFile(path, &file, error)) return false;
   if (!EventsFromXmlRpc(file, events, error)) {

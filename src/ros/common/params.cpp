@@ -117,8 +117,9 @@ bool XmlRpcNumber(const XmlRpc::XmlRpcValue& value, double* out, std::string* wh
   }
   if (!std::isfinite(number)) {
     if (why != nullptr) {
-      *why = std::string("must be finite but is ") +
-             (std::isnan(number) ? "nan" : number > 0.0 ? "inf" : "-inf");
+      *why = std::string("must be finite but is ") + (std::isnan(number) ? "nan"
+                                                      : number > 0.0     ? "inf"
+                                                                         : "-inf");
     }
     return false;
   }
@@ -144,8 +145,8 @@ bool ZoneFromXmlRpc(XmlRpc::XmlRpcValue& value, int id, core::Zone* zone, std::s
   if (shape == "rect") {
     double sx = NAN, sy = NAN;
     if (!value.hasMember("size_x") || !value.hasMember("size_y") ||
-        !XmlRpcNumber(value["size_x"], &sx) || !XmlRpcNumber(value["size_y"], &sy) ||
-        !(sx > 0.0) || !(sy > 0.0)) {
+        !XmlRpcNumber(value["size_x"], &sx) || !XmlRpcNumber(value["size_y"], &sy) || !(sx > 0.0) ||
+        !(sy > 0.0)) {
       *error = "a rect zone needs size_x > 0 and size_y > 0 (m)";
       return false;
     }
@@ -173,59 +174,58 @@ bool ConfigFromXmlRpc(XmlRpc::XmlRpcValue& dict, SwarmConfig* config, std::strin
   SwarmConfig c = *config;
   core::FlockingParams& f = c.flocking;
   int seed = static_cast<int>(c.seed);
-  bool ok = ReadDouble(dict, "local_range_m", &f.local_range_m, error) &&
-            ReadDouble(dict, "speed_m_per_tick", &f.speed_m_per_tick, error) &&
-            ReadDouble(dict, "free_will_deg", &f.free_will_deg, error) &&
-            ReadDouble(dict, "cohesion", &f.cohesion, error) &&
-            ReadDouble(dict, "robot_radius_m", &f.robot_radius_m, error) &&
-            ReadDouble(dict, "collision_margin", &f.collision_margin, error) &&
-            ReadDouble(dict, "world_size_m", &f.world_size_m, error) &&
-            ReadDouble(dict, "speed_reduction", &f.speed_reduction, error) &&
-            ReadInt(dict, "speed_retries", &f.speed_retries, error) &&
-            ReadBool(dict, "check_path", &f.check_path, error) &&
-            ReadDouble(dict, "zone_margin_m", &f.zone_margin_m, error) &&
-            ReadDouble(dict, "goal_tolerance_m", &c.leader.goal_tolerance_m, error) &&
-            ReadDouble(dict, "leader_wait_fraction", &c.leader.wait_fraction, error) &&
-            ReadBool(dict, "leader_keep_flock", &c.leader.keep_flock, error) &&
-            ReadBool(dict, "leader_wait_behind", &c.leader.wait_behind, error) &&
-            ReadInt(dict, "leader_swerve_after_blocked_ticks",
-                    &c.leader.swerve_after_blocked_ticks, error) &&
-            ReadInt(dict, "leader_virtual_copies", &c.leader.virtual_copies, error) &&
-            ReadDouble(dict, "tick_period_s", &c.tick_period_s, error) &&
-            ReadInt(dict, "seed", &seed, error) &&
-            ReadDouble(dict, "loaded_delay_s", &c.loaded_delay_s, error) &&
-            ReadDouble(dict, "unloaded_delay_s", &c.unloaded_delay_s, error) &&
-            ReadInt(dict, "object_update_ticks", &c.object_update_ticks, error) &&
-            ReadChoice(dict, "neighbourhood", "chain or disc", &f.neighbourhood, error,
-                       core::ParseNeighbourhood) &&
-            ReadInt(dict, "chain_hops", &c.chain_hops, error) &&
-            ReadDouble(dict, "lost_after_s", &c.lost_after_s, error) &&
-            ReadChoice(dict, "mission_admission", "dispatcher or robots", &c.admission, error,
-                       core::ParseAdmission) &&
-            ReadInt(dict, "max_live_missions", &c.max_live_missions, error) &&
-            ReadInt(dict, "mission_min_robots", &c.mission_min_robots, error) &&
-            ReadChoice(dict, "gathering", "hold or fill", &c.transport.gathering, error,
-                       core::ParseGatherMode) &&
-            ReadChoice(dict, "gather_planner", "nearest, selection_matrix, optimal or bottleneck",
-                       &c.transport.gather_planner, error, core::ParseGatherPlanner) &&
-            ReadInt(dict, "replan_period", &c.transport.replan_period_ticks, error) &&
-            ReadDouble(dict, "planner_turn_deg_per_tick", &c.transport.planner_turn_deg_per_tick,
-                       error) &&
-            ReadBool(dict, "leaders_bound", &c.transport.leaders_bound, error) &&
-            ReadDouble(dict, "approach_radius_m", &c.transport.approach_radius_m, error) &&
-            ReadDouble(dict, "leader_reach_m", &c.transport.leader_reach_m, error) &&
-            ReadBool(dict, "object_at_centroid", &c.transport.object_at_centroid, error) &&
-            ReadInt(dict, "transport_leader_weight", &c.transport.transport_leader_weight, error) &&
-            ReadBool(dict, "leaders_face_course", &c.transport.leaders_face_course, error) &&
-            ReadBool(dict, "gather_one_chain", &c.transport.gather_one_chain, error) &&
-            ReadDouble(dict, "formation_speed_fraction", &c.transport.formation_speed_fraction,
-                       error) &&
-            ReadChoice(dict, "standby", "flock or balloon", &c.standby, error,
-                       core::ParseStandbyMode) &&
-            ReadDouble(dict, "balloon_growth_m_per_tick", &c.balloon.growth_m_per_tick, error) &&
-            ReadChoice(dict, "loading_spread", "none or balloon", &c.loading_spread, error,
-                       core::ParseLoadingSpread) &&
-            ReadInt(dict, "loading_spread_ticks", &c.loading_spread_ticks, error);
+  bool ok =
+      ReadDouble(dict, "local_range_m", &f.local_range_m, error) &&
+      ReadDouble(dict, "speed_m_per_tick", &f.speed_m_per_tick, error) &&
+      ReadDouble(dict, "free_will_deg", &f.free_will_deg, error) &&
+      ReadDouble(dict, "cohesion", &f.cohesion, error) &&
+      ReadDouble(dict, "robot_radius_m", &f.robot_radius_m, error) &&
+      ReadDouble(dict, "collision_margin", &f.collision_margin, error) &&
+      ReadDouble(dict, "world_size_m", &f.world_size_m, error) &&
+      ReadDouble(dict, "speed_reduction", &f.speed_reduction, error) &&
+      ReadInt(dict, "speed_retries", &f.speed_retries, error) &&
+      ReadBool(dict, "check_path", &f.check_path, error) &&
+      ReadDouble(dict, "zone_margin_m", &f.zone_margin_m, error) &&
+      ReadDouble(dict, "goal_tolerance_m", &c.leader.goal_tolerance_m, error) &&
+      ReadDouble(dict, "leader_wait_fraction", &c.leader.wait_fraction, error) &&
+      ReadBool(dict, "leader_keep_flock", &c.leader.keep_flock, error) &&
+      ReadBool(dict, "leader_wait_behind", &c.leader.wait_behind, error) &&
+      ReadInt(dict, "leader_swerve_after_blocked_ticks", &c.leader.swerve_after_blocked_ticks,
+              error) &&
+      ReadInt(dict, "leader_virtual_copies", &c.leader.virtual_copies, error) &&
+      ReadDouble(dict, "tick_period_s", &c.tick_period_s, error) &&
+      ReadInt(dict, "seed", &seed, error) &&
+      ReadDouble(dict, "loaded_delay_s", &c.loaded_delay_s, error) &&
+      ReadDouble(dict, "unloaded_delay_s", &c.unloaded_delay_s, error) &&
+      ReadInt(dict, "object_update_ticks", &c.object_update_ticks, error) &&
+      ReadChoice(dict, "neighbourhood", "chain or disc", &f.neighbourhood, error,
+                 core::ParseNeighbourhood) &&
+      ReadInt(dict, "chain_hops", &c.chain_hops, error) &&
+      ReadDouble(dict, "lost_after_s", &c.lost_after_s, error) &&
+      ReadChoice(dict, "mission_admission", "dispatcher or robots", &c.admission, error,
+                 core::ParseAdmission) &&
+      ReadInt(dict, "max_live_missions", &c.max_live_missions, error) &&
+      ReadInt(dict, "mission_min_robots", &c.mission_min_robots, error) &&
+      ReadChoice(dict, "gathering", "hold or fill", &c.transport.gathering, error,
+                 core::ParseGatherMode) &&
+      ReadChoice(dict, "gather_planner", "nearest, selection_matrix, optimal or bottleneck",
+                 &c.transport.gather_planner, error, core::ParseGatherPlanner) &&
+      ReadInt(dict, "replan_period", &c.transport.replan_period_ticks, error) &&
+      ReadDouble(dict, "planner_turn_deg_per_tick", &c.transport.planner_turn_deg_per_tick,
+                 error) &&
+      ReadBool(dict, "leaders_bound", &c.transport.leaders_bound, error) &&
+      ReadDouble(dict, "approach_radius_m", &c.transport.approach_radius_m, error) &&
+      ReadDouble(dict, "leader_reach_m", &c.transport.leader_reach_m, error) &&
+      ReadBool(dict, "object_at_centroid", &c.transport.object_at_centroid, error) &&
+      ReadInt(dict, "transport_leader_weight", &c.transport.transport_leader_weight, error) &&
+      ReadBool(dict, "leaders_face_course", &c.transport.leaders_face_course, error) &&
+      ReadBool(dict, "gather_one_chain", &c.transport.gather_one_chain, error) &&
+      ReadDouble(dict, "formation_speed_fraction", &c.transport.formation_speed_fraction, error) &&
+      ReadChoice(dict, "standby", "flock or balloon", &c.standby, error, core::ParseStandbyMode) &&
+      ReadDouble(dict, "balloon_growth_m_per_tick", &c.balloon.growth_m_per_tick, error) &&
+      ReadChoice(dict, "loading_spread", "none or balloon", &c.loading_spread, error,
+                 core::ParseLoadingSpread) &&
+      ReadInt(dict, "loading_spread_ticks", &c.loading_spread_ticks, error);
   if (!ok) return false;
   if (seed < 0) {
     *error = "parameter 'seed' must be >= 0";
@@ -298,9 +298,8 @@ bool ReadPrivateAs(const ros::NodeHandle& nh, const std::string& key, const char
 
 bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, double* value,
                  std::string* error) {
-  return ReadPrivateAs(
-      nh, key, "a finite number", value, error,
-      [](XmlRpc::XmlRpcValue& v, double* out) { return XmlRpcNumber(v, out); });
+  return ReadPrivateAs(nh, key, "a finite number", value, error,
+                       [](XmlRpc::XmlRpcValue& v, double* out) { return XmlRpcNumber(v, out); });
 }
 
 bool ReadPrivate(const ros::NodeHandle& nh, const std::string& key, int* value,

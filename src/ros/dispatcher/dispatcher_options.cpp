@@ -230,8 +230,8 @@ bool ReadMissionsFile(const std::string& path, double world_size_m,
   return true;
 }
 
-bool ReadDispatcherOptions(const ros::NodeHandle& nh, const ros::NodeHandle& p,
-                           SwarmConfig* config, DispatcherOptions* options,
+bool ReadDispatcherOptions(const ros::NodeHandle& nh, const ros::NodeHandle& p, SwarmConfig* config,
+                           DispatcherOptions* options,
                            std::vector<core::MissionSpec>* file_missions, std::string* error,
                            std::vector<std::uint64_t>* file_ticks) {
   XmlRpcValue swarm;

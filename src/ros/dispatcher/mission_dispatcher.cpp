@@ -92,9 +92,9 @@ bool MissionDispatcher::Initialize() {
   });
   if (options_.silent_abort_ticks > 0) {
     // On ros::Time (simulated in lock-step), ten times per silence limit.
-    watchdog_timer_ = nh_.createTimer(
-        ros::Duration(options_.silent_abort_ticks * config_.tick_period_s / 10.0),
-        &MissionDispatcher::OnWatchdog, this);
+    watchdog_timer_ =
+        nh_.createTimer(ros::Duration(options_.silent_abort_ticks * config_.tick_period_s / 10.0),
+                        &MissionDispatcher::OnWatchdog, this);
   }
 
   const auto delay = [](double s) {
@@ -207,8 +207,7 @@ core::MissionBook::Verdict MissionDispatcher::Submit(core::MissionSpec spec,
              core::DescribeMission(spec).c_str());
   }
   const core::MissionBook::Verdict verdict =
-      book_->Submit(std::move(spec), source, auto_id, !publish, robots,
-                    ros::Time::now().toSec());
+      book_->Submit(std::move(spec), source, auto_id, !publish, robots, ros::Time::now().toSec());
   if (!verdict.accepted) {
     ROS_WARN("%s: rejected mission %u from %s: %s", kNode, verdict.id, source.c_str(),
              verdict.reason.c_str());
@@ -216,8 +215,8 @@ core::MissionBook::Verdict MissionDispatcher::Submit(core::MissionSpec spec,
     return verdict;
   }
   if (verdict.attached) {
-    ROS_INFO("%s: mission %u from %s: its first leader had reported it already", kNode,
-             verdict.id, source.c_str());
+    ROS_INFO("%s: mission %u from %s: its first leader had reported it already", kNode, verdict.id,
+             source.c_str());
     return verdict;
   }
   // No QUEUED status from here: the mission's first leader reports it when it holds the order,
@@ -335,9 +334,11 @@ void MissionDispatcher::WatchRecruits(const Robot_Positions& positions) {
     core::MissionSpec order = core::RecruitedOrder(r.spec, recruits);
     std::ostringstream first;
     for (std::size_t i = 0; i < recruits.size(); ++i) first << (i ? "," : "") << recruits[i];
-    ROS_INFO("%s: mission %u: %zu robots inside its object at tick %llu (first in: %s); its "
-             "statist is deleted", kNode, order.id, recruits.size(),
-             static_cast<unsigned long long>(positions.tick), first.str().c_str());
+    ROS_INFO(
+        "%s: mission %u: %zu robots inside its object at tick %llu (first in: %s); its "
+        "statist is deleted",
+        kNode, order.id, recruits.size(), static_cast<unsigned long long>(positions.tick),
+        first.str().c_str());
     if (!lockstep_) {
       Delete_Robot gone;
       gone.robot_id = r.statist_id;
@@ -365,8 +366,8 @@ void MissionDispatcher::SubmitFileMissions(std::uint64_t at_tick) {
 
 void MissionDispatcher::ScheduleFileMissions(std::uint64_t tick) {
   // The tick of start_delay_s from the run's start, and never one that has begun.
-  const auto delay_ticks = static_cast<std::uint64_t>(
-      std::ceil(options_.start_delay_s / config_.tick_period_s - 1e-9));
+  const auto delay_ticks =
+      static_cast<std::uint64_t>(std::ceil(options_.start_delay_s / config_.tick_period_s - 1e-9));
   Mission_Schedule schedule;
   for (std::size_t i = 0; i < file_missions_.size(); ++i) {
     // A mission's own at_tick, else start_delay_s; never a tick that has begun.
@@ -407,8 +408,8 @@ void MissionDispatcher::OnPositions(const Robot_Positions::ConstPtr& msg) {
   if (file_missions_scheduled_ || file_missions_.empty()) return;
   file_missions_scheduled_ = true;
   // Each group of file missions after its at_tick's worth of time (0: start_delay_s).
-  for (const std::uint64_t at_tick : std::set<std::uint64_t>(file_ticks_.begin(),
-                                                             file_ticks_.end())) {
+  for (const std::uint64_t at_tick :
+       std::set<std::uint64_t>(file_ticks_.begin(), file_ticks_.end())) {
     const double delay_s =
         at_tick > 0 ? static_cast<double>(at_tick) * config_.tick_period_s : options_.start_delay_s;
     if (delay_s <= 0.0) {
@@ -421,7 +422,6 @@ void MissionDispatcher::OnPositions(const Robot_Positions::ConstPtr& msg) {
         [this, at_tick](const ros::TimerEvent&) { SubmitFileMissions(at_tick); }, true));
   }
 }
-
 
 void MissionDispatcher::OnWatchdog(const ros::TimerEvent& /*event*/) {
   const double now_s = ros::Time::now().toSec();

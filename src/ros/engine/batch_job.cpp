@@ -47,8 +47,7 @@ bool ReadBatchJob(const std::string& path, BatchJob* job, std::string* error) {
       !Get(root, "config_path", &job->config_path, error) ||
       !Get(root, "run_dir", &job->run_dir, error) ||
       !Get(root, "record_dir", &job->record_dir, error) ||
-      !Get(root, "run_name", &job->run_name, error) ||
-      !Get(root, "placement", &placement, error) ||
+      !Get(root, "run_name", &job->run_name, error) || !Get(root, "placement", &placement, error) ||
       !Get(root, "placement_file", &job->placement_file, error, false) ||
       !Get(root, "trace", &job->trace, error, false) ||
       !Get(root, "leader_id", &job->leader_id, error, false)) {

@@ -21,12 +21,12 @@
 #include "swarm_transport/core/mission_book.h"
 #include "swarm_transport/core/random.h"
 #include "swarm_transport/core/run_metrics.h"
-#include "swarm_transport/ros/engine/batch_files.h"
 #include "swarm_transport/ros/common/conversions.h"
-#include "swarm_transport/ros/dispatcher/dispatcher_options.h"
-#include "swarm_transport/ros/engine/lockstep_engine.h"
 #include "swarm_transport/ros/common/names.h"
 #include "swarm_transport/ros/common/params.h"
+#include "swarm_transport/ros/dispatcher/dispatcher_options.h"
+#include "swarm_transport/ros/engine/batch_files.h"
+#include "swarm_transport/ros/engine/lockstep_engine.h"
 #include "swarm_transport/ros/recorder/recorder.h"
 #include "swarm_transport/ros/robot/robot_session.h"
 #include "swarm_transport/ros/simulator/simulator_params.h"
@@ -76,7 +76,7 @@ class Run {
   std::unique_ptr<LockstepEngine> engine_;
   std::vector<RobotSession> robots_;  // in world order (ascending id)
   std::set<std::uint16_t> known_robots_;
-  std::optional<New_Mission> order_;  // released at tick 0
+  std::optional<New_Mission> order_;         // released at tick 0
   std::unique_ptr<core::MissionBook> book_;  // the dispatcher's
   std::unique_ptr<core::RunMetrics> metrics_;
   std::unique_ptr<LeaderTrack> track_;
@@ -160,8 +160,8 @@ bool Run::SetUp(const XmlRpc::XmlRpcValue& base_config, std::string* error) {
       RunMetricsParamsOf(recorder_),
       [this](core::RunMetrics::Level level, const std::string& text) {
         if (level == core::RunMetrics::Level::kWarn && logged_warnings_++ < 20) {
-          std::fprintf(stderr, "%s/%s: recorder: %s\n", job_.setting.c_str(),
-                       job_.run_name.c_str(), text.c_str());
+          std::fprintf(stderr, "%s/%s: recorder: %s\n", job_.setting.c_str(), job_.run_name.c_str(),
+                       text.c_str());
         }
       });
   namespace fs = std::filesystem;
@@ -306,7 +306,8 @@ void Run::Tick() {
   });
   // All answers apply together, then the world steps one tick.
   std::size_t i = 0;
-  for (const auto& entry : world_->robots()) world_->SetCommand(entry.first, commands_[i++], nullptr);
+  for (const auto& entry : world_->robots())
+    world_->SetCommand(entry.first, commands_[i++], nullptr);
   world_->Step(config_.tick_period_s);
   ++tick_;
   for (const auto& phase : phases_) {
@@ -353,7 +354,8 @@ void Run::AddResult(double setup_s, double ticking_s, double finish_s, JsonObjec
       last.Add("tick", std::to_string(s.tick));
     }
     o.Add("last_status", last.Text(" "));
-    if (end_ == "DONE" || end_ == "ABORTED") o.Add("recorder_row", recorder_row_ ? "true" : "false");
+    if (end_ == "DONE" || end_ == "ABORTED")
+      o.Add("recorder_row", recorder_row_ ? "true" : "false");
   }
   if (last_sample_) {
     JsonObject stats;
@@ -369,9 +371,9 @@ void Run::AddResult(double setup_s, double ticking_s, double finish_s, JsonObjec
   o.Add("ticks", std::to_string(metrics_->newest_tick()));
   o.Add("startup_s", JsonNumber(setup_s));
   o.Add("ticking_s", JsonNumber(ticking_s));
-  o.Add("ticks_per_s",
-        JsonNumber(ticking_s > 0.0 ? static_cast<double>(metrics_->newest_tick()) / ticking_s
-                                   : 0.0));
+  o.Add(
+      "ticks_per_s",
+      JsonNumber(ticking_s > 0.0 ? static_cast<double>(metrics_->newest_tick()) / ticking_s : 0.0));
   o.Add("shutdown_s", JsonNumber(finish_s));
 }
 

@@ -10,8 +10,7 @@ LockstepEngine::LockstepEngine(const sim::World2D* world, sim::Radio* radio,
                                sim::LiveMissions* missions)
     : world_(world), radio_(radio), missions_(missions) {}
 
-std::vector<std::pair<New_Mission, std::string>> LockstepEngine::ReleaseOrders(
-    std::uint64_t tick) {
+std::vector<std::pair<New_Mission, std::string>> LockstepEngine::ReleaseOrders(std::uint64_t tick) {
   std::vector<std::pair<New_Mission, std::string>> refused;
   for (New_Mission& order : relay_.ReleaseOrders(tick)) {
     std::string why = sim::RegisterMission(ToMissionSpec(order), *world_, missions_);
@@ -28,7 +27,8 @@ void LockstepEngine::BeginRound(std::uint64_t tick, double sim_time,
   const auto& robots = world_->robots();
   truth_.clear();
   truth_.reserve(robots.size());
-  for (const auto& entry : robots) truth_.push_back(ToRobotPosition(entry.first, entry.second.pose));
+  for (const auto& entry : robots)
+    truth_.push_back(ToRobotPosition(entry.first, entry.second.pose));
   radio_->Begin(*world_, relayed != nullptr ? relayed->Extras() : std::vector<sim::RadioExtra>(),
                 *missions_, quiet);
   // Virtual copies are relayed at their owner's true pose, the others where announced.

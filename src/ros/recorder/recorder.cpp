@@ -15,8 +15,8 @@
 
 #include "swarm_transport/Swarm_Stats.h"
 #include "swarm_transport/ros/common/conversions.h"
-#include "swarm_transport/ros/common/names.h"
 #include "swarm_transport/ros/common/diagnostics.h"
+#include "swarm_transport/ros/common/names.h"
 
 namespace swarm_transport {
 namespace {
@@ -122,8 +122,7 @@ bool WriteRunFile(const std::string& run_dir, const std::string& row, std::strin
   const std::string path = run_dir + "/run.csv";
   const std::string temporary = path + ".tmp";
   CsvFile file;
-  if (!file.Open(temporary, RunMetrics::kRunHeader, error) || !file.Append(row) ||
-      !file.Close()) {
+  if (!file.Open(temporary, RunMetrics::kRunHeader, error) || !file.Append(row) || !file.Close()) {
     if (error->empty()) *error = "cannot write " + temporary;
     return false;
   }
@@ -225,13 +224,14 @@ bool Recorder::Initialize() {
   std::string error;
   bool ok = LoadParams(&error);
   if (ok) {
-    metrics_.emplace(RunMetricsParamsOf(params_), [](RunMetrics::Level level, const std::string& text) {
-      if (level == RunMetrics::Level::kWarn) {
-        ROS_WARN("%s: %s", kNode, text.c_str());
-      } else {
-        ROS_INFO("%s: %s", kNode, text.c_str());
-      }
-    });
+    metrics_.emplace(RunMetricsParamsOf(params_),
+                     [](RunMetrics::Level level, const std::string& text) {
+                       if (level == RunMetrics::Level::kWarn) {
+                         ROS_WARN("%s: %s", kNode, text.c_str());
+                       } else {
+                         ROS_INFO("%s: %s", kNode, text.c_str());
+                       }
+                     });
     ok = OpenFiles(&error);
   }
   if (!ok) {
@@ -351,13 +351,12 @@ void Recorder::OnMissionNew(const New_Mission::ConstPtr& msg) {
 }
 
 void Recorder::OnStatus(const Mission_Status::ConstPtr& msg) {
-  const bool bad = msg->state > Mission_Status::REJECTED || !std::isfinite(msg->object_position_x) ||
-                   !std::isfinite(msg->object_position_y) ||
-                   !std::isfinite(msg->distance_to_target);
+  const bool bad =
+      msg->state > Mission_Status::REJECTED || !std::isfinite(msg->object_position_x) ||
+      !std::isfinite(msg->object_position_y) || !std::isfinite(msg->distance_to_target);
   const std::string warning = RecordStatus(*msg, &*metrics_);
   // A bad status and a status of a mission not followed warn apart.
-  if (!warning.empty() &&
-      (bad ? bad_status_warning_ : bad_mission_warning_).Due()) {
+  if (!warning.empty() && (bad ? bad_status_warning_ : bad_mission_warning_).Due()) {
     ROS_WARN("%s: %s", kNode, warning.c_str());
   }
   WriteMissions(true);

@@ -13,8 +13,8 @@
 #include <thread>
 #include <utility>
 
-#include "swarm_transport/ros/simulator/simulator.h"
 #include "swarm_transport/ros/common/names.h"
+#include "swarm_transport/ros/simulator/simulator.h"
 
 namespace swarm_transport {
 namespace {
@@ -142,8 +142,8 @@ class HostWorker {
 
  private:
   struct Slot {
-    RobotNode* robot = nullptr;     // null: removed
-    Neighbors::ConstPtr pending;    // its latest round not taken yet
+    RobotNode* robot = nullptr;   // null: removed
+    Neighbors::ConstPtr pending;  // its latest round not taken yet
   };
   struct Entry {
     Clock::time_point due;
@@ -378,17 +378,18 @@ bool RobotHost::Initialize() {
     }
     diagnostics_ = std::make_unique<NodeDiagnostics>(
         control, "swarm_transport: " + ros::this_node::getName().substr(1));
-    status_timer_ = control.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) {
-      diagnostics_->PublishIfDue([this](NodeStatus* s) {
-        std::uint64_t ticks = 0;
-        for (const auto& entry : hosted_) ticks += entry.second.node->ticks();
-        s->message = std::to_string(hosted_.size()) + " robots, " +
-                     core::ClockName(options_.clock) + " clock";
-        s->Add("robots", static_cast<std::uint64_t>(hosted_.size()));
-        s->Add("robot_ticks", ticks);
-        s->Add("threads", static_cast<std::uint64_t>(options_.threads));
-      });
-    });
+    status_timer_ =
+        control.createWallTimer(ros::WallDuration(1.0), [this](const ros::WallTimerEvent&) {
+          diagnostics_->PublishIfDue([this](NodeStatus* s) {
+            std::uint64_t ticks = 0;
+            for (const auto& entry : hosted_) ticks += entry.second.node->ticks();
+            s->message = std::to_string(hosted_.size()) + " robots, " +
+                         core::ClockName(options_.clock) + " clock";
+            s->Add("robots", static_cast<std::uint64_t>(hosted_.size()));
+            s->Add("robot_ticks", ticks);
+            s->Add("threads", static_cast<std::uint64_t>(options_.threads));
+          });
+        });
     control_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &control_queue_);
     control_spinner_->start();
   }
@@ -440,9 +441,8 @@ bool RobotHost::StartRobot(std::uint16_t id) {
     const double phase_s =
         k < initial ? period_s * static_cast<double>(k) / static_cast<double>(initial) : 0.0;
     hosted.worker = workers_[k % workers_.size()].get();
-    hosted.slot = hosted.worker->Add(
-        node, std::chrono::duration_cast<HostWorker::Clock::duration>(
-                  std::chrono::duration<double>(phase_s)));
+    hosted.slot = hosted.worker->Add(node, std::chrono::duration_cast<HostWorker::Clock::duration>(
+                                               std::chrono::duration<double>(phase_s)));
   }
   ids_.insert(id);
   // A robot that starts while the swarm runs hears the current robot list (latched), as its
@@ -496,10 +496,10 @@ void RobotHost::FanOut(const ros::MessageEvent<M const>& event) {
 
 template <typename M>
 void RobotHost::SubscribeShared(ros::NodeHandle& nh, const char* topic, std::uint32_t queue_size) {
-  shared_subs_.push_back(nh.subscribe<M>(
-      topic, queue_size,
-      boost::function<void(const ros::MessageEvent<M const>&)>(
-          [this](const ros::MessageEvent<M const>& event) { FanOut(event); })));
+  shared_subs_.push_back(
+      nh.subscribe<M>(topic, queue_size,
+                      boost::function<void(const ros::MessageEvent<M const>&)>(
+                          [this](const ros::MessageEvent<M const>& event) { FanOut(event); })));
 }
 
 void RobotHost::SubscribeSharedTopics(ros::NodeHandle nh) {

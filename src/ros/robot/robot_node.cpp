@@ -1,9 +1,8 @@
 #include "swarm_transport/ros/robot/robot_node.h"
 
 #include <geometry_msgs/Twist.h>
-#include <std_msgs/String.h>
-
 #include <ros/callback_queue.h>
+#include <std_msgs/String.h>
 
 #include <algorithm>
 #include <chrono>
@@ -130,18 +129,15 @@ bool RobotNode::Initialize(const RobotNodeOptions& options) {
     // Up to a dispatcher's whole table of live orders at once (a flood of hand-made ones is
     // the dispatcher's to refuse: the robots take only the orders it admitted).
     mission_sub_ =
-        nh_.subscribe(names::kMissionNew, kMissionQueue,
-                      &RobotNode::FromTopic<New_Mission>, this);
+        nh_.subscribe(names::kMissionNew, kMissionQueue, &RobotNode::FromTopic<New_Mission>, this);
     update_sub_ =
-        nh_.subscribe(names::kObjectUpdate, 20,
-                      &RobotNode::FromTopic<Update_Object>, this);
+        nh_.subscribe(names::kObjectUpdate, 20, &RobotNode::FromTopic<Update_Object>, this);
     delete_sub_ =
-        nh_.subscribe(names::kObjectDelete, 20,
-                      &RobotNode::FromTopic<Delete_Object>, this);
-    event_sub_ = nh_.subscribe(names::kMissionEvent, 20, &RobotNode::FromTopic<Mission_Event>, this);
+        nh_.subscribe(names::kObjectDelete, 20, &RobotNode::FromTopic<Delete_Object>, this);
+    event_sub_ =
+        nh_.subscribe(names::kMissionEvent, 20, &RobotNode::FromTopic<Mission_Event>, this);
     status_sub_ =
-        nh_.subscribe(names::kMissionStatus, 50,
-                      &RobotNode::FromTopic<Mission_Status>, this);
+        nh_.subscribe(names::kMissionStatus, 50, &RobotNode::FromTopic<Mission_Status>, this);
   }
   if (!options_.shared_topics) {
     robots_sub_ = nh_.subscribe(names::kRobots, 2, &RobotNode::OnRobots, this);
@@ -215,7 +211,8 @@ bool RobotNode::Spin() {
   std::string error;
   const TickClock::duration period = std::chrono::duration_cast<TickClock::duration>(
       std::chrono::duration<double>(config_.tick_period_s));
-  if (!ticker_.Start(period, [this] { OnTickDue(); }, &error)) {
+  if (!ticker_.Start(
+          period, [this] { OnTickDue(); }, &error)) {
     ROS_FATAL("robot %u: cannot tick: %s", id_, error.c_str());
     return false;
   }

@@ -1,10 +1,9 @@
 #include "swarm_transport/ros/robot/tick_loop.h"
 
 #include <poll.h>
+#include <ros/poll_manager.h>
 #include <sys/timerfd.h>
 #include <unistd.h>
-
-#include <ros/poll_manager.h>
 
 #include <boost/make_shared.hpp>
 #include <cerrno>

@@ -69,8 +69,8 @@ void LockstepSession::Connect() {
   if (params_.lockstep_dispatcher) {
     // Its file missions enter at stamped ticks; tick 1 on waits for its schedule.
     barrier_.ExpectSchedule();
-    schedule_sub_ = nh_.subscribe(names::kMissionSchedule, kMissionQueue,
-                                  &LockstepSession::OnSchedule, this);
+    schedule_sub_ =
+        nh_.subscribe(names::kMissionSchedule, kMissionQueue, &LockstepSession::OnSchedule, this);
     ROS_INFO("lockstep: a dispatcher sends LOADED %s, UNLOADED %s; ticks wait for them",
              params_.swarm.loaded_delay_s >= 0.0 ? "on its own" : "never (waits for you)",
              params_.swarm.unloaded_delay_s >= 0.0 ? "on its own" : "never (waits for you)");
@@ -113,9 +113,10 @@ void LockstepSession::RemoveRobot(std::uint16_t id) {
 void LockstepSession::Round(std::size_t index, std::uint16_t id, Neighbors* round) {
   const std::size_t standing = engine_->Round(index, connected_.erase(id) > 0, round);
   if (standing > 0 && round->tick > 0) {
-    ROS_INFO("lockstep: robot %u connected: its first round (tick %llu) carries the orders of "
-             "the %zu mission(s) sent before that have not ended", id,
-             static_cast<unsigned long long>(round->tick), standing);
+    ROS_INFO(
+        "lockstep: robot %u connected: its first round (tick %llu) carries the orders of "
+        "the %zu mission(s) sent before that have not ended",
+        id, static_cast<unsigned long long>(round->tick), standing);
   }
 }
 
@@ -140,8 +141,8 @@ bool LockstepSession::RelaysConnected(const ros::Publisher& robot_list) const {
   // Every observer of the robots' mission messages (a recorder, an experiment's runner) hears
   // them from the first tick: not latched, and a short lock-step mission may be over in a
   // fraction of a wall second, before a connection still under way is up.
-  for (const ros::Publisher* pub : {&status_pub_, &progress_pub_, &update_pub_, &delete_pub_,
-                                    &freeze_pub_, &continue_pub_}) {
+  for (const ros::Publisher* pub :
+       {&status_pub_, &progress_pub_, &update_pub_, &delete_pub_, &freeze_pub_, &continue_pub_}) {
     if (!graph.AllConnected(*pub)) return false;
   }
   // Every subscriber of the (latched) robot list has it: a robot checks a mission's robots
@@ -160,9 +161,9 @@ void LockstepSession::WaitForStart(const ros::Publisher& positions,
     for (auto& entry : *links_) {
       if (RobotLinks::Ready(&entry.second, kSettleS)) ++connected;
     }
-    const bool observed = params_.lockstep_observers == 0 ||
-                          positions.getNumSubscribers() >=
-                              static_cast<std::uint32_t>(params_.lockstep_observers);
+    const bool observed =
+        params_.lockstep_observers == 0 ||
+        positions.getNumSubscribers() >= static_cast<std::uint32_t>(params_.lockstep_observers);
     const ros::WallTime now = ros::WallTime::now();
     // Asks the master only once the cheap conditions hold.
     const bool ready = connected == links_->size() && observed && RelaysConnected(robot_list);
@@ -182,7 +183,8 @@ void LockstepSession::WaitForStart(const ros::Publisher& positions,
       ROS_WARN(
           "lockstep: only %zu of %zu robots connected (mission relays %s) after %.1f s; "
           "starting anyway (the others join when they connect)",
-          connected, links_->size(), RelaysConnected(robot_list) ? "connected" : "not all connected",
+          connected, links_->size(),
+          RelaysConnected(robot_list) ? "connected" : "not all connected",
           params_.lockstep_start_timeout_s);
       break;
     }
@@ -226,9 +228,10 @@ void LockstepSession::WaitForJoining(std::uint64_t tick) {
     hooks_.spin(kPollS);
   }
   if (!connected() && hooks_.running()) {
-    ROS_WARN("lockstep tick %llu: a joining robot's process did not connect within %.1f s; "
-             "it stands until it does", static_cast<unsigned long long>(tick),
-             params_.lockstep_start_timeout_s);
+    ROS_WARN(
+        "lockstep tick %llu: a joining robot's process did not connect within %.1f s; "
+        "it stands until it does",
+        static_cast<unsigned long long>(tick), params_.lockstep_start_timeout_s);
   }
 }
 
@@ -292,7 +295,6 @@ void LockstepSession::WaitForAnswers(std::uint64_t tick) {
   }
 }
 
-
 template <typename M>
 void LockstepSession::Relay(const ros::MessageEvent<const M>& event) {
   const std::string& from = event.getPublisherName();
@@ -311,9 +313,10 @@ void LockstepSession::Relay(const ros::MessageEvent<const M>& event) {
                 std::is_same_v<M, Delete_Object>) {
     if (sender.kind != core::SenderKind::kDispatcher) {
       if (refused_warning_.Due()) {
-        ROS_WARN("lockstep: ignored a mission message of mission %u from %s: only the mission's "
-                 "robots and the dispatcher may send it",
-                 msg.mission_id, from.c_str());
+        ROS_WARN(
+            "lockstep: ignored a mission message of mission %u from %s: only the mission's "
+            "robots and the dispatcher may send it",
+            msg.mission_id, from.c_str());
       }
       return;
     }
@@ -344,35 +347,39 @@ void LockstepSession::WaitForDispatcher(std::uint64_t tick) {
   if (!holding()) return;
   // An order or the schedule is due once per run and may wait for the dispatcher's listeners:
   // the start-up timeout; a LOADED / UNLOADED the tick timeout.
-  const double timeout_s = barrier_.OrdersMissing(tick) ? params_.lockstep_start_timeout_s
-                                                         : params_.lockstep_timeout_s;
+  const double timeout_s =
+      barrier_.OrdersMissing(tick) ? params_.lockstep_start_timeout_s : params_.lockstep_timeout_s;
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout_s);
   while (holding() && hooks_.running() && ros::WallTime::now() < deadline) {
     hooks_.spin(kPollS);
   }
   if (!holding() || !hooks_.running()) return;
   if (barrier_.ScheduleMissing() && tick >= 1) {
-    ROS_WARN("lockstep tick %llu: no %s from the dispatcher within %.2f s; not waiting for it "
-             "any longer", static_cast<unsigned long long>(tick), names::kMissionSchedule,
-             timeout_s);
+    ROS_WARN(
+        "lockstep tick %llu: no %s from the dispatcher within %.2f s; not waiting for it "
+        "any longer",
+        static_cast<unsigned long long>(tick), names::kMissionSchedule, timeout_s);
   }
   for (std::uint16_t id : barrier_.GiveUpOrders(tick)) {
-    ROS_WARN("lockstep tick %llu: the order of scheduled mission %u did not arrive within "
-             "%.2f s; not waiting for it any longer", static_cast<unsigned long long>(tick), id,
-             timeout_s);
+    ROS_WARN(
+        "lockstep tick %llu: the order of scheduled mission %u did not arrive within "
+        "%.2f s; not waiting for it any longer",
+        static_cast<unsigned long long>(tick), id, timeout_s);
   }
   if (barrier_.RecruitsUnchecked(tick)) {
-    ROS_WARN("lockstep tick %llu: the dispatcher did not watch tick %llu for its recruiting "
-             "missions within %.2f s; not waiting for it at this tick",
-             static_cast<unsigned long long>(tick), static_cast<unsigned long long>(tick - 1),
-             timeout_s);
+    ROS_WARN(
+        "lockstep tick %llu: the dispatcher did not watch tick %llu for its recruiting "
+        "missions within %.2f s; not waiting for it at this tick",
+        static_cast<unsigned long long>(tick), static_cast<unsigned long long>(tick - 1),
+        timeout_s);
     barrier_.GiveUpRecruits(tick);
   }
   for (const auto& key : barrier_.GiveUpEvents()) {
-    ROS_WARN("lockstep tick %llu: no %s for mission %u from the dispatcher within %.2f s; "
-             "not waiting for it any longer",
-             static_cast<unsigned long long>(tick),
-             key.second == Mission_Event::LOADED ? "LOADED" : "UNLOADED", key.first, timeout_s);
+    ROS_WARN(
+        "lockstep tick %llu: no %s for mission %u from the dispatcher within %.2f s; "
+        "not waiting for it any longer",
+        static_cast<unsigned long long>(tick),
+        key.second == Mission_Event::LOADED ? "LOADED" : "UNLOADED", key.first, timeout_s);
   }
 }
 
@@ -384,9 +391,9 @@ void LockstepSession::OnSchedule(const Mission_Schedule::ConstPtr& msg) {
   // The recruiting missions (SPEC 9.4): the whole list each time, with their statists.
   std::vector<std::pair<std::uint16_t, std::uint64_t>> recruiting;
   recruit_statists_.clear();
-  const std::size_t r = std::min({msg->recruiting.size(), msg->recruit_start_ticks.size(),
-                                  msg->statist_x.size(), msg->statist_y.size(),
-                                  msg->statist_ids.size(), msg->statist_copies.size()});
+  const std::size_t r =
+      std::min({msg->recruiting.size(), msg->recruit_start_ticks.size(), msg->statist_x.size(),
+                msg->statist_y.size(), msg->statist_ids.size(), msg->statist_copies.size()});
   for (std::size_t i = 0; i < r; ++i) {
     recruiting.emplace_back(msg->recruiting[i], msg->recruit_start_ticks[i]);
     Robot_Position statist;
@@ -410,17 +417,14 @@ std::vector<Robot_Position> LockstepSession::RecruitStatists(std::uint64_t tick)
   return standing;
 }
 
-
-void LockstepSession::OnAnswer(std::uint16_t id, const Tick_Answer& answer,
-                               std::uint64_t tick) {
+void LockstepSession::OnAnswer(std::uint16_t id, const Tick_Answer& answer, std::uint64_t tick) {
   RobotLink* link = links_->Find(id);
   if (finished_ || link == nullptr) return;
   const bool finite = IsFinite(answer.command);
   if (!finite && bad_answer_warning_.Due()) {
     ROS_WARN("lockstep: robot %u answered with a non-finite command; it stands instead", id);
   }
-  const auto result =
-      barrier_.OnAnswer(id, answer.tick, LockstepEngine::CommandOf(answer));
+  const auto result = barrier_.OnAnswer(id, answer.tick, LockstepEngine::CommandOf(answer));
   switch (result) {
     case sim::LockstepBarrier::Answer::kAnswer:
     case sim::LockstepBarrier::Answer::kStale:
@@ -441,9 +445,11 @@ void LockstepSession::OnAnswer(std::uint16_t id, const Tick_Answer& answer,
       [[fallthrough]];
     case sim::LockstepBarrier::Answer::kUnsolicited:
       if (unsolicited_warning_.Due()) {
-        ROS_WARN("lockstep: robot %u answered tick %llu, which it was not asked (tick %llu); "
-                 "ignored", id, static_cast<unsigned long long>(answer.tick),
-                 static_cast<unsigned long long>(tick));
+        ROS_WARN(
+            "lockstep: robot %u answered tick %llu, which it was not asked (tick %llu); "
+            "ignored",
+            id, static_cast<unsigned long long>(answer.tick),
+            static_cast<unsigned long long>(tick));
       }
       break;
   }
@@ -463,6 +469,5 @@ void LockstepSession::TakeAnswers() {
     for (const Mission_Status& st : a.progress) progress_pub_.publish(st);
   });
 }
-
 
 }  // namespace swarm_transport

@@ -35,9 +35,8 @@ void RobotLink::Shutdown() {
   teleport_relative.shutdown();
 }
 
-RobotLinks::RobotLinks(ros::NodeHandle nh, ros::CallbackQueue* command_queue,
-                       DirectRobots* direct, bool lockstep, bool pose_topics,
-                       RobotLinkHandlers handlers)
+RobotLinks::RobotLinks(ros::NodeHandle nh, ros::CallbackQueue* command_queue, DirectRobots* direct,
+                       bool lockstep, bool pose_topics, RobotLinkHandlers handlers)
     : nh_(nh),
       command_queue_(command_queue),
       direct_(direct),
@@ -57,9 +56,9 @@ void RobotLinks::Add(std::uint16_t id) {
     };
   };
   if (pose_topics_) {
-    link.pose = robot_nh.advertise<Pose>(names::kPose, kPoseQueue,
-                                         counter(&RobotLink::pose_subscribers, 1),
-                                         counter(&RobotLink::pose_subscribers, -1));
+    link.pose =
+        robot_nh.advertise<Pose>(names::kPose, kPoseQueue, counter(&RobotLink::pose_subscribers, 1),
+                                 counter(&RobotLink::pose_subscribers, -1));
   }
   // A robot of this process linked directly: its round, command and answer bypass roscpp.
   link.direct = direct_ != nullptr && direct_->Hosts(id);
@@ -128,8 +127,8 @@ bool RobotLinks::Ready(RobotLink* link, double settle_s) {
   // Nothing to connect: a direct robot hears its first round and answers it for sure.
   if (link->direct) return true;
   // Only checked until the robot is live: getNumPublishers() scans every subscription.
-  const bool connected = link->neighbors_subscribers > 0 && link->answer &&
-                         link->answer.getNumPublishers() > 0;
+  const bool connected =
+      link->neighbors_subscribers > 0 && link->answer && link->answer.getNumPublishers() > 0;
   const ros::WallTime now = ros::WallTime::now();
   if (!connected) {
     link->connected_since = ros::WallTime();
@@ -139,8 +138,8 @@ bool RobotLinks::Ready(RobotLink* link, double settle_s) {
   return connected && (now - link->connected_since).toSec() >= settle_s;
 }
 
-void RobotLinks::CountSubscriber(std::uint16_t id, std::uint64_t generation,
-                                 int RobotLink::*field, int delta) {
+void RobotLinks::CountSubscriber(std::uint16_t id, std::uint64_t generation, int RobotLink::*field,
+                                 int delta) {
   auto it = links_.find(id);
   if (it == links_.end() || it->second.generation != generation) return;
   it->second.*field = std::max(0, it->second.*field + delta);

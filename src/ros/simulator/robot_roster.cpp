@@ -31,8 +31,7 @@ RobotRoster::RobotRoster(sim::World2D* world, RobotLinks* links, LockstepSession
       tick_(tick),
       spawn_rng_(seed, kSpawnStream) {}
 
-void RobotRoster::Connect(ros::NodeHandle nh, std::uint32_t position_queue,
-                          std::uint32_t queue) {
+void RobotRoster::Connect(ros::NodeHandle nh, std::uint32_t position_queue, std::uint32_t queue) {
   robots_pub_ = nh.advertise<Robot_Positions>(names::kRobots, 1, true);
   spawn_srv_ = nh.advertiseService(names::kSpawn, &RobotRoster::OnSpawn, this);
   kill_srv_ = nh.advertiseService(names::kKill, &RobotRoster::OnKill, this);

@@ -57,8 +57,7 @@ bool Simulator::Initialize() {
   if (ok && !params_.events_file.empty()) {
     ok = ReadEventsFile(params_.events_file, &events, &error);
     if (ok) {
-      ROS_INFO("simulator: %zu timed event(s) from %s", events.size(),
-               params_.events_file.c_str());
+      ROS_INFO("simulator: %zu timed event(s) from %s", events.size(), params_.events_file.c_str());
     } else {
       error = "~events_file: " + error;
     }
@@ -83,11 +82,11 @@ bool Simulator::Initialize() {
                                       TeleportRelative::Response& res) {
     return roster_->OnTeleportRelative(id, req, res);
   };
-  links_ = std::make_unique<RobotLinks>(nh_, &cmd_queue_, direct_, lockstep_,
-                                        params_.pose_topics, std::move(handlers));
+  links_ = std::make_unique<RobotLinks>(nh_, &cmd_queue_, direct_, lockstep_, params_.pose_topics,
+                                        std::move(handlers));
   missions_ = std::make_unique<MissionMirror>(params_.swarm.admission, world_.get());
-  engine_ = std::make_unique<LockstepEngine>(world_.get(), radio_.get(),
-                                             missions_->mutable_missions());
+  engine_ =
+      std::make_unique<LockstepEngine>(world_.get(), radio_.get(), missions_->mutable_missions());
   if (lockstep_) {
     LockstepHooks hooks;
     hooks.running = &Simulator::Running;
@@ -118,9 +117,8 @@ bool Simulator::Initialize() {
       "simulator: %zu robots (%s placement), %s clock, tick %.3f s, step %.3f s, "
       "arena %.3f m, radius %.3f m, radio range %.3f m, loss %.2f, seed %llu",
       world_->size(), core::PlacementName(params_.placement), core::ClockName(params_.clock),
-      params_.swarm.tick_period_s, params_.integration_step_s,
-      params_.swarm.flocking.world_size_m, params_.swarm.flocking.robot_radius_m,
-      params_.radio_range_m, params_.radio_loss,
+      params_.swarm.tick_period_s, params_.integration_step_s, params_.swarm.flocking.world_size_m,
+      params_.swarm.flocking.robot_radius_m, params_.radio_range_m, params_.radio_loss,
       static_cast<unsigned long long>(params_.swarm.seed));
   return true;
 }
@@ -172,9 +170,8 @@ void Simulator::Shutdown() {
 
 void Simulator::SpinOnce(double wait_s) {
   SpinRobots();
-  direct_commands_.TakeAll([this](std::uint16_t id, const geometry_msgs::Twist& command) {
-    OnCmdVel(id, command);
-  });
+  direct_commands_.TakeAll(
+      [this](std::uint16_t id, const geometry_msgs::Twist& command) { OnCmdVel(id, command); });
   cmd_queue_.callAvailable(ros::WallDuration(wait_s));
   ros::spinOnce();
 }
@@ -246,9 +243,9 @@ void Simulator::RunLockstep() {
     if (params_.real_time_factor > 0.0) {
       // Paced: tick k ends no earlier than k * tick_period / factor wall seconds after the
       // start (a late tick is not made up for by rushing the next ones).
-      const ros::WallTime due =
-          started_pacing + ros::WallDuration(static_cast<double>(tick_) * params_.swarm.tick_period_s /
-                                      params_.real_time_factor);
+      const ros::WallTime due = started_pacing + ros::WallDuration(static_cast<double>(tick_) *
+                                                                   params_.swarm.tick_period_s /
+                                                                   params_.real_time_factor);
       while (Running() && ros::WallTime::now() < due) {
         SpinOnce(std::min(kIdleS, std::max(0.0, (due - ros::WallTime::now()).toSec())));
         PublishVisualsIfDue();
@@ -303,11 +300,11 @@ void Simulator::BeginTuningRound() {
     radio_->set_range_m(range_m);
   }
   visuals_->SetLocalRange(range_m);
-  ROS_INFO("simulator: flocking tuning %u from tick %llu: free_will_deg %g, cohesion %g, "
-           "local_range_m %g, speed_m_per_tick %g, radio range %g m",
-           tuned->generation, static_cast<unsigned long long>(tuned->tick),
-           tuned->free_will_deg, tuned->cohesion, tuned->local_range_m,
-           tuned->speed_m_per_tick, params_.radio_range_m);
+  ROS_INFO(
+      "simulator: flocking tuning %u from tick %llu: free_will_deg %g, cohesion %g, "
+      "local_range_m %g, speed_m_per_tick %g, radio range %g m",
+      tuned->generation, static_cast<unsigned long long>(tuned->tick), tuned->free_will_deg,
+      tuned->cohesion, tuned->local_range_m, tuned->speed_m_per_tick, params_.radio_range_m);
 }
 
 void Simulator::PublishRadio() {
@@ -423,8 +420,8 @@ void Simulator::OnCmdVel(std::uint16_t id, const geometry_msgs::Twist& msg) {
   if (lockstep_ && session_->Live(id)) {
     // A lock-step robot's command comes in its answer; a cmd_vel beside it would race it.
     if (unsolicited_warning_.Due()) {
-      ROS_WARN("lockstep: ignored a cmd_vel for robot %u, which answers its ticks (tick %llu)",
-               id, static_cast<unsigned long long>(tick_));
+      ROS_WARN("lockstep: ignored a cmd_vel for robot %u, which answers its ticks (tick %llu)", id,
+               static_cast<unsigned long long>(tick_));
     }
     return;
   }

@@ -10,19 +10,19 @@
 #include "swarm_transport/Delete_Object.h"
 #include "swarm_transport/Flocking_Tuning.h"
 #include "swarm_transport/Mission_Event.h"
-#include "swarm_transport/Robot_Continue.h"
-#include "swarm_transport/Robot_Freeze.h"
-#include "swarm_transport/Update_Object.h"
+#include "swarm_transport/Mission_Status.h"
 #include "swarm_transport/Neighbors.h"
 #include "swarm_transport/New_Mission.h"
 #include "swarm_transport/Pose.h"
+#include "swarm_transport/Robot_Continue.h"
+#include "swarm_transport/Robot_Freeze.h"
 #include "swarm_transport/Robot_Position.h"
+#include "swarm_transport/Tick_Answer.h"
+#include "swarm_transport/Update_Object.h"
 #include "swarm_transport/core/flocking.h"
 #include "swarm_transport/core/kinematics.h"
-#include "swarm_transport/Mission_Status.h"
-#include "swarm_transport/Tick_Answer.h"
-#include "swarm_transport/core/mission_agent.h"
 #include "swarm_transport/core/mission.h"
+#include "swarm_transport/core/mission_agent.h"
 #include "swarm_transport/core/mission_book.h"
 #include "swarm_transport/core/mission_message.h"
 #include "swarm_transport/core/swarm_config.h"
@@ -33,8 +33,7 @@ namespace swarm_transport {
 // Robot_Position (angle in degrees) -> core neighbour.
 core::Neighbour ToNeighbour(const Robot_Position& msg);
 // Core pose of robot `id` -> Robot_Position (angle in degrees [0, 360)).
-Robot_Position ToRobotPosition(std::uint16_t id, const core::Pose2& pose,
-                               std::uint8_t sub_id = 0,
+Robot_Position ToRobotPosition(std::uint16_t id, const core::Pose2& pose, std::uint8_t sub_id = 0,
                                std::uint8_t type = Robot_Position::TYPE_PHYSICAL);
 // turtlesim-like Pose (theta in radians, (-pi, pi]) <-> core pose.
 core::Pose2 ToPose2(const Pose& msg);
@@ -49,11 +48,11 @@ bool IsFinite(const geometry_msgs::Twist& msg);
 
 // A robot's Neighbors message of tick `tick` without the relayed mission messages: its own pose
 // and what the radio decided (`robots`, `relayed`, `mission_peers`); `truth` holds the round's
-// physical robots as positions (index = the radio's robot index), `extras` its relayed extras. The simulator and the in-process batch runner build every
-// robot's round with this, so both hand a robot the same bytes.
+// physical robots as positions (index = the radio's robot index), `extras` its relayed extras. The
+// simulator and the in-process batch runner build every robot's round with this, so both hand a
+// robot the same bytes.
 Neighbors RadioRoundMessage(std::uint64_t tick, double sim_time, const sim::Robot& robot,
-                            const sim::RadioRound& round,
-                            const std::vector<Robot_Position>& truth,
+                            const sim::RadioRound& round, const std::vector<Robot_Position>& truth,
                             const std::vector<Robot_Position>& extras);
 // What robot `id` perceives of a round when it listens to the radio (comm local): its own
 // pose, then the robots in range, those relayed hop by hop and its mission peers, each list in
@@ -65,8 +64,8 @@ core::Perception ToPerception(std::uint16_t id, const Neighbors& msg);
 // reports, every status stamped `tick` and `stamp`. The robot node and the batch engine both
 // build them here.
 Tick_Answer ToAnswerMessages(const core::MissionOutbox& outbox,
-                             const std::vector<core::StatusReport>& progress,
-                             std::uint64_t tick, const ros::Time& stamp);
+                             const std::vector<core::StatusReport>& progress, std::uint64_t tick,
+                             const ros::Time& stamp);
 
 // A LOADED / UNLOADED the dispatcher's book made due -> its Mission_Event.
 Mission_Event ToEventMsg(const core::DueSignal& due);

@@ -15,21 +15,26 @@ namespace swarm_transport {
 
 struct TimedEvent {
   enum class Kind : std::uint8_t {
-    kFreeze, kContinue, kKill, kSpawn, kObjectUpdate, kSignal,
+    kFreeze,
+    kContinue,
+    kKill,
+    kSpawn,
+    kObjectUpdate,
+    kSignal,
     kStatist,        // a motionless virtual robot (SPEC 9.3) appears at (x, y): robot, sub_id
     kRemoveStatist,  // ... and goes
   };
   std::uint64_t tick = 0;
   Kind kind = Kind::kFreeze;
-  std::uint16_t from = 0;     // freeze / continue: robots [from, to)
+  std::uint16_t from = 0;  // freeze / continue: robots [from, to)
   std::uint16_t to = 0;
   std::uint16_t robot = 0;    // kill / spawn / statist
   std::uint8_t sub_id = 0;    // statist
   std::uint16_t mission = 0;  // object_update / signal
   double x = 0.0;             // spawn / object_update (m)
   double y = 0.0;
-  double theta_deg = 0.0;     // spawn
-  std::uint8_t signal = 0;    // Mission_Event::LOADED / UNLOADED
+  double theta_deg = 0.0;   // spawn
+  std::uint8_t signal = 0;  // Mission_Event::LOADED / UNLOADED
 };
 
 // Reads `events:` - a list of {tick, kind: freeze | continue | kill | spawn | object_update |

@@ -12,7 +12,7 @@ namespace names {
 // Global topics (SPEC 3).
 constexpr char kPosition[] = "/flock/position";
 constexpr char kPositions[] = "/flock/positions";  // aggregated, from the simulator
-constexpr char kRobots[] = "/flock/robots";      // latched: the robots that exist
+constexpr char kRobots[] = "/flock/robots";        // latched: the robots that exist
 constexpr char kMissionNew[] = "/flock/mission/new";
 constexpr char kMissionStatus[] = "/flock/mission/status";      // each phase once, on entry
 constexpr char kMissionProgress[] = "/flock/mission/progress";  // periodic, within a phase
@@ -25,7 +25,7 @@ constexpr char kObjectDelete[] = "/flock/object/delete";
 constexpr char kRobotNew[] = "/flock/robot/new";
 constexpr char kRobotDelete[] = "/flock/robot/delete";
 constexpr char kMarkers[] = "/flock/markers";
-constexpr char kStats[] = "/flock/stats";  // the recorder's Swarm_Stats
+constexpr char kStats[] = "/flock/stats";      // the recorder's Swarm_Stats
 constexpr char kObjects[] = "/flock/objects";  // Mission_Objects, per tick, on demand
 constexpr char kTuning[] = "/flock/tuning";    // latched: the live flocking tuning (issue 13)
 constexpr char kRobotStats[] = "/flock/robot_stats";  // robots' diagnostics lines (benchmarks)

@@ -25,8 +25,8 @@ struct DispatcherOptions {
   // mission is checked against the robots of its start tick as the spawns and kills make them.
   std::string events_file;
   std::vector<TimedEvent> events;  // ... read from it
-  double start_delay_s = 1.0;     // ~start_delay_s: after the first /flock/positions, >= 0
-  int max_live_missions = 64;     // ~max_live_missions (else /swarm's): more are rejected
+  double start_delay_s = 1.0;      // ~start_delay_s: after the first /flock/positions, >= 0
+  int max_live_missions = 64;      // ~max_live_missions (else /swarm's): more are rejected
   // ~silent_abort_ticks: a running mission whose first leader said nothing (phase or progress
   // report, one every 50 ticks) for this many ticks is ABORTED - its first leader is lost
   // (issue 11); 0: never.

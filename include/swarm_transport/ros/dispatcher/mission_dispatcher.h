@@ -25,9 +25,9 @@
 #include "swarm_transport/core/mission_book.h"
 #include "swarm_transport/core/recruit.h"
 #include "swarm_transport/ros/common/diagnostics.h"
-#include "swarm_transport/ros/dispatcher/dispatcher_options.h"
 #include "swarm_transport/ros/common/params.h"
 #include "swarm_transport/ros/common/wall_throttle.h"
+#include "swarm_transport/ros/dispatcher/dispatcher_options.h"
 
 namespace swarm_transport {
 
@@ -54,11 +54,11 @@ class MissionDispatcher {
   // (service and file missions; raw topic ones are already there). id 0 with `auto_id` picks
   // the next free id. `start_tick` stamps the published order (lock-step: the robots take it
   // then; 0: when it arrives).
-  core::MissionBook::Verdict Submit(core::MissionSpec spec, const std::string& source,
-                                    bool auto_id, bool publish, std::uint64_t start_tick = 0);
+  core::MissionBook::Verdict Submit(core::MissionSpec spec, const std::string& source, bool auto_id,
+                                    bool publish, std::uint64_t start_tick = 0);
   // ... checking the robots it names against `robots` (the others: those listed now).
-  core::MissionBook::Verdict Submit(core::MissionSpec spec, const std::string& source,
-                                    bool auto_id, bool publish, std::uint64_t start_tick,
+  core::MissionBook::Verdict Submit(core::MissionSpec spec, const std::string& source, bool auto_id,
+                                    bool publish, std::uint64_t start_tick,
                                     const std::set<std::uint16_t>& robots);
   // Real time: submits the file missions of this at_tick (0: those of start_delay_s).
   void SubmitFileMissions(std::uint64_t at_tick);
@@ -128,7 +128,7 @@ class MissionDispatcher {
   ros::Timer watchdog_timer_;
   // Missions the watchdog found silent, since when (wall time): ended after a grace period.
   std::map<std::uint16_t, ros::WallTime> silent_since_;
-  ros::WallTimer status_timer_;  // its diagnostic status, once a wall second
+  ros::WallTimer status_timer_;          // its diagnostic status, once a wall second
   WarnThrottle foreign_report_warning_;  // wall-clock throttles of repeated warnings
   WarnThrottle untracked_warning_;
   std::unique_ptr<NodeDiagnostics> diagnostics_;
@@ -144,8 +144,8 @@ class MissionDispatcher {
     std::uint16_t statist_id = 0;  // its statist (stacked: sub_ids 0 .. kRecruitStatistCopies-1)
   };
   std::map<std::uint16_t, Recruiting> recruiting_;
-  ros::Publisher statist_pub_;         // real time: /flock/position
-  ros::Publisher statist_delete_pub_;  // real time: /flock/robot/delete
+  ros::Publisher statist_pub_;               // real time: /flock/position
+  ros::Publisher statist_delete_pub_;        // real time: /flock/robot/delete
   std::unique_ptr<core::MissionBook> book_;  // made by LoadOptions
 };
 

@@ -6,8 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <optional>
 #include <string>
 #include <utility>
@@ -52,8 +52,7 @@ class LeaderTrack {
     if (!start_) start_ = lp;
     const double total = std::hypot(target_.x - start_->x, target_.y - start_->y);
     const double left = std::hypot(target_.x - lp.x, target_.y - lp.y);
-    const double progress =
-        total > 0.0 ? std::min(1.0, std::max(0.0, 1.0 - left / total)) : 1.0;
+    const double progress = total > 0.0 ? std::min(1.0, std::max(0.0, 1.0 - left / total)) : 1.0;
     const core::SwarmComponents swarms(frame.positions, local_range_m_);
     const std::size_t swarm = swarms.SizeOfSwarmOf(static_cast<std::size_t>(li)) - 1;
     rows_.push_back({frame.tick, progress, swarm, swarms.SwarmCount()});
@@ -61,9 +60,9 @@ class LeaderTrack {
 
   // The track ends at the arrival: later rows go, the arrival's row counts as the whole path.
   void Arrived(std::uint64_t tick) {
-    rows_.erase(std::remove_if(rows_.begin(), rows_.end(),
-                               [tick](const Row& r) { return r.tick > tick; }),
-                rows_.end());
+    rows_.erase(
+        std::remove_if(rows_.begin(), rows_.end(), [tick](const Row& r) { return r.tick > tick; }),
+        rows_.end());
     if (!rows_.empty() && rows_.back().tick == tick) rows_.back().fraction = 1.0;
   }
 

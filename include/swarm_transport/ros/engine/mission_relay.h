@@ -43,9 +43,7 @@ class MissionRelay {
   void Add(const std::string& sender, const Update_Object& msg);
   void Add(const std::string& sender, const Delete_Object& msg);
   void Add(const std::string& sender, const Robot_Freeze& msg) { Push(sender, msg, &freezes_); }
-  void Add(const std::string& sender, const Robot_Continue& msg) {
-    Push(sender, msg, &continues_);
-  }
+  void Add(const std::string& sender, const Robot_Continue& msg) { Push(sender, msg, &continues_); }
   void Add(const std::string& sender, const Mission_Event& msg) { Push(sender, msg, &events_); }
   void Add(const std::string& sender, const Mission_Status& msg);
   // What robot `id` said in its answer (not its progress, which only observers get).
@@ -87,7 +85,7 @@ class MissionRelay {
   // It has a phase status past QUEUED (its first leader started it).
   static bool Started(const Standing& standing);
 
-  List<New_Mission> pending_;  // received, waiting for their start tick
+  List<New_Mission> pending_;                   // received, waiting for their start tick
   std::map<std::uint16_t, Standing> standing_;  // by mission id (unique among live missions)
   List<New_Mission> missions_;
   List<Update_Object> updates_;

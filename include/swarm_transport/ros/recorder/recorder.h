@@ -64,7 +64,8 @@ class CsvFile {
 // duplicate ids; `bad` counts those with non-finite positions.
 core::MetricsFrame RecorderFrame(const Robot_Positions& msg, std::size_t* bad);
 // An order (as published) is followed when valid in the arena.
-std::string RecordOrder(const New_Mission& msg, const SwarmConfig& swarm, core::RunMetrics* metrics);
+std::string RecordOrder(const New_Mission& msg, const SwarmConfig& swarm,
+                        core::RunMetrics* metrics);
 // A phase status (state <= REJECTED, finite fields) is booked for its mission.
 std::string RecordStatus(const Mission_Status& msg, core::RunMetrics* metrics);
 // Writes <run_dir>/run.csv: the header and `row`, written aside and renamed over the old file

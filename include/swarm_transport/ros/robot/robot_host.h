@@ -6,7 +6,6 @@
 #include <ros/ros.h>
 
 #include <boost/container/flat_map.hpp>
-
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -26,11 +25,11 @@ namespace swarm_transport {
 
 // Private parameters of the host (the robots' behaviour comes from /swarm as usual).
 struct RobotHostOptions {
-  int from = 0;                    // ~from: first robot id, [0, 65535]
-  int to = 0;                      // ~to: one past the last id, (from, 65536]
+  int from = 0;                                // ~from: first robot id, [0, 65535]
+  int to = 0;                                  // ~to: one past the last id, (from, 65536]
   core::Clock clock = core::Clock::kRealtime;  // ~clock: realtime | lockstep, every robot
   core::Comm comm = core::Comm::kLocal;        // ~comm: local | broadcast, every robot
-  bool diagnostics = false;        // ~diagnostics: every robot publishes /flock/robot_stats
+  bool diagnostics = false;  // ~diagnostics: every robot publishes /flock/robot_stats
   // ~threads: callback threads, [1, 64]. Robot k is served by thread k % threads only, so one
   // robot's callbacks never run concurrently; 1 (default) also keeps the order of callbacks
   // across robots fixed, which lock-step determinism does not need but debugging likes.
@@ -50,10 +49,10 @@ struct RobotHostOptions {
   // need processes of their own (a host beside robot processes).
   bool adopt = true;
   // ~robot_services: every robot offers its services as a process of its own would
-  // (robot_<id>/robot/describe and state; with host_sim the simulator's robot_<id>/teleport_absolute
-  // and teleport_relative). false: none of them. Each one is a master registration and, in
-  // roscpp, a linear search over all of the process's services: at 10,000 robots that was most
-  // of a start-up of 514 s. Default true.
+  // (robot_<id>/robot/describe and state; with host_sim the simulator's
+  // robot_<id>/teleport_absolute and teleport_relative). false: none of them. Each one is a master
+  // registration and, in roscpp, a linear search over all of the process's services: at 10,000
+  // robots that was most of a start-up of 514 s. Default true.
   bool robot_services = true;
   std::string Validate() const;
 };

@@ -7,18 +7,15 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include <map>
-#include <set>
-
-#include "swarm_transport/Robot_State.h"
-#include "swarm_transport/ros/common/diagnostics.h"
 #include "swarm_transport/Delete_Object.h"
 #include "swarm_transport/Mission_Event.h"
 #include "swarm_transport/Mission_Status.h"
@@ -28,24 +25,26 @@
 #include "swarm_transport/Robot_Freeze.h"
 #include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/Robot_Positions.h"
+#include "swarm_transport/Robot_State.h"
 #include "swarm_transport/Tick_Answer.h"
 #include "swarm_transport/Update_Object.h"
 #include "swarm_transport/core/modes.h"
 #include "swarm_transport/core/robot_brain.h"
 #include "swarm_transport/core/tick_stats.h"
 #include "swarm_transport/ros/common/conversions.h"
+#include "swarm_transport/ros/common/diagnostics.h"
 #include "swarm_transport/ros/common/direct_link.h"
 #include "swarm_transport/ros/common/graph.h"
 #include "swarm_transport/ros/common/params.h"
+#include "swarm_transport/ros/common/wall_throttle.h"
 #include "swarm_transport/ros/robot/robot_session.h"
 #include "swarm_transport/ros/robot/tick_loop.h"
-#include "swarm_transport/ros/common/wall_throttle.h"
 
 namespace swarm_transport {
 
 // Private parameters of a robot node (the shared behaviour comes from /swarm).
 struct RobotNodeOptions {
-  int id = -1;                   // ~id, required, [0, 65535]
+  int id = -1;  // ~id, required, [0, 65535]
   // ~clock: realtime (ticks on its own timeline every tick_period_s) or lockstep (tick per
   // Neighbors message from the simulator).
   core::Clock clock = core::Clock::kRealtime;
@@ -243,8 +242,8 @@ class RobotNode {
   std::vector<RoundMailbox::Arrived> arrived_;
   PollThreadTicker ticker_;
   std::set<std::uint16_t> known_robots_;
-  bool listed_ = false;          // it has been in the robot list
-  bool said_unlisted_ = false;   // it said once that it is not
+  bool listed_ = false;         // it has been in the robot list
+  bool said_unlisted_ = false;  // it said once that it is not
   Neighbors::ConstPtr perception_;
   std::uint64_t ticks_ = 0;
   // Broadcast comm: what each (robot_id, sub_id) last sent, and when (wall s, radio round).

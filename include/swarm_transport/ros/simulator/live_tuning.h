@@ -12,8 +12,8 @@
 #include "swarm_transport/Flocking_Tuning.h"
 #include "swarm_transport/Neighbors.h"
 #include "swarm_transport/core/swarm_config.h"
-#include "swarm_transport/ros/simulator/flocking_tuning.h"
 #include "swarm_transport/ros/engine/mission_relay.h"
+#include "swarm_transport/ros/simulator/flocking_tuning.h"
 
 namespace swarm_transport {
 

@@ -44,7 +44,7 @@ class LockstepHold {
   ros::ServiceServer srv_;
   std::uint64_t hold_at_ = 0;  // hold before this tick (0: none)
   bool holding_ = false;
-  bool tick_begun_ = false;    // tick *tick_ is under way
+  bool tick_begun_ = false;  // tick *tick_ is under way
 };
 
 }  // namespace swarm_transport

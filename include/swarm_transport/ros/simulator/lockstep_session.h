@@ -1,7 +1,8 @@
 // The simulator's lock-step protocol over ROS [SPEC 7]: who is live and when a tick is
-// complete. The tick itself (rounds, relay, answers) is the engine's (ros/engine/lockstep_engine.h),
-// the decisions are the pure barrier's (sim/lockstep_barrier.h); this class feeds them from
-// topics and the robots' links, waits, and tells observers what the robots said.
+// complete. The tick itself (rounds, relay, answers) is the engine's
+// (ros/engine/lockstep_engine.h), the decisions are the pure barrier's (sim/lockstep_barrier.h);
+// this class feeds them from topics and the robots' links, waits, and tells observers what the
+// robots said.
 //
 // A tick, driven by the simulator:
 //   BeginTick    robots that connected become live, gone ones not; holds for the dispatcher
@@ -25,25 +26,25 @@
 #include "swarm_transport/Mission_Schedule.h"
 #include "swarm_transport/Mission_Status.h"
 #include "swarm_transport/Neighbors.h"
-#include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/New_Mission.h"
+#include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/Tick_Answer.h"
 #include "swarm_transport/core/kinematics.h"
+#include "swarm_transport/ros/common/wall_throttle.h"
 #include "swarm_transport/ros/engine/lockstep_engine.h"
 #include "swarm_transport/ros/engine/mission_relay.h"
 #include "swarm_transport/ros/simulator/robot_links.h"
 #include "swarm_transport/ros/simulator/simulator_params.h"
-#include "swarm_transport/ros/common/wall_throttle.h"
 #include "swarm_transport/sim/lockstep_barrier.h"
 
 namespace swarm_transport {
 
 // What the session needs of the simulator's loop while it waits.
 struct LockstepHooks {
-  std::function<bool()> running;             // ROS is up and no stop was requested
-  std::function<void(double)> spin;          // all queues once, waiting up to s for a command
-  std::function<void()> spin_robots;         // the directly linked robots' pending callbacks
-  std::function<void()> visuals;             // markers and tf when due
+  std::function<bool()> running;      // ROS is up and no stop was requested
+  std::function<void(double)> spin;   // all queues once, waiting up to s for a command
+  std::function<void()> spin_robots;  // the directly linked robots' pending callbacks
+  std::function<void()> visuals;      // markers and tf when due
 };
 
 class LockstepSession {
@@ -122,8 +123,8 @@ class LockstepSession {
   sim::LockstepBarrier barrier_;
   LockstepEngine::Answers answers_;  // not taken yet
   bool finished_ = false;
-  bool started_ = false;             // WaitForStart is done
-  std::set<std::uint16_t> joining_;  // added since the last tick began (after the start)
+  bool started_ = false;               // WaitForStart is done
+  std::set<std::uint16_t> joining_;    // added since the last tick began (after the start)
   std::set<std::uint16_t> connected_;  // became live this tick: their round carries the orders
   std::vector<ros::Subscriber> relay_subs_;
   ros::Subscriber schedule_sub_;

@@ -7,8 +7,8 @@
 #include <geometry_msgs/Twist.h>
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
-#include <boost/container/flat_map.hpp>
 
+#include <boost/container/flat_map.hpp>
 #include <cstdint>
 #include <functional>
 

@@ -20,10 +20,10 @@
 #include "swarm_transport/core/geometry.h"
 #include "swarm_transport/core/random.h"
 #include "swarm_transport/ros/common/direct_link.h"
-#include "swarm_transport/ros/simulator/lockstep_session.h"
-#include "swarm_transport/ros/engine/mission_relay.h"
-#include "swarm_transport/ros/simulator/robot_links.h"
 #include "swarm_transport/ros/common/wall_throttle.h"
+#include "swarm_transport/ros/engine/mission_relay.h"
+#include "swarm_transport/ros/simulator/lockstep_session.h"
+#include "swarm_transport/ros/simulator/robot_links.h"
 #include "swarm_transport/sim/world2d.h"
 
 namespace swarm_transport {

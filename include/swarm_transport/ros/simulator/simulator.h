@@ -25,18 +25,18 @@
 #include "swarm_transport/core/random.h"
 #include "swarm_transport/ros/common/diagnostics.h"
 #include "swarm_transport/ros/common/direct_link.h"
+#include "swarm_transport/ros/common/wall_throttle.h"
+#include "swarm_transport/ros/engine/lockstep_engine.h"
 #include "swarm_transport/ros/simulator/event_player.h"
 #include "swarm_transport/ros/simulator/live_tuning.h"
-#include "swarm_transport/ros/engine/lockstep_engine.h"
 #include "swarm_transport/ros/simulator/lockstep_hold.h"
 #include "swarm_transport/ros/simulator/lockstep_session.h"
 #include "swarm_transport/ros/simulator/mission_mirror.h"
 #include "swarm_transport/ros/simulator/robot_links.h"
 #include "swarm_transport/ros/simulator/robot_roster.h"
 #include "swarm_transport/ros/simulator/simulator_params.h"
-#include "swarm_transport/sim/radio.h"
 #include "swarm_transport/ros/simulator/visuals.h"
-#include "swarm_transport/ros/common/wall_throttle.h"
+#include "swarm_transport/sim/radio.h"
 #include "swarm_transport/sim/world2d.h"
 
 namespace swarm_transport {
@@ -139,7 +139,7 @@ class Simulator : public RobotOutlet {
   bool radio_follows_range_ = true;  // ~radio_range_m unset: the radio's range is the local range
   std::unique_ptr<RobotRoster> roster_;      // spawn, kill, teleports, copies and statists
   std::unique_ptr<MissionMirror> missions_;  // what the robots act on, for radio and markers
-  std::unique_ptr<LockstepEngine> engine_;    // the rounds (lock-step: and the relay)
+  std::unique_ptr<LockstepEngine> engine_;   // the rounds (lock-step: and the relay)
 
   ros::Publisher positions_pub_;
   std::unique_ptr<LockstepSession> session_;  // lock-step only
@@ -147,10 +147,10 @@ class Simulator : public RobotOutlet {
   ros::Publisher clock_pub_;
   std::unique_ptr<sim::Visuals> visuals_;
   std::unique_ptr<NodeDiagnostics> diagnostics_;
-  std::unique_ptr<LockstepHold> hold_;        // ~hold
+  std::unique_ptr<LockstepHold> hold_;  // ~hold
 
-  std::uint64_t tick_ = 0;    // radio rounds so far (lock-step: ticks)
-  bool finished_ = false;     // lock-step: max ticks reached, the world is frozen
+  std::uint64_t tick_ = 0;  // radio rounds so far (lock-step: ticks)
+  bool finished_ = false;   // lock-step: max ticks reached, the world is frozen
   ros::WallTime start_wall_;
   std::set<std::pair<std::uint16_t, std::uint8_t>> recruit_statists_;  // relayed now
   WarnThrottle bad_cmd_warning_;  // wall-clock throttles of repeated warnings

@@ -17,16 +17,16 @@ namespace swarm_transport {
 // Everything the simulator is configured with: the shared /swarm configuration plus its
 // private parameters (~name), units in the names.
 struct SimulatorParams {
-  SwarmConfig swarm;                 // /swarm: world size, radius, range, tick, seed, zones
-  double radio_loss = 0.0;           // /swarm/radio_loss: drop probability per message, [0, 1]
-  int robots = 0;                    // ~robots: initial robots, ids 0..robots-1
+  SwarmConfig swarm;        // /swarm: world size, radius, range, tick, seed, zones
+  double radio_loss = 0.0;  // /swarm/radio_loss: drop probability per message, [0, 1]
+  int robots = 0;           // ~robots: initial robots, ids 0..robots-1
   core::Placement placement = core::Placement::kRandom;  // ~placement: random | corner | file
-  std::string placement_file;        // ~placement_file: lines "x y theta_deg"
+  std::string placement_file;                            // ~placement_file: lines "x y theta_deg"
   // ~events_file: timed events of a scenario (event_schedule.h), applied at their ticks.
   std::string events_file;
   core::Clock clock = core::Clock::kRealtime;  // ~clock: realtime | lockstep
-  double lockstep_timeout_s = 2.0;   // ~lockstep_timeout_s: wait this long for a tick's answers
-  int lockstep_max_ticks = 0;        // ~lockstep_max_ticks: stop ticking after this many (0: never)
+  double lockstep_timeout_s = 2.0;  // ~lockstep_timeout_s: wait this long for a tick's answers
+  int lockstep_max_ticks = 0;       // ~lockstep_max_ticks: stop ticking after this many (0: never)
   // ~lockstep_observers: also wait until /flock/positions has this many subscribers (a
   // recorder, a test, the demo) so that nobody misses the first ticks.
   int lockstep_observers = 0;
@@ -61,8 +61,8 @@ struct SimulatorParams {
 // Reads /swarm (and /swarm/radio_loss) through `nh` and the private parameters through
 // `private_nh`, then validates. `direct`: robots are linked directly (the default of
 // ~pose_topics is then false). False with `error` naming the first bad parameter.
-bool ReadSimulatorParams(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
-                         bool direct, SimulatorParams* params, std::string* error);
+bool ReadSimulatorParams(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh, bool direct,
+                         SimulatorParams* params, std::string* error);
 // The world and the radio the parameters describe.
 sim::WorldParams WorldParamsOf(const SimulatorParams& params);
 sim::RadioParams RadioParamsOf(const SimulatorParams& params);

@@ -19,19 +19,19 @@
 #include <utility>
 #include <vector>
 
-#include "swarm_transport/sim/live_mission.h"
 #include "swarm_transport/core/geometry.h"
+#include "swarm_transport/sim/live_mission.h"
 #include "swarm_transport/sim/world2d.h"
 
 namespace swarm_transport {
 namespace sim {
 
 struct VisualsParams {
-  double rate_hz = 10.0;         // markers and tf per wall second (0: off)
-  bool tf = true;                // broadcast world -> robot_<id>/base_link
-  bool range_circles = false;    // draw each robot's local range, in its swarm's colour
-  double local_range_m = 1.0;    // the circles' radius and the swarms' link distance
-  int trail_ticks = 0;           // a line through each robot's last positions, ticks (0: off)
+  double rate_hz = 10.0;       // markers and tf per wall second (0: off)
+  bool tf = true;              // broadcast world -> robot_<id>/base_link
+  bool range_circles = false;  // draw each robot's local range, in its swarm's colour
+  double local_range_m = 1.0;  // the circles' radius and the swarms' link distance
+  int trail_ticks = 0;         // a line through each robot's last positions, ticks (0: off)
   std::vector<core::Zone> danger_zones;
 };
 
