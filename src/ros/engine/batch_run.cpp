@@ -59,7 +59,7 @@ class Run {
  private:
   // The recorder's frame of the world as /flock/positions carries it (`truth`: the physical
   // robots' poses in world order), and the runner's trace.
-  void TakeFrame(std::vector<Robot_Position> truth);
+  void TakeFrame(const std::vector<Robot_Position>& truth);
   // The robot at world index `i` ticks on its round: its answer joins the tick's answers.
   void RobotTick(std::size_t i, const Neighbors& round);
   // A status the robots said: the runner's, the dispatcher's and the recorder's part.
@@ -213,7 +213,7 @@ void Run::WriteMissionRows() {
   }
 }
 
-void Run::TakeFrame(std::vector<Robot_Position> truth) {
+void Run::TakeFrame(const std::vector<Robot_Position>& truth) {
   if (job_.trace) {
     char row[96];
     for (const Robot_Position& p : truth) {
@@ -225,12 +225,10 @@ void Run::TakeFrame(std::vector<Robot_Position> truth) {
       files_ok_ = trace_csv_.Append(row) && files_ok_;
     }
   }
-  Robot_Positions positions;
-  positions.tick = tick_;
-  positions.sim_time = static_cast<double>(tick_) * config_.tick_period_s;
-  positions.robots = std::move(truth);
+  // As the recorder takes /flock/positions.
   std::size_t bad = 0;
-  core::MetricsFrame frame = RecorderFrame(positions, &bad);
+  core::MetricsFrame frame =
+      RecorderFrame(tick_, static_cast<double>(tick_) * config_.tick_period_s, truth, &bad);
   if (track_) track_->Add(frame);
   std::optional<core::SwarmSample> sample;
   metrics_->AddFrame(std::move(frame), &sample);
@@ -287,7 +285,7 @@ void Run::Tick() {
     for (const auto& entry : world_->robots()) {
       truth.push_back(ToRobotPosition(entry.first, entry.second.pose));
     }
-    TakeFrame(std::move(truth));
+    TakeFrame(truth);
     end_ = job_.kind == "flocking" ? "max_ticks" : "TICK_LIMIT";
     over_ = true;
     return;

@@ -67,13 +67,18 @@ core::RunMetricsParams RunMetricsParamsOf(const RecorderParams& params) {
 }
 
 core::MetricsFrame RecorderFrame(const Robot_Positions& msg, std::size_t* bad) {
+  return RecorderFrame(msg.tick, msg.sim_time, msg.robots, bad);
+}
+
+core::MetricsFrame RecorderFrame(std::uint64_t tick, double sim_time,
+                                 const std::vector<Robot_Position>& positions, std::size_t* bad) {
   core::MetricsFrame frame;
-  frame.tick = msg.tick;
-  frame.sim_time_s = msg.sim_time;
+  frame.tick = tick;
+  frame.sim_time_s = sim_time;
   std::vector<std::pair<std::uint16_t, core::Vec2>> robots;
-  robots.reserve(msg.robots.size());
+  robots.reserve(positions.size());
   *bad = 0;
-  for (const Robot_Position& r : msg.robots) {
+  for (const Robot_Position& r : positions) {
     if (r.type != Robot_Position::TYPE_PHYSICAL) continue;
     if (!std::isfinite(r.pos_x) || !std::isfinite(r.pos_y)) {
       ++*bad;

@@ -63,6 +63,9 @@ class CsvFile {
 // /flock/positions -> a frame: physical robots with finite positions, ascending ids, the first of
 // duplicate ids; `bad` counts those with non-finite positions.
 core::MetricsFrame RecorderFrame(const Robot_Positions& msg, std::size_t* bad);
+// The same of a message's fields.
+core::MetricsFrame RecorderFrame(std::uint64_t tick, double sim_time,
+                                 const std::vector<Robot_Position>& positions, std::size_t* bad);
 // An order (as published) is followed when valid in the arena.
 std::string RecordOrder(const New_Mission& msg, const SwarmConfig& swarm,
                         core::RunMetrics* metrics);
