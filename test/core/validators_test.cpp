@@ -17,48 +17,12 @@
 #include "swarm_transport/core/swarm_config.h"
 #include "swarm_transport/core/transport.h"
 #include "swarm_transport/sim/world2d.h"
+#include "validator_fixture.h"
 
 namespace swarm_transport {
 namespace {
 
-constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// One violation: what it spoils and the field name the error must contain.
-template <typename Params>
-struct Violation {
-  std::string label;
-  std::function<void(Params*)> spoil;
-  std::string field;
-};
-
-// The baseline is valid; each violation alone makes Validate() name its field. A violation that
-// does not fail shows that a rule is missing; one whose error names another field shows that
-// the rules are checked out of order or the message names the wrong key.
-template <typename Params>
-void ExpectEachViolationNamed(const Params& baseline,
-                              const std::vector<Violation<Params>>& violations) {
-  ASSERT_EQ(baseline.Validate(), "") << "the baseline must be valid";
-  for (const Violation<Params>& v : violations) {
-    Params p = baseline;
-    v.spoil(&p);
-    const std::string error = p.Validate();
-    EXPECT_FALSE(error.empty()) << v.label << " was accepted";
-    EXPECT_NE(error.find(v.field), std::string::npos)
-        << v.label << ": '" << error << "' does not name " << v.field;
-  }
-}
-
-// A rule `field` in [lo, hi] (or open ends): values just outside on both sides and NaN fail,
-// the bounds themselves pass when closed.
-template <typename Params>
-void AddRange(std::vector<Violation<Params>>* out, const std::string& field, double Params::*m,
-              std::vector<double> bad) {
-  for (double value : bad) {
-    out->push_back(
-        {field + " = " + std::to_string(value), [m, value](Params* p) { p->*m = value; }, field});
-  }
-}
+using namespace validator_testing;  // NOLINT: the fixture of every validator test
 
 TEST(ValidatorsTest, FlockingParams) {
   using P = core::FlockingParams;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "../core/validator_fixture.h"
 #include "swarm_transport/ros/dispatcher/dispatcher_options.h"
 #include "swarm_transport/ros/recorder/recorder.h"
 #include "swarm_transport/ros/robot/robot_host.h"
@@ -19,38 +20,7 @@
 namespace swarm_transport {
 namespace {
 
-constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
-template <typename Params>
-struct Violation {
-  std::string label;
-  std::function<void(Params*)> spoil;
-  std::string field;  // the error must contain it
-};
-
-template <typename Params>
-void ExpectEachViolationNamed(const Params& baseline,
-                              const std::vector<Violation<Params>>& violations) {
-  ASSERT_EQ(baseline.Validate(), "") << "the baseline must be valid";
-  for (const Violation<Params>& v : violations) {
-    Params p = baseline;
-    v.spoil(&p);
-    const std::string error = p.Validate();
-    EXPECT_FALSE(error.empty()) << v.label << " was accepted";
-    EXPECT_NE(error.find(v.field), std::string::npos)
-        << v.label << ": '" << error << "' does not name " << v.field;
-  }
-}
-
-template <typename Params, typename T>
-void Add(std::vector<Violation<Params>>* out, const std::string& field, T Params::*m,
-         std::vector<T> bad) {
-  for (T value : bad) {
-    out->push_back(
-        {field + " = " + std::to_string(value), [m, value](Params* p) { p->*m = value; }, field});
-  }
-}
+using namespace validator_testing;  // NOLINT: the fixture of every validator test
 
 TEST(OptionsValidatorsTest, SimulatorParams) {
   using P = SimulatorParams;
