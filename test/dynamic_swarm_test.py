@@ -78,6 +78,7 @@ class DynamicSwarm(unittest.TestCase):
     def order(self, mission_id, robot, target=None):
         """Sends a leader-only mission of `robot`; returns the StatusLog that follows it."""
         status = st.StatusLog()
+        self.assertTrue(status.wait_connected(self.timeout), 'the status log never connected')
         pub = rospy.Publisher('/flock/mission/new', New_Mission, queue_size=10, latch=True)
         self.assertTrue(st.wait_connected(pub, self.timeout))
         pub.publish(st.mission(mission_id, robot, robot + 1, 1, (0.0, 0.0, 0.0, 0.0),

@@ -240,6 +240,24 @@ class StatusLog(object):
         with self.lock:
             self.items.append(msg)
 
+    def wait_connected(self, timeout):
+        """Waits until it is connected to every node that publishes its topic now: a status
+        published later reaches it. (A fast lock-step run publishes a mission's statuses within
+        milliseconds of its order: a subscriber made just before may not be connected yet.)"""
+        import rosgraph
+        master = rosgraph.Master(rospy.get_name())
+
+        def connected():
+            try:
+                pubs, _, _ = master.getSystemState()
+                nodes = next((n for topic, n in pubs if topic == self.sub.resolved_name), [])
+                uris = [master.lookupNode(name) for name in nodes]
+            except (rosgraph.MasterError, OSError):
+                return False
+            return bool(uris) and all(self.sub.impl.has_connection(uri) for uri in uris)
+
+        return wait_for(connected, timeout)
+
     def of(self, mission_id):
         with self.lock:
             return [m for m in self.items if m.mission_id == mission_id]
