@@ -20,7 +20,7 @@ import unittest
 import rospy
 import rostest
 from swarm_transport.msg import New_Mission
-from swarm_transport.srv import Submit_Mission
+from swarm_transport.srv import Hold, Submit_Mission
 
 import swarm_testing as st
 
@@ -40,8 +40,11 @@ class RobotLoss(unittest.TestCase):
         status = st.StatusLog()
         self.progress = st.StatusLog('/flock/mission/progress')
         pub = rospy.Publisher('/flock/mission/new', New_Mission, queue_size=10)
+        # Lock-step: the run holds from tick 1 on and the test moves it on a tick at a time
+        # until the first leader is in `phase`; the kills fall while it holds, so the kill tick
+        # is exact (the last tick simulated), whatever the test's position log lags behind.
         swarm = st.launch_swarm(robots=g('robots'), seed=g('seed'), lockstep=lockstep,
-                                max_ticks=0)
+                                max_ticks=0, hold_at=1 if lockstep else 0)
         self.addCleanup(swarm.shutdown)
         order = st.mission(mission_id, 0, group or g('group'), leaders, (7.0, 7.0, 2.0, 2.0),
                            (3.0, 3.0))
@@ -51,22 +54,50 @@ class RobotLoss(unittest.TestCase):
         self.addCleanup(log.close)
         if not lockstep:
             self.assertTrue(log.wait_tick(3, timeout), 'the swarm never ticked')
-            self.assertTrue(st.wait_connected(pub, timeout))
+            # The dispatcher admits the raw order (the robots take only what it admitted) and
+            # the simulator mirrors it: an order sent before either subscribed is lost (on a
+            # busy machine they come up after tick 3). The robots, the simulator, the dispatcher.
+            self.assertTrue(st.wait_connected(pub, timeout, at_least=g('robots') + 2))
             pub.publish(order)
         # Their pids first, then the kills back to back: a lock-step run notices a dead robot
-        # at once (its connections close) and runs hundreds of ticks per second, so a lookup
-        # between two kills let the second robot outlive the first by more than the 5 ticks
-        # that make a robot lost (it took over, and only then was replaced itself).
+        # at once (its connections close), so a lookup between two kills let the second robot
+        # outlive the first by more than the 5 ticks that make a robot lost.
         pids = [st.node_pid('/robot_%d/robot' % robot) for robot in robots]
-        self.assertTrue(st.wait_for(lambda: status.first(mission_id, phase) is not None, timeout),
-                        'no %s; states so far %s' % (st.NAMES[phase], status.states(mission_id)))
+        if lockstep:
+            at = self.hold_in_phase(mission_id, phase, timeout)
+            killed_at = at - 1
+        else:
+            self.assertTrue(
+                st.wait_for(lambda: status.first(mission_id, phase) is not None, timeout),
+                'no %s; states so far %s' % (st.NAMES[phase], status.states(mission_id)))
         for pid in pids:
             os.kill(pid, signal.SIGKILL)
-        killed_at = log.latest_tick()
+        if lockstep:
+            self.assertEqual(self.hold(0).code, Hold._response_class.OK)
+        else:
+            killed_at = log.latest_tick()
         self.assertTrue(st.wait_for(lambda: status.final(mission_id), timeout),
                         'mission %d never ended after robot(s) %s died; states %s'
                         % (mission_id, robots, status.states(mission_id)))
         return status, log, killed_at
+
+    def hold_in_phase(self, mission_id, phase, timeout, leader=0):
+        """Moves a run held at tick 1 on a tick at a time until robot `leader` (the first
+        leader) has mission `mission_id` in `phase` (its ~state: no status in flight to wait
+        for); returns the tick it holds before."""
+        self.hold = rospy.ServiceProxy('/simulator/hold', Hold)
+        self.hold.wait_for_service(timeout)
+        at = 1
+        for _ in range(400):
+            self.assertTrue(st.wait_for(lambda: self.hold(at).holding, timeout),
+                            'the run never held at tick %d' % at)
+            state = st.robot_state(leader, timeout)
+            if dict(zip(state.mission_ids, bytearray(state.mission_phases))).get(mission_id,
+                                                                                   0) >= phase:
+                return at
+            at += 1
+            self.assertEqual(self.hold(at).code, Hold._response_class.OK)
+        self.fail('mission %d never reached %s by tick %d' % (mission_id, st.NAMES[phase], at))
 
     def promoted(self, status, mission_id, killed_at, lost, leader, bound):
         """The mission ends DONE; one TRANSPORT status after the first names the robot promoted
