@@ -41,249 +41,6 @@ std::string RobotHostOptions::Validate() const {
   return os.str();
 }
 
-// Real time: one thread runs a share of the robots - their ticks from one heap of due times,
-// their radio rounds (the simulator of this process hands them over once per round) and their
-// roscpp callbacks (subscriptions, services) from their callback queue - so one robot's
-// callbacks never overlap, and nothing passes through a callback queue per robot and tick.
-// Until 2026-11-25 every tick and every round was a callback-queue entry of its own
-// (CallbackQueue::addCallback, getIDInfo, their mutexes and wake-ups: ~15 % of the process at
-// 2,000 robots). A tick is rescheduled at due + period or, when the robot fell more than a
-// period behind, at the first due time of its own timeline after now: no burst of catch-up
-// ticks, and the robots' phases stay spread over the period (a worker held up for a moment,
-// as by the first /flock/robots of thousands of robots, rescheduling them all to "now" as
-// roscpp's timers do, made them tick in one burst of 10-20 ms every period from then on).
-class HostWorker {
- public:
-  using Clock = TickClock;
-
-  // `stats` (may be null): the host's diagnostics lines, flushed when due at every wake-up.
-  HostWorker(ros::CallbackQueue* queue, double period_s, StatsBatch* stats)
-      : queue_(queue),
-        stats_(stats),
-        period_(
-            std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(period_s))),
-        slack_(std::min<Clock::duration>(std::chrono::milliseconds(1), period_ / 100)) {}
-  ~HostWorker() { Stop(); }
-
-  // Robot `robot` first ticks `phase` after the worker starts, or after now when it runs
-  // already (a robot that joins). The returned slot is the robot's for Stage() and Remove().
-  void* Add(RobotNode* robot, Clock::duration phase) {
-    Slot* slot = nullptr;
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      slots_.push_back(std::make_unique<Slot>());
-      slot = slots_.back().get();
-      slot->robot = robot;
-      // Before Start(): due times count from the epoch until Start() moves them to its now.
-      heap_.push(Entry{(started_ ? Clock::now() : Clock::time_point()) + phase, slot});
-    }
-    Wake();
-    return slot;
-  }
-
-  // The robot ticks and hears no more; returns when none of its ticks or rounds runs (from
-  // any thread but this worker's).
-  void Remove(void* handle) {
-    Slot* slot = static_cast<Slot*>(handle);
-    std::unique_lock<std::mutex> lock(mutex_);
-    slot->robot = nullptr;
-    slot->pending.reset();
-    idle_.wait(lock, [&] { return running_ != slot; });
-  }
-
-  // The simulator's thread: the robot's round of this radio round (handed over by Flush).
-  void Stage(void* handle, Neighbors::ConstPtr round) {
-    staged_.emplace_back(static_cast<Slot*>(handle), std::move(round));
-  }
-
-  // The simulator's thread: hands the staged rounds over. A robot that has not taken its
-  // last round yet gets the latest only, as a neighbors subscription with a short queue drops
-  // old rounds (its diagnostics count them as missed).
-  void Flush() {
-    if (staged_.empty()) return;
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      for (auto& entry : staged_) {
-        Slot* slot = entry.first;
-        if (slot->robot == nullptr) continue;
-        if (!slot->pending) dirty_.push_back(slot);
-        slot->pending = std::move(entry.second);
-      }
-    }
-    staged_.clear();
-    Wake();
-  }
-
-  // The initial robots' phases count from now: they were added while the robots were set up
-  // (thousands take seconds).
-  void Start() {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      std::vector<Entry> entries;
-      for (; !heap_.empty(); heap_.pop()) entries.push_back(heap_.top());
-      const Clock::time_point now = Clock::now();
-      for (Entry& entry : entries) {
-        entry.due = now + entry.due.time_since_epoch();
-        heap_.push(entry);
-      }
-      started_ = true;
-    }
-    thread_ = std::thread(&HostWorker::Run, this);
-  }
-
-  void Stop() {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      stop_ = true;
-    }
-    Wake();
-    if (thread_.joinable()) thread_.join();
-  }
-
- private:
-  struct Slot {
-    RobotNode* robot = nullptr;   // null: removed
-    Neighbors::ConstPtr pending;  // its latest round not taken yet
-  };
-  struct Entry {
-    Clock::time_point due;
-    Slot* slot;
-    bool operator>(const Entry& other) const { return due > other.due; }
-  };
-  // Does nothing: its arrival ends the worker's wait on the callback queue.
-  class WakeCall : public ros::CallbackInterface {
-   public:
-    CallResult call() override { return Success; }
-  };
-
-  void Wake() {
-    bool wake = false;
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      wake = !wake_queued_;
-      wake_queued_ = true;
-    }
-    if (wake) queue_->addCallback(boost::make_shared<WakeCall>(), kWakeId);
-  }
-
-  // Runs `call` for the slot's robot unless it was removed; Remove() waits for it.
-  template <typename F>
-  bool RunFor(Slot* slot, F call) {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (slot->robot == nullptr) return false;
-      running_ = slot;
-    }
-    call(slot->robot);
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      running_ = nullptr;
-    }
-    idle_.notify_all();
-    return true;
-  }
-
-  // Runs the ticks due by now, and those due within the slack (1 % of the period, at most 1 ms:
-  // a tick that early is no tick late, and thousands of robots cost one wake-up per slack, not
-  // one per tick); returns how long until the next one (at most a period).
-  Clock::duration RunDueTicks() {
-    for (;;) {
-      Entry top;
-      {
-        std::lock_guard<std::mutex> lock(mutex_);
-        if (heap_.empty()) return period_;
-        const Clock::time_point now = Clock::now();
-        if (heap_.top().due > now + slack_) return std::min(period_, heap_.top().due - now);
-        top = heap_.top();
-        heap_.pop();
-      }
-      if (!RunFor(top.slot, [](RobotNode* robot) { robot->TimerTick(); })) continue;
-      // More than a period behind: its next due time on its own timeline after now.
-      const Clock::time_point next = NextTickDue(top.due, period_, Clock::now());
-      std::lock_guard<std::mutex> lock(mutex_);
-      heap_.push(Entry{next, top.slot});
-    }
-  }
-
-  void Run() {
-    std::vector<std::pair<Slot*, Neighbors::ConstPtr>> rounds;
-    for (;;) {
-      {
-        std::lock_guard<std::mutex> lock(mutex_);
-        if (stop_) return;
-        wake_queued_ = false;
-        for (Slot* slot : dirty_) rounds.emplace_back(slot, std::move(slot->pending));
-        dirty_.clear();
-      }
-      // The rounds in the order they were delivered (ascending id), a few at a time between
-      // the ticks that fall due meanwhile: a whole round of thousands of robots at once would
-      // hold their ticks back by milliseconds.
-      for (std::size_t k = 0; k < rounds.size(); ++k) {
-        if (k % kRoundsBetweenTicks == 0) RunDueTicks();
-        if (rounds[k].second) {
-          RunFor(rounds[k].first, [&](RobotNode* robot) { robot->OnNeighbors(rounds[k].second); });
-        }
-      }
-      rounds.clear();
-      const Clock::duration wait = RunDueTicks();
-      if (stats_ != nullptr) stats_->FlushIfDue();
-      // The robots' roscpp callbacks, and the wait for the next tick or a wake-up.
-      queue_->callAvailable(ros::WallDuration(std::chrono::duration<double>(wait).count()));
-    }
-  }
-
-  static constexpr std::size_t kRoundsBetweenTicks = 32;
-  static constexpr std::uint64_t kWakeId = 1;  // no robot's address
-
-  ros::CallbackQueue* queue_;
-  StatsBatch* stats_;
-  const Clock::duration period_;
-  const Clock::duration slack_;
-  std::mutex mutex_;
-  std::condition_variable idle_;
-  std::vector<std::unique_ptr<Slot>> slots_;  // kept until the worker goes (Remove() only marks)
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap_;
-  std::vector<Slot*> dirty_;  // slots with a pending round
-  Slot* running_ = nullptr;
-  bool wake_queued_ = false;
-  bool started_ = false;
-  bool stop_ = false;
-  std::vector<std::pair<Slot*, Neighbors::ConstPtr>> staged_;  // the simulator's thread only
-  std::thread thread_;
-};
-
-namespace {
-constexpr double kStatsBatchS = 0.05;
-// Messages, not lines: a subscriber that lags a few seconds still gets every line.
-constexpr std::uint32_t kStatsBatchQueue = 100;
-}  // namespace
-
-StatsBatch::StatsBatch(ros::NodeHandle nh)
-    : pub_(nh.advertise<std_msgs::String>(names::kRobotStats, kStatsBatchQueue)),
-      last_(ros::WallTime::now()) {}
-
-void StatsBatch::Add(const std::string& line) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  if (!lines_.empty()) lines_ += '\n';
-  lines_ += line;
-  const ros::WallTime now = ros::WallTime::now();
-  if ((now - last_).toSec() >= kStatsBatchS) FlushLocked(now);
-}
-
-void StatsBatch::FlushIfDue() {
-  std::lock_guard<std::mutex> lock(mutex_);
-  if (lines_.empty()) return;
-  const ros::WallTime now = ros::WallTime::now();
-  if ((now - last_).toSec() >= kStatsBatchS) FlushLocked(now);
-}
-
-void StatsBatch::FlushLocked(const ros::WallTime& now) {
-  auto msg = boost::make_shared<std_msgs::String>();
-  msg->data.swap(lines_);
-  pub_.publish(msg);
-  last_ = now;
-}
-
 RobotHost::RobotHost(ros::NodeHandle nh, ros::NodeHandle private_nh)
     : nh_(nh), private_nh_(private_nh) {}
 
@@ -408,24 +165,28 @@ bool RobotHost::StartRobot(std::uint16_t id) {
   robot.clock = options_.clock;
   robot.comm = options_.comm;
   robot.diagnostics = options_.diagnostics;
-  robot.external_timer = options_.clock == core::Clock::kRealtime;
-  robot.shared_topics = true;
-  robot.services = options_.robot_services;
   // The initial robots share one reading of /swarm; a robot that joins later reads it itself,
   // as a process of its own would.
-  if (swarm_ && k < static_cast<std::size_t>(options_.to - options_.from)) {
-    robot.swarm = &*swarm_;
-  }
+  const SwarmConfig* swarm =
+      swarm_ && k < static_cast<std::size_t>(options_.to - options_.from) ? &*swarm_ : nullptr;
+  StatsSink sink;
   if (options_.diagnostics) {
     if (!stats_) stats_ = std::make_unique<StatsBatch>(nh_);
     StatsBatch* stats = stats_.get();
-    robot.stats_sink = [stats](const std::string& line) { stats->Add(line); };
+    sink = [stats](const std::string& line) { stats->Add(line); };
   }
-  if (simulator_) robot.direct = simulator_.get();
+  // Its transport: linked directly to the simulator of this process, or its own per-robot
+  // topics; the swarm-wide topics come from the host's shared subscriptions either way.
+  std::unique_ptr<RobotTransport> transport;
+  if (simulator_) {
+    transport = std::make_unique<DirectTransport>(simulator_.get(), sink, options_.robot_services);
+  } else {
+    transport = std::make_unique<HostTransport>(sink, options_.robot_services);
+  }
   Hosted hosted;
   hosted.node = std::make_unique<RobotNode>(nh, private_nh);
   hosted.queue = queue;
-  if (!hosted.node->Initialize(robot)) return false;
+  if (!hosted.node->Initialize(robot, std::move(transport), swarm)) return false;
   RobotNode* node = hosted.node.get();
   if (options_.clock == core::Clock::kRealtime) {
     const double period_s = node->tick_period_s();
@@ -448,8 +209,8 @@ bool RobotHost::StartRobot(std::uint16_t id) {
   // A robot that starts while the swarm runs hears the current robot list (latched), as its
   // own subscription would have.
   if (last_robots_) {
-    const ros::MessageEvent<Robot_Positions const> event = *last_robots_;
-    queue->addCallback(boost::make_shared<QueuedCall>([node, event]() { node->Hear(event); }),
+    const Robot_Positions::ConstPtr list = last_robots_;
+    queue->addCallback(boost::make_shared<QueuedCall>([node, list]() { node->HearRobots(*list); }),
                        reinterpret_cast<std::uint64_t>(node));
   }
   hosted_.emplace(id, std::move(hosted));
@@ -484,42 +245,32 @@ void RobotHost::Release(std::uint16_t id) {
   ROS_INFO("robot_host: robot %u left", id);
 }
 
-template <typename M>
-void RobotHost::FanOut(const ros::MessageEvent<M const>& event) {
+template <typename F>
+void RobotHost::FanOut(const F& hear) {
   for (auto& entry : hosted_) {
     RobotNode* robot = entry.second.node.get();
     entry.second.queue->addCallback(
-        boost::make_shared<QueuedCall>([robot, event]() { robot->Hear(event); }),
+        boost::make_shared<QueuedCall>([robot, hear]() { hear(robot); }),
         reinterpret_cast<std::uint64_t>(robot));
   }
 }
 
-template <typename M>
-void RobotHost::SubscribeShared(ros::NodeHandle& nh, const char* topic, std::uint32_t queue_size) {
-  shared_subs_.push_back(
-      nh.subscribe<M>(topic, queue_size,
-                      boost::function<void(const ros::MessageEvent<M const>&)>(
-                          [this](const ros::MessageEvent<M const>& event) { FanOut(event); })));
-}
-
 void RobotHost::SubscribeSharedTopics(ros::NodeHandle nh) {
-  // The queue sizes of a robot's own subscriptions (robot_node.cpp).
-  shared_subs_.push_back(nh.subscribe<Robot_Positions>(
+  // The queue size of a robot's own subscription (own_topics_transport.cpp).
+  robots_shared_sub_ = nh.subscribe<Robot_Positions>(
       names::kRobots, 2,
-      boost::function<void(const ros::MessageEvent<Robot_Positions const>&)>(
-          [this](const ros::MessageEvent<Robot_Positions const>& event) {
-            last_robots_ = event;
-            FanOut(event);
-          })));
+      boost::function<void(const Robot_Positions::ConstPtr&)>(
+          [this](const Robot_Positions::ConstPtr& list) {
+            last_robots_ = list;
+            FanOut([list](RobotNode* robot) { robot->HearRobots(*list); });
+          }));
   // Lock-step: mission messages come relayed inside each round.
   if (options_.clock == core::Clock::kLockstep) return;
-  SubscribeShared<Robot_Freeze>(nh, names::kFreeze, 20);
-  SubscribeShared<Robot_Continue>(nh, names::kContinue, 20);
-  SubscribeShared<New_Mission>(nh, names::kMissionNew, 256);
-  SubscribeShared<Update_Object>(nh, names::kObjectUpdate, 20);
-  SubscribeShared<Delete_Object>(nh, names::kObjectDelete, 20);
-  SubscribeShared<Mission_Event>(nh, names::kMissionEvent, 20);
-  SubscribeShared<Mission_Status>(nh, names::kMissionStatus, 50);
+  mission_topics_.Subscribe(
+      nh, [this](const core::MissionMessage& message, const core::Sender& from) {
+        const auto shared = std::make_shared<const core::MissionMessage>(message);
+        FanOut([shared, from](RobotNode* robot) { robot->Hand(*shared, from); });
+      });
 }
 
 void RobotHost::OnRobots(const Robot_Positions::ConstPtr& msg) {
@@ -552,9 +303,10 @@ void RobotHost::Deliver(std::uint16_t id, const Neighbors::ConstPtr& round) {
   // callbacks, and in real time on its own thread, not the simulator's.
   if (options_.clock == core::Clock::kLockstep) {
     // Every round is a tick and is answered (the simulator sends the next one only then).
-    queue->addCallback(
-        boost::make_shared<QueuedCall>([robot, round]() { robot->OnNeighbors(round); }),
-        reinterpret_cast<std::uint64_t>(robot));
+    queue->addCallback(boost::make_shared<QueuedCall>([robot, round]() {
+                         robot->TakeRound(round, ros::WallTime::now().toSec());
+                       }),
+                       reinterpret_cast<std::uint64_t>(robot));
     return;
   }
   // Real time: staged for the robot's worker, handed over with the whole round (EndRound).
@@ -590,7 +342,8 @@ void RobotHost::Shutdown() {
 
 void RobotHost::StopCallbacks() {
   status_timer_.stop();
-  for (auto& sub : shared_subs_) sub.shutdown();
+  robots_shared_sub_.shutdown();
+  mission_topics_.Shutdown();
   if (control_spinner_) control_spinner_->stop();
   for (auto& worker : workers_) worker->Stop();
   for (auto& spinner : spinners_) spinner->stop();

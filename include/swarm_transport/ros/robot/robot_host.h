@@ -19,6 +19,9 @@
 #include "swarm_transport/core/modes.h"
 #include "swarm_transport/ros/common/diagnostics.h"
 #include "swarm_transport/ros/common/direct_link.h"
+#include "swarm_transport/ros/common/mission_topics.h"
+#include "swarm_transport/ros/robot/host_transport.h"
+#include "swarm_transport/ros/robot/host_worker.h"
 #include "swarm_transport/ros/robot/robot_node.h"
 
 namespace swarm_transport {
@@ -58,25 +61,6 @@ struct RobotHostOptions {
 };
 
 class Simulator;
-class HostWorker;
-
-// ~diagnostics of a host: its robots' /flock/robot_stats lines, several in one message (one
-// per line) at most every 50 ms of wall time. A message per robot and second cost a seventh of
-// a 2,000-robot process (roscpp's poll thread woken for every one). Thread-safe.
-class StatsBatch {
- public:
-  explicit StatsBatch(ros::NodeHandle nh);
-  void Add(const std::string& line);
-  // Sends what waits when 50 ms passed since the last message.
-  void FlushIfDue();
-
- private:
-  void FlushLocked(const ros::WallTime& now);
-  std::mutex mutex_;
-  ros::Publisher pub_;
-  std::string lines_;
-  ros::WallTime last_;
-};
 
 // The in-process twin of robots.launch [issue 5]: robot <id> gets the handles
 // NodeHandle("robot_<id>") and NodeHandle("robot_<id>/robot"), so its topics, its ~describe
@@ -121,14 +105,12 @@ class RobotHost : public DirectRobots {
   bool StartRobot(std::uint16_t id);
   // Without the simulator here: robots join and leave as /flock/robots says (~adopt).
   void OnRobots(const Robot_Positions::ConstPtr& msg);
-  // The swarm-wide topics, subscribed once for every robot of the host (RobotNodeOptions::
-  // shared_topics) on `nh`'s queue, the thread that also changes hosted_.
+  // The swarm-wide topics (the robot list and, in real time, the mission topics), subscribed
+  // once for every robot of the host on `nh`'s queue, the thread that also changes hosted_.
   void SubscribeSharedTopics(ros::NodeHandle nh);
-  template <typename M>
-  void SubscribeShared(ros::NodeHandle& nh, const char* topic, std::uint32_t queue_size);
-  // Hands a shared topic's message to every hosted robot, on the robot's queue.
-  template <typename M>
-  void FanOut(const ros::MessageEvent<M const>& event);
+  // Runs hear(robot) for every hosted robot, on the robot's queue.
+  template <typename F>
+  void FanOut(const F& hear);
   // No tick or callback runs after this returns.
   void StopCallbacks();
 
@@ -156,9 +138,10 @@ class RobotHost : public DirectRobots {
   ros::Subscriber robots_sub_;
   std::unique_ptr<NodeDiagnostics> diagnostics_;
   ros::WallTimer status_timer_;
-  std::vector<ros::Subscriber> shared_subs_;
+  ros::Subscriber robots_shared_sub_;
+  MissionTopics mission_topics_;
   // The latest /flock/robots (latched), for a robot that starts later.
-  std::optional<ros::MessageEvent<Robot_Positions const>> last_robots_;
+  Robot_Positions::ConstPtr last_robots_;
 };
 
 }  // namespace swarm_transport
