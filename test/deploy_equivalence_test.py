@@ -2,13 +2,16 @@
 """deploy:=host (all robots in one robot_host process) behaves exactly like deploy:=process (a
 robot process each), and so does a robot_host that runs the simulator too (~deploy host_sim,
 deploy:=host_sim), whose robots are linked to the simulator directly, not by topics: in
-lock-step with the same seed all give identical poses at tick N."""
+lock-step with the same seed all give identical poses at tick N. In every deployment and clock
+an observer of /flock/position hears every robot."""
 
 import os
 import re
 import signal
 import subprocess
 import sys
+import threading
+import time
 import unittest
 
 import rosgraph.masterapi
@@ -18,6 +21,7 @@ import rostest
 import yaml
 
 import swarm_testing as st
+from swarm_transport.msg import Robot_Position
 
 
 PER_ROBOT_TOPIC = re.compile(r'^/robot_\d+/(neighbors|cmd_vel|answer|pose)$')
@@ -29,9 +33,38 @@ def per_robot_topics():
     return sorted(t for t, _ in pubs + subs if PER_ROBOT_TOPIC.match(t))
 
 
-def poses(deploy, seed, robots, ticks, timeout, topics=None):
-    """Poses at tick 0 and `ticks`; `topics` (a list) gets the per-robot topics of the run."""
+class PositionObserver(object):
+    """An observer of /flock/position (as rostopic echo is): the robots it heard."""
+
+    def __init__(self):
+        self.lock = threading.Lock()
+        self.ids = set()
+        self.sub = rospy.Subscriber('/flock/position', Robot_Position, self._cb, queue_size=1000)
+
+    def _cb(self, msg):
+        if msg.type == Robot_Position.TYPE_PHYSICAL:
+            with self.lock:
+                self.ids.add(msg.robot_id)
+
+    def heard(self):
+        with self.lock:
+            return sorted(self.ids)
+
+    def wait_all(self, robots, timeout):
+        deadline = time.time() + timeout
+        while time.time() < deadline and len(self.heard()) < robots:
+            time.sleep(0.05)
+        return self.heard()
+
+    def close(self):
+        self.sub.unregister()
+
+
+def poses(deploy, seed, robots, ticks, timeout, topics=None, heard=None):
+    """Poses at tick 0 and `ticks`; `topics` (a list) gets the per-robot topics of the run,
+    `heard` (a dict) the robots an observer of /flock/position heard by deployment."""
     log = st.PositionLog()
+    observer = PositionObserver()
     swarm = st.launch_swarm(robots=robots, seed=seed, lockstep=True, max_ticks=ticks,
                             deploy=deploy)
     try:
@@ -40,10 +73,13 @@ def poses(deploy, seed, robots, ticks, timeout, topics=None):
                                  % (deploy, log.latest_tick()))
         if topics is not None:
             topics.extend(per_robot_topics())
+        if heard is not None:
+            heard[deploy] = observer.heard()
         return log.at(0), log.at(ticks)
     finally:
         swarm.shutdown()
         log.close()
+        observer.close()
 
 
 def poses_one_process(seed, robots, ticks, timeout):
@@ -87,10 +123,11 @@ class DeployEquivalence(unittest.TestCase):
         timeout = rospy.get_param('~timeout_s')
         tol_m = rospy.get_param('~identical_tolerance_m')
         tol_deg = rospy.get_param('~identical_tolerance_deg')
-        process_topics, host_sim_topics = [], []
-        start, by_process = poses('process', seed, robots, ticks, timeout, process_topics)
-        _, by_host = poses('host', seed, robots, ticks, timeout)
-        start_sim, by_host_sim = poses('host_sim', seed, robots, ticks, timeout, host_sim_topics)
+        process_topics, host_sim_topics, heard = [], [], {}
+        start, by_process = poses('process', seed, robots, ticks, timeout, process_topics, heard)
+        _, by_host = poses('host', seed, robots, ticks, timeout, heard=heard)
+        start_sim, by_host_sim = poses('host_sim', seed, robots, ticks, timeout, host_sim_topics,
+                                       heard)
         start_one, by_one = poses_one_process(seed, robots, ticks, timeout)
         self.assertEqual(sorted(by_process), list(range(robots)))
         # The processes talk to the simulator on per-robot topics; with deploy:=host_sim the
@@ -112,6 +149,27 @@ class DeployEquivalence(unittest.TestCase):
                                      % (rid, by_process[rid], other[rid], name))
         self.assertGreater(max(st.moved(start[r], by_host[r]) for r in range(robots)),
                            rospy.get_param('~min_move_m'), 'nobody moved: a trivial run')
+        for deploy in ('process', 'host', 'host_sim'):
+            self.assertEqual(heard[deploy], list(range(robots)),
+                             'lock-step deploy:=%s: an observer of /flock/position heard only '
+                             'these robots' % deploy)
+
+    def test_position_observer_realtime(self):
+        """In real time too an observer of /flock/position hears every robot, whatever the
+        deployment (host_sim: test_host_sim_realtime_runs)."""
+        robots = 5
+        for deploy in ('process', 'host'):
+            observer = PositionObserver()
+            swarm = st.launch_swarm(robots=robots, seed=rospy.get_param('~seed'),
+                                    lockstep=False, deploy=deploy)
+            try:
+                heard = observer.wait_all(robots, rospy.get_param('~timeout_s'))
+            finally:
+                swarm.shutdown()
+                observer.close()
+            self.assertEqual(heard, list(range(robots)),
+                             'real time deploy:=%s: an observer of /flock/position heard only '
+                             'these robots' % deploy)
 
     def test_host_sim_realtime_runs(self):
         """Real time has no equivalence to check, but its direct links must carry rounds to the
@@ -119,6 +177,7 @@ class DeployEquivalence(unittest.TestCase):
         topics."""
         robots = 5
         log = st.PositionLog()
+        observer = PositionObserver()
         swarm = st.launch_swarm(robots=robots, seed=rospy.get_param('~seed'), lockstep=False,
                                 deploy='host_sim')
         try:
@@ -127,9 +186,14 @@ class DeployEquivalence(unittest.TestCase):
             topics = per_robot_topics()
             ticks = log.ticks()
             first, last = log.at(ticks[0]), log.at(ticks[-1])
+            heard = observer.wait_all(robots, rospy.get_param('~timeout_s'))
         finally:
             swarm.shutdown()
             log.close()
+            observer.close()
+        self.assertEqual(heard, list(range(robots)),
+                         'real time deploy:=host_sim: an observer of /flock/position heard only '
+                         'these robots')
         self.assertEqual(topics, [], 'deploy:=host_sim still uses per-robot topics')
         self.assertEqual(sorted(last), list(range(robots)))
         self.assertGreater(max(st.moved(first[r], last[r]) for r in range(robots)),
