@@ -198,7 +198,7 @@ void RunMetrics::Drain() {
 // at thousands of ticks per second, hundreds of frames may come first). A transport's window
 // is TRANSPORT .. UNLOADING. A leader-only mission's runs from its order (the leader leads as
 // soon as it holds it; its first status may come much later, see
-// RobotNode::MissionOutletsReady) to its DONE, or to the first tick the leader is within
+// MissionOutlets::Ready) to its DONE, or to the first tick the leader is within
 // goal_tolerance_m of the target - the leader's own arrival test, which also stands for a DONE
 // that was lost.
 std::optional<std::uint64_t> RunMetrics::WindowStart(const MissionRecord& m) {
