@@ -1,4 +1,5 @@
-// Many robots in one process: RobotNode instances that behave as with a process per robot.
+// Many robots in one process: RobotNode instances that behave as with a process per robot, each
+// over the transport its deployment needs (host_transport.h).
 #ifndef SWARM_TRANSPORT_ROS_ROBOT_HOST_H_
 #define SWARM_TRANSPORT_ROS_ROBOT_HOST_H_
 
@@ -65,7 +66,8 @@ class Simulator;
 // The in-process twin of robots.launch [issue 5]: robot <id> gets the handles
 // NodeHandle("robot_<id>") and NodeHandle("robot_<id>/robot"), so its topics, its ~describe
 // service and its parameters resolve exactly as for the node /robot_<id>/robot; global topics
-// are shared, and roscpp delivers messages between the hosted robots without serialising.
+// are shared, and roscpp delivers messages between the hosted robots without serialising. The
+// swarm-wide topics are subscribed once for all the robots (SubscribeSharedTopics).
 // Real time: a worker thread per queue (HostWorker) ticks its robots from one heap of due times
 // instead of a wall timer per robot (roscpp's timer manager re-sorts all of a process's timers,
 // with a linear search per comparison, at every expiry), and runs their roscpp callbacks.
