@@ -285,4 +285,65 @@ core::MissionBookParams MissionBookParamsOf(const SwarmConfig& config,
   return book;
 }
 
+core::DispatcherPolicyParams DispatcherPolicyParamsOf(const SwarmConfig& config,
+                                                      const DispatcherOptions& options,
+                                                      bool lockstep) {
+  core::DispatcherPolicyParams params;
+  params.book = MissionBookParamsOf(config, options);
+  params.selection.speed_m = config.flocking.speed_m_per_tick;
+  params.selection.turn_deg = config.transport.planner_turn_deg_per_tick;
+  params.selection.corridor_m = config.flocking.MinSeparation();
+  params.lockstep = lockstep;
+  params.start_delay_s = options.start_delay_s;
+  const std::vector<TimedEvent> events = options.events;
+  params.robots_at = [events](const std::set<std::uint16_t>& now, std::uint64_t tick) {
+    return RobotsAt(now, events, tick);
+  };
+  return params;
+}
+
+std::string DelayText(double s) {
+  if (s < 0.0) return "on a signal only";
+  std::ostringstream os;
+  os << "after " << s << " s";
+  return os.str();
+}
+
+std::string StatusProblem(const Mission_Status& status) {
+  if (status.state >= core::kPhaseCount) return "unknown state " + std::to_string(status.state);
+  if (!std::isfinite(status.object_position_x) || !std::isfinite(status.object_position_y) ||
+      !std::isfinite(status.distance_to_target)) {
+    return "a field is not finite";
+  }
+  return "";
+}
+
+std::map<std::uint16_t, core::PlannerRobot> SwarmOf(const std::vector<Robot_Position>& robots) {
+  std::map<std::uint16_t, core::PlannerRobot> swarm;
+  for (const Robot_Position& r : robots) {
+    if (r.type == Robot_Position::TYPE_PHYSICAL) {
+      swarm[r.robot_id] = {{r.pos_x, r.pos_y}, core::Angle(r.angle)};
+    }
+  }
+  return swarm;
+}
+
+Mission_Schedule ToScheduleMsg(const core::DispatcherAnswer& answer) {
+  Mission_Schedule schedule;
+  for (const auto& order : answer.orders) {
+    schedule.mission_ids.push_back(order.first);
+    schedule.start_ticks.push_back(order.second);
+  }
+  schedule.checked_tick = answer.checked_tick;
+  for (const core::RecruitStatist& r : answer.recruiting) {
+    schedule.recruiting.push_back(r.mission_id);
+    schedule.recruit_start_ticks.push_back(r.from_tick);
+    schedule.statist_x.push_back(static_cast<float>(r.at.x));
+    schedule.statist_y.push_back(static_cast<float>(r.at.y));
+    schedule.statist_ids.push_back(r.statist_id);
+    schedule.statist_copies.push_back(static_cast<std::uint8_t>(r.copies));
+  }
+  return schedule;
+}
+
 }  // namespace swarm_transport

@@ -17,8 +17,8 @@
 #include "swarm_transport/Neighbors.h"
 #include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/Robot_Positions.h"
+#include "swarm_transport/core/dispatcher_policy.h"
 #include "swarm_transport/core/metrics.h"
-#include "swarm_transport/core/mission_book.h"
 #include "swarm_transport/core/random.h"
 #include "swarm_transport/core/run_metrics.h"
 #include "swarm_transport/ros/common/conversions.h"
@@ -43,6 +43,40 @@ using Clock = std::chrono::steady_clock;
 double Seconds(Clock::time_point from) {
   return std::chrono::duration<double>(Clock::now() - from).count();
 }
+
+// The dispatcher of a batch run: its policy as the dispatcher node has it without private
+// parameters; its order is released at tick 0, its LOADED / UNLOADED go into the next relay.
+class BatchDispatcher : public core::DispatcherOutlet {
+ public:
+  BatchDispatcher(const SwarmConfig& config, std::uint64_t* tick, LockstepEngine* engine)
+      : engine_(engine), policy_(ParamsOf(config, tick), this) {}
+  core::DispatcherPolicy& policy() { return policy_; }
+  std::optional<New_Mission>& order() { return order_; }
+
+  void Order(const core::MissionSpec& spec, std::uint64_t start_tick) override {
+    order_ = ToNewMission(spec);
+    order_->start_tick = start_tick;
+  }
+  void Event(const core::DueSignal& signal, const char* /*why*/) override {
+    engine_->relay().Add(names::kDispatcherNode, ToEventMsg(signal));
+  }
+  void Rejected(const core::MissionSpec&, const std::string&) override {}
+  void Aborted(const core::MissionSpec&, const std::string&) override {}
+  void Log(bool, const std::string&) override {}
+
+ private:
+  static core::DispatcherPolicyParams ParamsOf(const SwarmConfig& config, std::uint64_t* tick) {
+    core::DispatcherPolicyParams params =
+        DispatcherPolicyParamsOf(config, DispatcherOptionsOf(config), true);
+    const double period_s = config.tick_period_s;
+    params.clock = [tick, period_s] { return static_cast<double>(*tick) * period_s; };
+    return params;
+  }
+
+  LockstepEngine* engine_;
+  core::DispatcherPolicy policy_;
+  std::optional<New_Mission> order_;
+};
 
 class Run {
  public:
@@ -76,8 +110,7 @@ class Run {
   std::unique_ptr<LockstepEngine> engine_;
   std::vector<RobotSession> robots_;  // in world order (ascending id)
   std::set<std::uint16_t> known_robots_;
-  std::optional<New_Mission> order_;         // released at tick 0
-  std::unique_ptr<core::MissionBook> book_;  // the dispatcher's
+  std::unique_ptr<BatchDispatcher> dispatcher_;  // with a mission; its order released at tick 0
   std::unique_ptr<core::RunMetrics> metrics_;
   std::unique_ptr<LeaderTrack> track_;
   std::string record_path_;
@@ -183,23 +216,25 @@ bool Run::SetUp(const XmlRpc::XmlRpcValue& base_config, std::string* error) {
   }
 
   if (job_.has_mission) {
-    // The dispatcher's ~submit (a dispatcher without private parameters): validated against
-    // the swarm, then published as its order.
-    book_ = std::make_unique<core::MissionBook>(
-        MissionBookParamsOf(config_, DispatcherOptionsOf(config_)));
+    // The dispatcher's ~submit: validated against the swarm, then published as its order.
+    dispatcher_ = std::make_unique<BatchDispatcher>(config_, &tick_, engine_.get());
+    std::vector<Robot_Position> swarm;  // as /flock/positions carries it
+    for (const auto& entry : world_->robots()) {
+      swarm.push_back(ToRobotPosition(entry.first, entry.second.pose));
+    }
+    dispatcher_->policy().SetSwarm(0, SwarmOf(swarm));
     const core::MissionBook::Verdict verdict =
-        book_->Submit(ToMissionSpec(job_.mission), "service", true, false, known_robots_, 0.0);
+        dispatcher_->policy().Submit(ToMissionSpec(job_.mission), "service", true, true, 0);
     if (!verdict.accepted) {
       *error = "the dispatcher rejected the mission: " + verdict.message;
       return false;
     }
-    order_ = ToNewMission(verdict.spec);
-    order_->start_tick = 0;
+    const New_Mission& order = *dispatcher_->order();
     // The recorder follows it from the tick it enters (tick 0).
-    RecordOrder(*order_, config_, metrics_.get());
+    RecordOrder(order, config_, metrics_.get());
     if (job_.kind == "leader") {
       track_ = std::make_unique<LeaderTrack>(static_cast<std::uint16_t>(job_.leader_id),
-                                             core::Vec2{order_->target_x, order_->target_y},
+                                             core::Vec2{order.target_x, order.target_y},
                                              config_.flocking.local_range_m);
     }
   }
@@ -264,13 +299,8 @@ void Run::Observe(const Mission_Status& status) {
     if (status.tick > 0) last_status_ = status;
   }
   // The dispatcher: LOADED / UNLOADED at their stamped ticks, into the next tick's relay.
-  // (MissionDispatcher::OnStatus, which checks the same before it books a status.)
-  if (book_ && status.state < core::kPhaseCount && std::isfinite(status.object_position_x) &&
-      std::isfinite(status.object_position_y) && std::isfinite(status.distance_to_target)) {
-    const double now_s = static_cast<double>(tick_) * config_.tick_period_s;
-    for (const core::DueSignal& due : book_->OnStatus(ToMissionReport(status), now_s).signals) {
-      engine_->relay().Add(names::kDispatcherNode, ToEventMsg(due));
-    }
+  if (dispatcher_ && StatusProblem(status).empty()) {
+    dispatcher_->policy().OnStatus(ToMissionReport(status), "robots");
   }
   // The recorder.
   RecordStatus(status, metrics_.get());
@@ -290,7 +320,9 @@ void Run::Tick() {
     over_ = true;
     return;
   }
-  if (tick_ == 0 && order_) engine_->relay().AddOrder(names::kDispatcherNode, *order_);
+  if (tick_ == 0 && dispatcher_) {
+    engine_->relay().AddOrder(names::kDispatcherNode, *dispatcher_->order());
+  }
   engine_->ReleaseOrders(tick_);  // one the books refuse, the robots refuse too
   engine_->BeginRound(tick_, static_cast<double>(tick_) * config_.tick_period_s, nullptr, {});
   TakeFrame(engine_->truth());

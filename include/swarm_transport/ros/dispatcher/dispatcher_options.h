@@ -6,9 +6,14 @@
 #include <ros/node_handle.h>
 #include <xmlrpcpp/XmlRpcValue.h>
 
+#include <map>
 #include <string>
 #include <vector>
 
+#include "swarm_transport/Mission_Schedule.h"
+#include "swarm_transport/Mission_Status.h"
+#include "swarm_transport/Robot_Position.h"
+#include "swarm_transport/core/dispatcher_policy.h"
 #include "swarm_transport/core/mission.h"
 #include "swarm_transport/core/mission_book.h"
 #include "swarm_transport/ros/common/event_schedule.h"
@@ -64,6 +69,24 @@ DispatcherOptions DispatcherOptionsOf(const SwarmConfig& config);
 // The mission book the options describe.
 core::MissionBookParams MissionBookParamsOf(const SwarmConfig& config,
                                             const DispatcherOptions& options);
+
+// The dispatcher's policy the options describe (its clock is the caller's to set).
+core::DispatcherPolicyParams DispatcherPolicyParamsOf(const SwarmConfig& config,
+                                                      const DispatcherOptions& options,
+                                                      bool lockstep);
+
+// A delay for the log: "after S s", or "on a signal only" when negative.
+std::string DelayText(double s);
+
+// Why the dispatcher ignores a first leader's Mission_Status (an unknown state, a field that is
+// not finite), or empty.
+std::string StatusProblem(const Mission_Status& status);
+
+// The physical robots of a /flock/positions with their poses, by id: the swarm the policy knows.
+std::map<std::uint16_t, core::PlannerRobot> SwarmOf(const std::vector<Robot_Position>& robots);
+
+// The lock-step answer as the simulator's session takes it.
+Mission_Schedule ToScheduleMsg(const core::DispatcherAnswer& answer);
 
 }  // namespace swarm_transport
 
