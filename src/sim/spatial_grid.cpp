@@ -7,7 +7,7 @@ namespace {
 // The grid's cells are at least arena / this wide (a zero or tiny search distance stays finite).
 constexpr double kMaxCellsPerSide = 1.0e6;
 // A dense table when it has at most this many cells per point (plus a few for small swarms).
-constexpr std::uint64_t kDenseCellsPerPoint = 4;
+constexpr std::uint64_t kDenseCellsPerPoint = 8;
 constexpr std::uint64_t kDenseCellsExtra = 64;
 
 }  // namespace
