@@ -50,8 +50,9 @@ Angle CircularMean(const std::vector<Angle>& angles, bool* defined,
   double sum_y = 0.0;
   for (std::size_t i = 0; i < angles.size(); ++i) {
     const double weight = weights.empty() ? 1.0 : weights[i];
-    sum_x += weight * std::cos(angles[i].radians());
-    sum_y += weight * std::sin(angles[i].radians());
+    const double radians = angles[i].radians();
+    sum_x += weight * std::cos(radians);
+    sum_y += weight * std::sin(radians);
   }
   const bool is_defined = std::hypot(sum_x, sum_y) >= kUndefinedMeanLength;
   if (defined != nullptr) *defined = is_defined;

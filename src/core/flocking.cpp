@@ -28,6 +28,14 @@ bool IsOtherRobot(const Perception& in, const Neighbour& n) {
   return n.type == kTypePhysical && n.id != in.self_id;
 }
 
+// True when Distance(a, b) is certainly not greater than d (d >= 0), decided without a square
+// root (FartherThan's other side): the squares' rounding error is far below the 1e-9 margin,
+// and hypot is within an ulp of the exact distance, so whenever this says true the rounded
+// Distance() is <= d too.
+bool CertainlyWithin(Vec2 a, Vec2 b, double d) {
+  return SquaredDistance(a, b) < d * d * (1.0 - 1e-9);
+}
+
 // How far `value` lies outside [lo, hi] (0 inside).
 double Excess(double value, double lo, double hi) {
   return std::max({0.0, lo - value, value - hi});
@@ -92,7 +100,9 @@ std::vector<Neighbour> NeighbourhoodOf(const Perception& in, const FlockingParam
   self.id = in.self_id;
   self.position = in.self.position;
   self.heading = in.self.heading;
-  std::vector<Neighbour> neighbourhood{self};
+  std::vector<Neighbour> neighbourhood;
+  neighbourhood.reserve(in.others.size() + 1);
+  neighbourhood.push_back(self);
   // Candidates not linked yet; statists join at once.
   std::vector<const Neighbour*> candidates;
   candidates.reserve(in.others.size());
@@ -108,12 +118,15 @@ std::vector<Neighbour> NeighbourhoodOf(const Perception& in, const FlockingParam
   // Breadth first from itself: a disc stops after the first ring. Every robot linked so far is
   // tried once as the source of links to the rest (statists link nobody: they count, but a
   // chain runs through robots).
-  std::vector<Vec2> frontier{in.self.position};
+  std::vector<Vec2> frontier;
+  if (p.neighbourhood == Neighbourhood::kChain) frontier.reserve(candidates.size() + 1);
+  frontier.push_back(in.self.position);
   for (std::size_t next = 0; next < frontier.size() && !candidates.empty(); ++next) {
     const Vec2 from = frontier[next];
     auto linked = std::partition(candidates.begin(), candidates.end(), [&](const Neighbour* n) {
       return FartherThan(from, n->position, p.local_range_m) ||
-             Distance(from, n->position) > p.local_range_m;
+             (!CertainlyWithin(from, n->position, p.local_range_m) &&
+              Distance(from, n->position) > p.local_range_m);
     });
     for (auto it = linked; it != candidates.end(); ++it) {
       neighbourhood.push_back(**it);
@@ -164,6 +177,7 @@ Angle DesiredHeading(const Perception& in, const FlockingParams& p, Rng& rng, bo
   const std::vector<Neighbour> neighbourhood = NeighbourhoodOf(in, p);
   if (neighbourhood_size != nullptr) *neighbourhood_size = NeighbourhoodSize(neighbourhood);
   std::vector<Angle> headings;
+  headings.reserve(neighbourhood.size());
   Vec2 sum;
   for (const Neighbour& n : neighbourhood) {
     // Statists stand still: they have a place but no heading to align with.

@@ -1,6 +1,8 @@
 #include "swarm_transport/core/kinematics.h"
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <stdexcept>
 
 namespace swarm_transport {
@@ -9,6 +11,15 @@ namespace {
 
 // Below this turn rate the arc formula divides by ~0: treat the motion as a straight line.
 constexpr double kStraightAngularRadPerS = 1e-12;
+
+// The very same double (every bit: -0 is not 0).
+bool SameBits(double a, double b) {
+  std::uint64_t x = 0;
+  std::uint64_t y = 0;
+  std::memcpy(&x, &a, sizeof x);
+  std::memcpy(&y, &b, sizeof y);
+  return x == y;
+}
 
 }  // namespace
 
@@ -33,7 +44,17 @@ Pose2 Integrate(const Pose2& pose, Velocity velocity, double duration_s, Heading
   if (!(std::fabs(velocity.angular) < kStraightAngularRadPerS)) {
     return Integrate(pose, velocity, duration_s);
   }
-  const double theta = pose.heading.radians();
+  // Integrate's straight branch with the same expressions; what depends on the heading alone
+  // (radians, cos, sin) or on heading and turn alone (the heading after) from `trig` when
+  // those are the very doubles it holds.
+  const double degrees = pose.heading.degrees();
+  const double turn = velocity.angular * duration_s;
+  if (!trig->after_valid || !SameBits(degrees, trig->degrees)) {
+    trig->degrees = degrees;
+    trig->radians = pose.heading.radians();
+    trig->after_valid = false;
+  }
+  const double theta = trig->radians;
   if (!trig->valid || !(theta == trig->theta_rad) ||
       std::signbit(theta) != std::signbit(trig->theta_rad)) {
     trig->theta_rad = theta;
@@ -41,12 +62,15 @@ Pose2 Integrate(const Pose2& pose, Velocity velocity, double duration_s, Heading
     trig->sin = std::sin(theta);
     trig->valid = true;
   }
-  // Integrate's straight branch with the same expressions.
-  const double turn = velocity.angular * duration_s;
+  if (!trig->after_valid || !SameBits(turn, trig->turn_rad)) {
+    trig->turn_rad = turn;
+    trig->after = Angle::FromRadians(theta + turn);
+    trig->after_valid = true;
+  }
   const double length = velocity.linear * duration_s;
   Pose2 result;
   result.position = {pose.position.x + length * trig->cos, pose.position.y + length * trig->sin};
-  result.heading = Angle::FromRadians(theta + turn);
+  result.heading = trig->after;
   return result;
 }
 

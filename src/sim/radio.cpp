@@ -75,14 +75,18 @@ void Radio::Hear(std::size_t i, RadioRound* out) {
   out->extras.clear();
   out->peers.clear();
   const std::uint16_t id = ids_[i];
-  const auto mark = [this](std::size_t j) {
-    heard_[j] = 1;
+  // Losses are drawn only when there are any (Lost() itself is a call through the library's
+  // symbol table); local pointers, as the lists' pushes would make the compiler reload them.
+  const bool lossy = params_.loss > 0.0;
+  char* const heard = heard_.data();
+  const auto mark = [this, heard](std::size_t j) {
+    heard[j] = 1;
     touched_.push_back(j);
   };
-  const std::vector<std::uint32_t>& start = table_.start;
-  const std::vector<std::uint32_t>& index = table_.index;
+  const std::uint32_t* const start = table_.start.data();
+  const std::uint32_t* const index = table_.index.data();
   for (std::uint32_t k = start[i]; k < start[i + 1]; ++k) {
-    if (Lost()) continue;  // a lost neighbour may still be heard as a mission peer
+    if (lossy && Lost()) continue;  // a lost neighbour may still be heard as a mission peer
     const std::size_t j = index[k];
     out->in_range.push_back(j);
     mark(j);
@@ -97,12 +101,13 @@ void Radio::Hear(std::size_t i, RadioRound* out) {
       const std::size_t ring_end = ring_.size();
       for (std::size_t k = ring_begin; k < ring_end; ++k) {
         const std::size_t near = ring_[k];
-        for (std::uint32_t f = start[near]; f < start[near + 1]; ++f) {
+        const std::uint32_t near_end = start[near + 1];
+        for (std::uint32_t f = start[near]; f < near_end; ++f) {
           const std::size_t j = index[f];
-          if (heard_[j]) continue;
+          if (heard[j]) continue;
           mark(j);
           ring_.push_back(j);
-          if (!Lost()) out->chain.push_back(j);
+          if (!(lossy && Lost())) out->chain.push_back(j);
         }
       }
       ring_begin = ring_end;
@@ -118,7 +123,7 @@ void Radio::Hear(std::size_t i, RadioRound* out) {
       const double dy = e.position.y - self.y;
       if (dx * dx + dy * dy > range2) continue;
     }
-    if (Lost()) continue;
+    if (lossy && Lost()) continue;
     out->extras.push_back(k);
   }
   // The mission channel: every other member of its missions, wherever it is.

@@ -11,6 +11,7 @@
 #include "swarm_transport/core/kinematics.h"
 #include "swarm_transport/core/modes.h"
 #include "swarm_transport/core/random.h"
+#include "swarm_transport/sim/spatial_grid.h"
 
 namespace swarm_transport {
 namespace sim {
@@ -89,6 +90,9 @@ class World2D {
   struct NeighbourTable {
     std::vector<std::uint32_t> start;  // robots() + 1 entries
     std::vector<std::uint32_t> index;  // ascending within each robot's range
+    // The search's scratch (kept for the next call).
+    std::vector<core::Vec2> points;
+    SpatialGrid grid;
   };
   void NeighbourIndices(double range_m, NeighbourTable* out) const;
 
@@ -111,6 +115,7 @@ class World2D {
   std::vector<core::Vec2> push_points_;
   std::vector<std::pair<std::size_t, std::size_t>> push_pairs_;
   std::vector<std::uint8_t> push_touched_;
+  SpatialGrid push_grid_;
 };
 
 // Poses of `n` robots at random positions inside [r, size - r]^2, centres at least

@@ -1,0 +1,95 @@
+// A uniform grid over points of the arena for "who is within d of whom" (the radio's range, the
+// robots' contacts). Only an accelerator: its callers check every distance themselves and sort
+// what they found, so their results never depend on the grid.
+#ifndef SWARM_TRANSPORT_SIM_SPATIAL_GRID_H_
+#define SWARM_TRANSPORT_SIM_SPATIAL_GRID_H_
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "swarm_transport/core/geometry.h"
+
+namespace swarm_transport {
+namespace sim {
+
+// Cells of the search distance itself (however big the arena), the points stored in compressed
+// rows by cell. When the arena has at most a few cells per point (the radio's range at any
+// density a flock spreads to) the cells are a dense table, so that the 3x3 cells around a
+// point are three contiguous runs; else (a robot's contact distance in a large arena) the cells
+// are hashed into about twice as many buckets as points, and a bucket may also hold points of
+// other cells (the callers' distance checks drop them). Memory and set-up are O(points) either
+// way. Until 2026-11-25 the cells were at least arena / sqrt(N) wide, so that a flock crowded
+// into a few cells made every search scan the whole crowd (at 2,000 robots the push-apart
+// search was 18 % of a real-time host_sim process).
+class SpatialGrid {
+ public:
+  // Sorts `points` (kept by reference until the next Build) into cells of `cell_m`; the
+  // grid's memory is kept from one Build to the next.
+  void Build(const std::vector<core::Vec2>& points, double world_size_m, double cell_m);
+
+  // Calls f(j) once for every point j in the cells (or their buckets) of the 3x3 cells around
+  // point i (j may equal i). Every point within cell_m of point i is among them.
+  template <typename F>
+  void ForNearby(std::size_t i, F f) const {
+    const int cx = CellOf((*points_)[i].x);
+    const int cy = CellOf((*points_)[i].y);
+    const int x0 = std::max(0, cx - 1);
+    const int x1 = std::min(side_ - 1, cx + 1);
+    const int y0 = std::max(0, cy - 1);
+    const int y1 = std::min(side_ - 1, cy + 1);
+    if (dense_) {
+      for (int y = y0; y <= y1; ++y) {
+        const std::size_t row = static_cast<std::size_t>(y) * static_cast<std::size_t>(side_);
+        const std::uint32_t end = start_[row + static_cast<std::size_t>(x1) + 1];
+        for (std::uint32_t k = start_[row + static_cast<std::size_t>(x0)]; k < end; ++k) {
+          f(static_cast<std::size_t>(order_[k]));
+        }
+      }
+      return;
+    }
+    std::uint32_t seen[9];
+    int n_seen = 0;
+    for (int y = y0; y <= y1; ++y) {
+      for (int x = x0; x <= x1; ++x) {
+        const std::uint32_t b = Bucket(x, y);
+        // Two of the nine cells in one bucket: its points once.
+        if (std::find(seen, seen + n_seen, b) != seen + n_seen) continue;
+        seen[n_seen++] = b;
+        for (std::uint32_t k = start_[b]; k < start_[b + 1]; ++k) {
+          f(static_cast<std::size_t>(order_[k]));
+        }
+      }
+    }
+  }
+
+ private:
+  int CellOf(double v) const {
+    const int c = static_cast<int>(std::floor(v / cell_m_));
+    return std::min(side_ - 1, std::max(0, c));
+  }
+  std::uint32_t Bucket(int x, int y) const {
+    const std::uint64_t h =
+        (static_cast<std::uint64_t>(static_cast<std::uint32_t>(x)) * 0x9E3779B97F4A7C15ULL) ^
+        (static_cast<std::uint64_t>(static_cast<std::uint32_t>(y)) * 0xC2B2AE3D27D4EB4FULL);
+    return static_cast<std::uint32_t>((h ^ (h >> 29)) & mask_);
+  }
+  // The cell (dense) or bucket (hashed) of a point.
+  std::uint32_t Slot(core::Vec2 p) const;
+
+  const std::vector<core::Vec2>* points_ = nullptr;
+  double cell_m_ = 1.0;
+  int side_ = 1;
+  bool dense_ = false;
+  std::uint64_t mask_ = 0;
+  std::vector<std::uint32_t> start_;  // slots + 1 entries
+  std::vector<std::uint32_t> order_;  // point indices by slot
+  std::vector<std::uint32_t> slot_of_;
+};
+
+}  // namespace sim
+}  // namespace swarm_transport
+
+#endif  // SWARM_TRANSPORT_SIM_SPATIAL_GRID_H_
