@@ -159,7 +159,7 @@ TEST(LeaderStepTest, WaitsWhileTheSwarmCentroidIsBeyondHalfTheRange) {
 }
 
 TEST(LeaderStepTest, WithWaitBehindWaitsOnlyForASwarmBehindIt) {
-  // The thesis's leader code waited only while its swarm's centroid was more than 90 deg off
+  // The thesis's leader code meant to wait only while its swarm's centroid was more than 90 deg off
   // its course: a swarm ahead or beside it is led, not waited for.
   const LeaderParams behind;  // the default
   ASSERT_TRUE(behind.wait_behind);

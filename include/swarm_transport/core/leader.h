@@ -16,7 +16,8 @@ struct LeaderParams {
   double wait_fraction = 0.5;      // wait while the swarm centroid is farther than this * range
   bool keep_flock = true;          // wait for / give up on the swarm (leader-only missions)
   bool wait_behind = true;         // wait only while that centroid is behind (more than 90 deg off
-                                   // the course), as the thesis's leader code did
+                                   // the course), as the thesis's leader code meant to (its
+                                   // arithmetic: wait_evaluated_angles)
   // Decide "behind" with the angle arithmetic of the thesis's evaluated §7.3 leader code
   // (RobotSwarms 68b2ba6, robot/nodes/Leader.cpp 76-81 with basics/Angle.h
   // normalizeToCircularAngle): r = fmod(bearing to the centroid in (-180, 180] - course in
