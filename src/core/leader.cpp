@@ -13,6 +13,16 @@ constexpr std::uint8_t kTypePhysical = 0;
 // Steering this close to the goal's bearing means heading for the goal: do not overshoot it.
 constexpr double kAtGoalBearingDeg = 1.0;
 
+// The evaluated leader code's wait test (see LeaderParams::wait_evaluated_angles): its relative
+// angle kept fmod's sign, and its "circular" normalisation turned a negative r into 360 - r
+// (not 360 + r), so every centroid to the right of the course fell outside (90, 270).
+bool EvaluatedCodeWaits(Angle to_centroid, Angle course) {
+  const double bearing = Angle::SignedDifference(to_centroid, Angle(0));  // (-180, 180]
+  double r = std::fmod(bearing - course.degrees(), 360.0);
+  if (r < 0.0) r = 360.0 - r;
+  return r > 90.0 && r < 270.0;
+}
+
 }  // namespace
 
 std::string LeaderParams::Validate() const {
@@ -65,8 +75,11 @@ LeaderDecision LeaderStep(const Perception& in, const FlockingParams& p, const L
     } else {
       const Vec2 centroid = sum * (1.0 / swarm_size);
       const bool far = Distance(position, centroid) > lp.wait_fraction * p.local_range_m;
-      const bool behind = !lp.wait_behind || std::fabs(Angle::SignedDifference(
-                                                 Bearing(position, centroid), steer)) > 90.0;
+      const Angle to_centroid = Bearing(position, centroid);
+      const bool behind =
+          lp.wait_evaluated_angles
+              ? EvaluatedCodeWaits(to_centroid, steer)
+              : !lp.wait_behind || std::fabs(Angle::SignedDifference(to_centroid, steer)) > 90.0;
       if (far && behind) {
         ++memory->swarm_waits;
         return decision;

@@ -55,7 +55,7 @@ MEASURED_KEYS = {'source', 'metrics', 'rows'}
 SETTING_KEYS = {'name', 'label', 'x', 'group', 'robots', 'config', 'mission', 'placement',
                 'max_ticks'}
 MISSION_KEYS = {'id', 'object', 'target', 'leaders', 'group', 'leader', 'mode'}
-CLUSTER_KEYS = {'origin', 'spacing_m', 'min_distance_m'}
+CLUSTER_KEYS = {'origin', 'spacing_m', 'side_m', 'min_distance_m', 'heading_deg'}
 
 
 class PresetError(ValueError):
@@ -208,6 +208,12 @@ def validate(preset, name):
                     fail('thesis_measured: row %s: %s is not a number' % (row.get('label'), m))
     if p.get('cluster') is not None and set(p['cluster']) - CLUSTER_KEYS:
         fail('unknown cluster keys %s' % sorted(set(p['cluster']) - CLUSTER_KEYS))
+    for key, ok in (('side_m', lambda v: v > 0.0), ('heading_deg', lambda v: 0.0 <= v <= 360.0)):
+        value = (p.get('cluster') or {}).get(key)
+        if value is not None and (isinstance(value, bool) or not isinstance(value, (int, float))
+                                  or not math.isfinite(value) or not ok(value)):
+            fail('cluster %s must be a number %s but is %r'
+                 % (key, '> 0' if key == 'side_m' else 'in [0, 360]', value))
     return p
 
 
@@ -256,12 +262,18 @@ def cluster_placement(robots, seed, local_range_m, radius_m, world_size_m, clust
     """Random poses 'close enough to count as one swarm but otherwise random' in the arena's
     bottom-left corner (thesis 7.3): uniform in a square that grows with the group, at least
     min_distance_m apart, redrawn until the within-local-range graph is connected. Lines
-    'x y theta_deg' for placement:=file."""
+    'x y theta_deg' for placement:=file. Headings are uniform random, or with heading_deg every
+    robot faces that way (the thesis's §7.3 leader code teleported each robot facing the
+    leader's course: RobotSwarms 68b2ba6, robot/nodes/Leader.cpp 112-130)."""
     cluster = cluster or {}
+    heading = cluster.get('heading_deg')
     origin = cluster.get('origin', [0.3, 0.3])
     spacing = float(cluster.get('spacing_m', 0.3))
     min_d = float(cluster.get('min_distance_m', 2.0 * radius_m * 1.1 * 1.5))
-    side = max(spacing, spacing * math.sqrt(robots))
+    # side_m: a square of that side for every group size (the thesis's leader code: +-(local
+    # range - 0.1) around the leader's start, 68b2ba6 Leader.cpp 59-60, 112-128).
+    side = (float(cluster['side_m']) if 'side_m' in cluster else
+            max(spacing, spacing * math.sqrt(robots)))
     lo = (max(origin[0], radius_m), max(origin[1], radius_m))
     hi = (min(lo[0] + side, world_size_m - radius_m), min(lo[1] + side, world_size_m - radius_m))
     rng = random.Random(seed * 7919 + robots)
@@ -277,7 +289,8 @@ def cluster_placement(robots, seed, local_range_m, radius_m, world_size_m, clust
                 raise PresetError('cannot place %d robots %.3f m apart in a %.2f m square'
                                   % (robots, min_d, side))
         if core_metrics.components(pts, local_range_m)[0] == 1:
-            return [(x, y, rng.uniform(0.0, 360.0)) for x, y in pts]
+            poses = [(x, y, rng.uniform(0.0, 360.0)) for x, y in pts]
+            return poses if heading is None else [(x, y, float(heading)) for x, y, _ in poses]
     raise PresetError('no connected cluster of %d robots found (local range %.2f)'
                       % (robots, local_range_m))
 

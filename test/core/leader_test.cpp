@@ -159,7 +159,7 @@ TEST(LeaderStepTest, WaitsWhileTheSwarmCentroidIsBeyondHalfTheRange) {
 }
 
 TEST(LeaderStepTest, WithWaitBehindWaitsOnlyForASwarmBehindIt) {
-  // The thesis's leader code waited only while its swarm's centroid was more than 90 deg off
+  // The thesis's leader code meant to wait only while its swarm's centroid was more than 90 deg off
   // its course: a swarm ahead or beside it is led, not waited for.
   const LeaderParams behind;  // the default
   ASSERT_TRUE(behind.wait_behind);
@@ -188,6 +188,43 @@ TEST(LeaderStepTest, WithWaitBehindWaitsOnlyForASwarmBehindIt) {
     LeaderStep(in, Params(), anywhere, goal, Angle(0), rng, kTick, &plain);
     EXPECT_EQ(plain.swarm_waits, 1u);
   }
+}
+
+TEST(LeaderStepTest, WithEvaluatedAnglesWaitsOnlyForASwarmBehindOnItsLeft) {
+  // The evaluated leader code's arithmetic: on a course of 45 deg it waited only for a
+  // centroid bearing in (135, 180] deg; one straight behind (225) or behind on the right (300)
+  // did not hold it, although wait_behind would.
+  LeaderParams evaluated;
+  evaluated.wait_evaluated_angles = true;
+  const Vec2 goal{8.0, 8.0};  // course 45 deg from (5, 5)
+  struct Case {
+    double bearing_deg;
+    bool waits_evaluated, waits_behind;
+  };
+  const Case cases[] = {{100.0, false, false}, {140.0, true, true},  {170.0, true, true},
+                        {190.0, false, true},  {225.0, false, true}, {300.0, false, true},
+                        {45.0, false, false}};
+  for (const Case& c : cases) {
+    const double rad = c.bearing_deg * M_PI / 180.0;
+    Perception in = At(5.0, 5.0, 45.0);
+    in.others = {Robot(2, 5.0 + 0.7 * std::cos(rad), 5.0 + 0.7 * std::sin(rad))};
+    for (const bool use_evaluated : {true, false}) {
+      Rng rng(1, 0);
+      LeaderMemory memory;
+      const LeaderDecision d = LeaderStep(in, Params(), use_evaluated ? evaluated : LeaderParams(),
+                                          goal, Angle(45), rng, kTick, &memory);
+      const bool waits = use_evaluated ? c.waits_evaluated : c.waits_behind;
+      EXPECT_EQ(memory.swarm_waits, waits ? 1u : 0u) << c.bearing_deg << " " << use_evaluated;
+      EXPECT_EQ(d.move.outcome, waits ? MoveOutcome::kStand : MoveOutcome::kStraight);
+    }
+  }
+  // A centroid within half the range never holds it, whatever its side.
+  Perception near = At(5.0, 5.0, 45.0);
+  near.others = {Robot(2, 4.7, 5.1)};
+  Rng rng(1, 0);
+  LeaderMemory memory;
+  LeaderStep(near, Params(), evaluated, goal, Angle(45), rng, kTick, &memory);
+  EXPECT_EQ(memory.swarm_waits, 0u);
 }
 
 TEST(LeaderStepTest, MovesWhileTheSwarmCentroidIsWithinHalfTheRange) {

@@ -4,6 +4,8 @@ core's SwarmComponents through experiment_batch --metrics)."""
 import copy
 import unittest
 
+import yaml
+
 from swarm_transport import core_metrics
 from swarm_transport import experiment_presets as presets
 
@@ -174,6 +176,30 @@ class Presets(unittest.TestCase):
         for x, y, theta in a:
             self.assertTrue(0.05 <= x <= 11.088889 - 0.05 and 0.05 <= y <= 11.088889 - 0.05)
             self.assertTrue(0.0 <= theta <= 360.0)
+
+    def test_a_cluster_may_fix_its_side_and_every_heading(self):
+        # The thesis's leader code: every robot facing the course in one square of fixed side.
+        cluster = {'origin': [1.1, 1.1], 'side_m': 1.8, 'heading_deg': 45.0,
+                   'min_distance_m': 0.2}
+        for n in (6, 26):
+            poses = presets.cluster_placement(n, 5, 1.0, 0.05, 11.088889, cluster)
+            self.assertEqual(len(poses), n)
+            for x, y, theta in poses:
+                self.assertTrue(1.1 <= x <= 2.9 and 1.1 <= y <= 2.9, (x, y))
+                self.assertEqual(theta, 45.0)
+        # Without them: the same positions as before, random headings.
+        plain = presets.cluster_placement(12, 3, 1.0, 0.05, 11.088889)
+        facing = presets.cluster_placement(12, 3, 1.0, 0.05, 11.088889, {'heading_deg': 90.0})
+        self.assertEqual([p[:2] for p in plain], [p[:2] for p in facing])
+        self.assertNotEqual(plain, facing)
+        with open(presets.preset_path('leader_group_cohesion')) as f:
+            shipped = yaml.safe_load(f)
+        for bad in ({'side_m': 0.0}, {'side_m': 'big'}, {'heading_deg': 400.0},
+                    {'heading_deg': True}):
+            preset = copy.deepcopy(shipped)
+            preset['cluster'].update(bad)
+            with self.assertRaisesRegex(presets.PresetError, 'cluster'):
+                presets.validate(preset, 'bad')
 
     def test_the_leader_of_a_run_is_fixed_by_its_seed(self):
         leaders = [presets.leader_of(seed, 25) for seed in range(1, 41)]

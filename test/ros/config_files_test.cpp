@@ -132,6 +132,20 @@ TEST(ConfigValidation, LoadingSpreadIsReadWithItsTicks) {
   EXPECT_EQ(config.loading_spread_ticks, 12);
 }
 
+TEST(ConfigValidation, LeaderWaitEvaluatedAnglesIsReadAsABool) {
+  SwarmConfig config;
+  EXPECT_FALSE(config.leader.wait_evaluated_angles);
+  std::string error;
+  XmlRpc::XmlRpcValue on = Dict("leader_wait_evaluated_angles", XmlRpc::XmlRpcValue(true));
+  ASSERT_TRUE(ConfigFromXmlRpc(on, &config, &error)) << error;
+  EXPECT_TRUE(config.leader.wait_evaluated_angles);
+  XmlRpc::XmlRpcValue bad =
+      Dict("leader_wait_evaluated_angles", XmlRpc::XmlRpcValue(std::string("yes")));
+  EXPECT_FALSE(ConfigFromXmlRpc(bad, &config, &error));
+  EXPECT_NE(error.find("leader_wait_evaluated_angles"), std::string::npos) << error;
+  EXPECT_TRUE(config.leader.wait_evaluated_angles);  // unchanged by the refused dict
+}
+
 TEST(ConfigValidation, IntegersAreAcceptedWhereNumbersAreExpected) {
   XmlRpc::XmlRpcValue d = Dict("free_will_deg", XmlRpc::XmlRpcValue(45));
   SwarmConfig config;

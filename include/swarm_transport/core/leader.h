@@ -16,7 +16,15 @@ struct LeaderParams {
   double wait_fraction = 0.5;      // wait while the swarm centroid is farther than this * range
   bool keep_flock = true;          // wait for / give up on the swarm (leader-only missions)
   bool wait_behind = true;         // wait only while that centroid is behind (more than 90 deg off
-                                   // the course), as the thesis's leader code did
+                                   // the course), as the thesis's leader code meant to (its
+                                   // arithmetic: wait_evaluated_angles)
+  // Decide "behind" with the angle arithmetic of the thesis's evaluated §7.3 leader code
+  // (RobotSwarms 68b2ba6, robot/nodes/Leader.cpp 76-81 with basics/Angle.h
+  // normalizeToCircularAngle): r = fmod(bearing to the centroid in (-180, 180] - course in
+  // [0, 360), 360), a negative r turned into 360 - r, and it waits only for 90 < r < 270. On a
+  // course of 45 deg that is a centroid bearing of 135-180 deg (behind on the left); a swarm
+  // straight behind it or behind on its right never holds it. Replaces wait_behind's test.
+  bool wait_evaluated_angles = false;
   // (ext) After this many blocked ticks in a row the leader swerves like any robot (SPEC 4
   // step 5) until its course is free again; 0: never (the thesis: two leaders heading for each
   // other's side then stand for good).
