@@ -274,7 +274,7 @@ void RobotNode::ApplyRelayed(const Neighbors& msg) {
 
 void RobotNode::ApplyTuning(const Neighbors& msg) {
   const std::uint32_t had = session_->tuning_generation();
-  Say(session_->TakeTuning(msg));
+  Say(session_->TakeTuning(ToTuning(msg), msg.tick));
   if (session_->tuning_generation() != had) {
     ROS_DEBUG("robot %u: flocking tuning %u from tick %llu", id_, session_->tuning_generation(),
               static_cast<unsigned long long>(msg.tick));
@@ -468,21 +468,21 @@ void RobotNode::OnRobots(const Robot_Positions::ConstPtr& msg) {
 }
 
 void RobotNode::Hand(const core::MissionMessage& message, const core::Sender& from) {
-  const RobotSession::Taken taken = session_->Take(message, from, known_robots_);
+  const core::RobotSession::Taken taken = session_->Take(message, from, known_robots_);
   // Real time: a new first leader publishes its statuses on topics of its own (lock-step: its
   // answers carry them); published with this tick's messages.
   if (taken.first_leader && options_.clock != core::Clock::kLockstep) AdvertiseMissionOutlets();
   Say(taken);
 }
 
-void RobotNode::Say(const RobotSession::Taken& taken) {
+void RobotNode::Say(const core::RobotSession::Taken& taken) {
   switch (taken.say) {
-    case RobotSession::Taken::Say::kNothing:
+    case core::RobotSession::Taken::Say::kNothing:
       return;
-    case RobotSession::Taken::Say::kDebug:
+    case core::RobotSession::Taken::Say::kDebug:
       ROS_DEBUG("robot %u: ignored: %s", id_, taken.why.c_str());
       return;
-    case RobotSession::Taken::Say::kWarn:
+    case core::RobotSession::Taken::Say::kWarn:
       Rejected(taken.kind, taken.why);
       return;
   }
@@ -577,10 +577,10 @@ void RobotNode::Tick() {
   // Lock-step: stamped with the tick's own simulated time (as the batch engine does), not with
   // whatever /clock this process has seen by now.
   const ros::Time stamp = lockstep ? ros::Time(perception_->sim_time) : ros::Time::now();
-  RobotSession::Step step =
-      session_->Tick(std::move(in), perception_->tick, stamp, lockstep || MissionOutletsReady());
+  core::RobotSession::Step step = session_->Tick(
+      std::move(in), perception_->tick, perception_->sim_time, lockstep || MissionOutletsReady());
   const core::Velocity command = step.brain.command;
-  Tick_Answer& answer = step.answer;
+  const Tick_Answer answer = ToTickAnswer(step.answer, stamp);
   for (const Mission_Status& st : answer.statuses) {
     ROS_INFO("robot %u: mission %u %s", id_, st.mission_id,
              core::PhaseName(static_cast<core::MissionPhase>(st.state)));

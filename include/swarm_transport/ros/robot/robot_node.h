@@ -30,6 +30,7 @@
 #include "swarm_transport/Update_Object.h"
 #include "swarm_transport/core/modes.h"
 #include "swarm_transport/core/robot_brain.h"
+#include "swarm_transport/core/robot_session.h"
 #include "swarm_transport/core/tick_stats.h"
 #include "swarm_transport/ros/common/conversions.h"
 #include "swarm_transport/ros/common/diagnostics.h"
@@ -37,7 +38,6 @@
 #include "swarm_transport/ros/common/graph.h"
 #include "swarm_transport/ros/common/params.h"
 #include "swarm_transport/ros/common/wall_throttle.h"
-#include "swarm_transport/ros/robot/robot_session.h"
 #include "swarm_transport/ros/robot/tick_loop.h"
 
 namespace swarm_transport {
@@ -153,7 +153,7 @@ class RobotNode {
     Hand(ToMissionMessage(*event.getConstMessage()), SenderOf(event.getPublisherName()));
   }
   // Logs what the session refused, as it says.
-  void Say(const RobotSession::Taken& taken);
+  void Say(const core::RobotSession::Taken& taken);
   void OnRobots(const Robot_Positions::ConstPtr& msg);
   // Lock-step: applies the mission messages the simulator relayed with this perception.
   void ApplyRelayed(const Neighbors& msg);
@@ -201,7 +201,7 @@ class RobotNode {
   SwarmConfig config_;
   std::uint16_t id_ = 0;
   // Its behaviour and state (set by Initialize).
-  std::optional<RobotSession> session_;
+  std::optional<core::RobotSession> session_;
   ros::Publisher cmd_pub_;
   ros::Publisher position_pub_;
   // Nodes other than the simulator subscribed to its /flock/position (real time: it publishes
