@@ -6,12 +6,15 @@
 
 namespace swarm_transport {
 namespace core {
+double AsSent(double v) {
+  // Through memory: g++ -O2 drops a double -> float -> double pair of conversions in registers.
+  volatile float f = static_cast<float>(v);
+  return f;
+}
+
 namespace {
 
-// A value as its message carries it (float32).
-double AsSent(double v) { return static_cast<float>(v); }
-
-StatusReport AsSent(StatusReport r) {
+StatusReport StatusAsSent(StatusReport r) {
   r.object = {AsSent(r.object.x), AsSent(r.object.y)};
   r.distance_to_target = AsSent(r.distance_to_target);
   return r;
@@ -92,9 +95,9 @@ void FillAnswer(const MissionOutbox& outbox, std::vector<StatusReport> progress,
   for (const auto& run : outbox.resume) out.push_back(Continue{run.first, run.second});
   if (outbox.delete_object) out.push_back(ObjectDelete{*outbox.delete_object});
   answer->statuses.reserve(outbox.statuses.size());
-  for (const StatusReport& r : outbox.statuses) answer->statuses.push_back(AsSent(r));
+  for (const StatusReport& r : outbox.statuses) answer->statuses.push_back(StatusAsSent(r));
   answer->progress.reserve(progress.size());
-  for (StatusReport& r : progress) answer->progress.push_back(AsSent(std::move(r)));
+  for (StatusReport& r : progress) answer->progress.push_back(StatusAsSent(std::move(r)));
 }
 
 MissionReport ReportOf(const StatusReport& status, std::uint64_t tick) {

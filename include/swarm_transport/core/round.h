@@ -24,6 +24,9 @@
 namespace swarm_transport {
 namespace core {
 
+// `v` at the precision its message carries (float32).
+double AsSent(double v);
+
 // A robot's position as it broadcasts it after each move [thesis 5.2], or as the radio relays
 // it: a robot, a leader's virtual copy or a statist.
 struct Position {

@@ -43,8 +43,7 @@ void EventPlayer::ApplyDue(std::uint64_t tick) {
       case TimedEvent::Kind::kObjectUpdate:
         missions_->UpdateObject(e.mission, {e.x, e.y});
         // At the precision its message carries.
-        Send(core::ObjectUpdate{e.mission, {static_cast<float>(e.x), static_cast<float>(e.y)}},
-             update_pub_);
+        Send(core::ObjectUpdate{e.mission, {core::AsSent(e.x), core::AsSent(e.y)}}, update_pub_);
         break;
       case TimedEvent::Kind::kSignal:
         Send(core::Signal{e.mission, static_cast<core::MissionEventKind>(e.signal), e.tick},
