@@ -114,10 +114,9 @@ bool MissionAgent::OnEvent(std::uint16_t mission_id, MissionEventKind event,
   const MissionPhase expected =
       event == MissionEventKind::kLoaded ? MissionPhase::kLoading : MissionPhase::kUnloading;
   if (live.phase != expected) {
-    *why = std::string("signal ") +
-           (event == MissionEventKind::kLoaded ? "LOADED" : "UNLOADED") + " for mission " +
-           std::to_string(mission_id) + " in phase " + PhaseName(live.phase) + " (expected " +
-           PhaseName(expected) + ")";
+    *why = std::string("signal ") + (event == MissionEventKind::kLoaded ? "LOADED" : "UNLOADED") +
+           " for mission " + std::to_string(mission_id) + " in phase " + PhaseName(live.phase) +
+           " (expected " + PhaseName(expected) + ")";
     return false;
   }
   if (event == MissionEventKind::kLoaded) {

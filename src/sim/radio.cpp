@@ -32,7 +32,7 @@ void Radio::Begin(const World2D& world, std::vector<RadioExtra> extras,
     if (!extras_[k].virtual_copy) continue;
     extra_owner_[k] = IndexOf(extras_[k].owner);
     if (extra_owner_[k] < 0) continue;
-    // At the owner's pose as a position message carries it (float32, core::Position), so that the range test
+    // At the owner's pose as a Robot_Position carries it (float32), so that the range test
     // sees what a robot hears.
     const core::Vec2 owner = positions_[static_cast<std::size_t>(extra_owner_[k])];
     extras_[k].position = {static_cast<float>(owner.x), static_cast<float>(owner.y)};

@@ -1,5 +1,5 @@
 // The radio [SPEC 7]: who hears whom in one round. Pure (no ROS, no clock): the simulator's
-// adapter turns a round into its message. Positions are the world's true poses.
+// adapter turns a round into a Neighbors message. Positions are the world's true poses.
 #ifndef SWARM_TRANSPORT_SIM_RADIO_H_
 #define SWARM_TRANSPORT_SIM_RADIO_H_
 
