@@ -74,8 +74,8 @@ class FreezeContinue(unittest.TestCase):
             if not msg.msg.startswith('robot '):
                 return
             rid = int(msg.msg.split()[1].rstrip(':'))
-            for what, seen in (('rejected Robot_Freeze', lines),
-                               ('rejected Robot_Continue', sentinels)):
+            for what, seen in (('rejected freeze [', lines),
+                               ('rejected continue [', sentinels)):
                 if what in msg.msg:
                     seen[rid] = seen.get(rid, 0) + 1
 

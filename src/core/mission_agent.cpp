@@ -44,14 +44,14 @@ bool MissionAgent::OnNewMission(const MissionSpec& mission, std::string* why) {
 bool MissionAgent::OnObjectUpdate(std::uint16_t mission_id, Vec2 centre, std::string* why) {
   auto it = live_.find(mission_id);
   if (it == live_.end()) {
-    *why = "Update_Object for unknown mission " + std::to_string(mission_id);
+    *why = "object update for unknown mission " + std::to_string(mission_id);
     return false;
   }
   Live& live = it->second;
   const double size = params_.world_size_m;
   if (!(centre.x >= 0.0 && centre.y >= 0.0 && centre.x <= size && centre.y <= size)) {
     std::ostringstream os;
-    os << "Update_Object " << mission_id << ": (" << centre.x << ", " << centre.y
+    os << "object update " << mission_id << ": (" << centre.x << ", " << centre.y
        << ") is outside the arena [0, " << size << "]";
     *why = os.str();
     return false;
@@ -61,7 +61,7 @@ bool MissionAgent::OnObjectUpdate(std::uint16_t mission_id, Vec2 centre, std::st
   const double jump = Distance(centre, live.centre);
   if (jump > MaxObjectStep(ticks, params_.speed_m_per_tick)) {
     std::ostringstream os;
-    os << "Update_Object " << mission_id << ": a jump of " << jump << " m in " << ticks
+    os << "object update " << mission_id << ": a jump of " << jump << " m in " << ticks
        << " tick(s) is farther than its robots can carry it";
     *why = os.str();
     return false;
@@ -77,7 +77,7 @@ double MaxObjectStep(std::uint64_t ticks, double speed_m_per_tick) {
 
 bool MissionAgent::OnObjectDelete(std::uint16_t mission_id, std::string* why) {
   if (live_.count(mission_id) == 0) {
-    *why = "Delete_Object for unknown mission " + std::to_string(mission_id);
+    *why = "object delete for unknown mission " + std::to_string(mission_id);
     return false;
   }
   Drop(mission_id);
@@ -88,7 +88,7 @@ bool MissionAgent::OnEvent(std::uint16_t mission_id, MissionEventKind event,
                            std::uint64_t not_before_tick, std::string* why) {
   auto it = live_.find(mission_id);
   if (it == live_.end()) {
-    *why = "Mission_Event for unknown mission " + std::to_string(mission_id);
+    *why = "signal for unknown mission " + std::to_string(mission_id);
     return false;
   }
   Live& live = it->second;
@@ -102,10 +102,9 @@ bool MissionAgent::OnEvent(std::uint16_t mission_id, MissionEventKind event,
   const MissionPhase expected =
       event == MissionEventKind::kLoaded ? MissionPhase::kLoading : MissionPhase::kUnloading;
   if (live.phase != expected) {
-    *why = std::string("Mission_Event ") +
-           (event == MissionEventKind::kLoaded ? "LOADED" : "UNLOADED") + " for mission " +
-           std::to_string(mission_id) + " in phase " + PhaseName(live.phase) + " (expected " +
-           PhaseName(expected) + ")";
+    *why = std::string("signal ") + (event == MissionEventKind::kLoaded ? "LOADED" : "UNLOADED") +
+           " for mission " + std::to_string(mission_id) + " in phase " + PhaseName(live.phase) +
+           " (expected " + PhaseName(expected) + ")";
     return false;
   }
   if (event == MissionEventKind::kLoaded) {

@@ -2,21 +2,9 @@
 
 namespace swarm_transport {
 namespace core {
-namespace {
-
-template <class... F>
-struct Overloaded : F... {
-  using F::operator()...;
-};
-template <class... F>
-Overloaded(F...) -> Overloaded<F...>;
-
-}  // namespace
-
 const char* KindName(const MissionMessage& message) {
-  static const char* const kNames[] = {"New_Mission",   "Update_Object",  "Delete_Object",
-                                       "Robot_Freeze",  "Robot_Continue", "Mission_Event",
-                                       "Mission_Status"};
+  static const char* const kNames[] = {"order",    "object update", "object delete", "freeze",
+                                       "continue", "signal",        "status"};
   static_assert(sizeof(kNames) / sizeof(kNames[0]) == std::variant_size_v<MissionMessage>);
   return kNames[message.index()];
 }

@@ -70,13 +70,13 @@ std::string RobotBrain::Take(const MissionMessage& message,
 }
 
 std::string RobotBrain::OnFreeze(std::uint16_t from, std::uint16_t to) {
-  if (from >= to) return BadRange("Robot_Freeze", from, to);
+  if (from >= to) return BadRange("freeze", from, to);
   if (InRange(from, to)) frozen_ = true;
   return "";
 }
 
 std::string RobotBrain::OnContinue(std::uint16_t from, std::uint16_t to) {
-  if (from >= to) return BadRange("Robot_Continue", from, to);
+  if (from >= to) return BadRange("continue", from, to);
   if (InRange(from, to)) frozen_ = false;
   return "";
 }
@@ -112,7 +112,7 @@ std::string RobotBrain::OnNewMission(const MissionSpec& mission,
 std::string RobotBrain::OnObjectUpdate(std::uint16_t mission_id, Vec2 centre) {
   if (!std::isfinite(centre.x) || !std::isfinite(centre.y)) {
     std::ostringstream os;
-    os << "Update_Object " << mission_id << ": non-finite position";
+    os << "object update " << mission_id << ": non-finite position";
     return os.str();
   }
   std::string why;
@@ -124,8 +124,8 @@ std::string RobotBrain::OnObjectDelete(std::uint16_t mission_id) {
   const bool member = spec != nullptr && spec->Assigns(id_);
   std::string why;
   if (!agent_.OnObjectDelete(mission_id, &why)) return why;
-  // The object is gone: nothing holds its robots any more (a Delete_Object before the first
-  // leader's Robot_Continue, or instead of it, left them frozen for good; issue 11).
+  // The object is gone: nothing holds its robots any more (an object delete before the first
+  // leader's Continue, or instead of it, left them frozen for good; issue 11).
   if (member) frozen_ = false;
   return "";
 }
@@ -134,7 +134,7 @@ std::string RobotBrain::OnEvent(std::uint16_t mission_id, MissionEventKind event
                                 std::uint64_t not_before_tick) {
   if (event != MissionEventKind::kLoaded && event != MissionEventKind::kUnloaded) {
     std::ostringstream os;
-    os << "Mission_Event " << mission_id << ": event must be 1 (LOADED) or 2 (UNLOADED)";
+    os << "signal " << mission_id << ": event must be 1 (LOADED) or 2 (UNLOADED)";
     return os.str();
   }
   std::string why;

@@ -152,7 +152,7 @@ std::string RunMetrics::AddStatus(std::uint16_t mission_id, MissionPhase phase, 
                                   Vec2 object) {
   auto it = missions_.find(mission_id);
   if (phase == MissionPhase::kRejected) {
-    // A rejected order (a raw New_Mission the dispatcher refused) is forgotten; a REJECTED
+    // A rejected order (a raw order the dispatcher refused) is forgotten; a REJECTED
     // naming a mission that was accepted (QUEUED or later) is about a refused duplicate of
     // its id, and the accepted one goes on.
     if (it != missions_.end() && !it->second.final_state) {

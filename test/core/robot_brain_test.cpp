@@ -117,8 +117,8 @@ TEST(RobotBrainTest, ABalloonLoadingMemberSpreadsUnderItsObjectUntilTheFreeze) {
 
 TEST(RobotBrainTest, AnEmptyOrInvertedRangeIsRejectedAndChangesNothing) {
   RobotBrain brain(4, Params());
-  EXPECT_EQ(brain.Take(Freeze{5, 3}), "Robot_Freeze [5, 3): the range is empty or inverted");
-  EXPECT_EQ(brain.Take(Freeze{4, 4}), "Robot_Freeze [4, 4): the range is empty or inverted");
+  EXPECT_EQ(brain.Take(Freeze{5, 3}), "freeze [5, 3): the range is empty or inverted");
+  EXPECT_EQ(brain.Take(Freeze{4, 4}), "freeze [4, 4): the range is empty or inverted");
   EXPECT_FALSE(brain.frozen());
   ASSERT_EQ(brain.Take(Freeze{4, 5}), "");
   EXPECT_NE(brain.Take(Continue{9, 0}), "");

@@ -5,10 +5,10 @@
 #include <vector>
 
 #include "fuzz_common.h"
-#include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/core/random.h"
-#include "swarm_transport/ros/common/conversions.h"
-#include "swarm_transport/ros/engine/mission_relay.h"
+#include "swarm_transport/core/round.h"
+#include "swarm_transport/sim/lockstep_engine.h"
+#include "swarm_transport/sim/mission_relay.h"
 #include "swarm_transport/sim/radio.h"
 #include "swarm_transport/sim/world2d.h"
 
@@ -27,17 +27,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                  core::Angle(0.0)},
                 &error);
   }
-  RelayedPositions relayed;
+  sim::RelayedPositions relayed;
   const int announced = in.ConsumeIntegralInRange<int>(0, 8);
   for (int k = 0; k < announced; ++k) {
-    Robot_Position p;
+    core::Position p;
     p.robot_id = in.ConsumeIntegralInRange<std::uint16_t>(0, 8);
     p.sub_id = in.ConsumeIntegralInRange<std::uint8_t>(0, 3);
     p.type = in.ConsumeIntegralInRange<std::uint8_t>(0, 4);
-    p.pos_x = fuzz::AnyFloat(&in);
-    p.pos_y = fuzz::AnyFloat(&in);
-    p.angle = fuzz::AnyFloat(&in);
-    const bool finite = std::isfinite(p.pos_x) && std::isfinite(p.pos_y) && std::isfinite(p.angle);
+    p.x = fuzz::AnyFloat(&in);
+    p.y = fuzz::AnyFloat(&in);
+    p.angle_deg = fuzz::AnyFloat(&in);
+    const bool finite = std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.angle_deg);
     const std::size_t before = relayed.size();
     const std::string why = relayed.Take(p);
     if (!finite || p.type > 2) fuzz::Require(!why.empty() || p.type == 0);
@@ -50,17 +50,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   radio_params.hops = in.ConsumeIntegralInRange<int>(1, 4);
   radio_params.loss = in.ConsumeFloatingPointInRange<double>(0.0, 1.0);
   sim::Radio radio(radio_params, &rng);
-  radio.Begin(world, relayed.Extras(), sim::LiveMissions());
-  std::vector<Robot_Position> truth;
-  for (const auto& entry : world.robots())
-    truth.push_back(ToRobotPosition(entry.first, entry.second.pose));
-  const std::vector<Robot_Position> at = relayed.AtOwners(radio.extra_owner(), truth);
-  sim::RadioRound round;
-  std::size_t i = 0;
-  for (const auto& entry : world.robots()) {
-    radio.Hear(i++, &round);
-    const Neighbors msg = RadioRoundMessage(0, 0.0, entry.second, round, truth, at);
-    const core::Perception p = ToPerception(entry.first, msg);
+  sim::LiveMissions missions;
+  sim::LockstepEngine engine(&world, &radio, &missions);
+  engine.BeginRound(0, 0.0, &relayed, {});
+  core::Round round;
+  for (std::size_t i = 0; i < world.size(); ++i) {
+    engine.Round(i, false, &round);
+    const core::Perception p = core::PerceptionOf(world.robots().nth(i)->first, round);
     for (const core::Neighbour& n : p.others) {
       fuzz::Require(std::isfinite(n.position.x) && std::isfinite(n.position.y));
     }

@@ -1,7 +1,8 @@
-// The lock-step relay of mission messages and the relayed positions (ros/engine/mission_relay.h):
-// every robot's round carries the same messages, ordered by sender, whatever order they
-// arrived in; orders wait for their start tick.
-#include "swarm_transport/ros/engine/mission_relay.h"
+// The lock-step relay of mission messages and the relayed positions (sim/mission_relay.h), seen
+// through the messages a round and an answer become (ros/common/conversions.h): every robot's
+// round carries the same messages, ordered by sender, whatever order they arrived in; orders
+// wait for their start tick.
+#include "swarm_transport/sim/mission_relay.h"
 
 #include <gtest/gtest.h>
 
@@ -10,8 +11,47 @@
 #include <optional>
 #include <string>
 
+#include "swarm_transport/ros/common/conversions.h"
+
 namespace swarm_transport {
 namespace {
+
+using sim::AnswerSender;
+
+// The relay as the simulator uses it: messages converted at its edge.
+class MissionRelay {
+ public:
+  void AddOrder(const std::string& sender, const New_Mission& m) {
+    relay_.AddOrder(sender, ToMissionSpec(m), m.start_tick);
+  }
+  template <typename M>
+  void Add(const std::string& sender, const M& m) {
+    relay_.Add(sender, ToMissionMessage(m));
+  }
+  void AddAnswer(std::uint16_t id, const Tick_Answer& a) { relay_.AddAnswer(id, ToAnswer(a)); }
+  std::vector<New_Mission> ReleaseOrders(std::uint64_t tick) {
+    std::vector<New_Mission> out;
+    for (const core::MissionSpec& spec : relay_.ReleaseOrders(tick))
+      out.push_back(ToNewMission(spec));
+    return out;
+  }
+  void Fill(Neighbors* msg) {
+    core::Round round = ToRound(*msg);
+    relay_.Fill(&round);
+    *msg = ToNeighbors(round);
+  }
+  void FillStanding(Neighbors* msg) const {
+    core::Round round = ToRound(*msg);
+    relay_.FillStanding(&round);
+    *msg = ToNeighbors(round);
+  }
+  std::size_t standing_orders() const { return relay_.standing_orders(); }
+  std::size_t held_orders() const { return relay_.held_orders(); }
+  void Clear() { relay_.Clear(); }
+
+ private:
+  sim::MissionRelay relay_;
+};
 
 Mission_Status Status(std::uint16_t mission, std::uint8_t state) {
   Mission_Status s;
@@ -194,6 +234,25 @@ Robot_Position Position(std::uint16_t robot, std::uint8_t sub, std::uint8_t type
   return p;
 }
 
+// The relayed positions as the simulator takes them from /flock/position.
+class RelayedPositions {
+ public:
+  std::string Take(const Robot_Position& p) { return relayed_.Take(ToPosition(p)); }
+  std::size_t size() const { return relayed_.size(); }
+  std::vector<sim::RadioExtra> Extras() const { return relayed_.Extras(); }
+  std::vector<Robot_Position> AtOwners(const std::vector<long>& owner,
+                                       const std::vector<Robot_Position>& truth) const {
+    std::vector<core::Position> t;
+    for (const Robot_Position& p : truth) t.push_back(ToPosition(p));
+    return ToRobotPositions(relayed_.AtOwners(owner, t));
+  }
+  void EraseCopiesOf(std::uint16_t id) { relayed_.EraseCopiesOf(id); }
+  bool Erase(std::uint16_t id, std::uint8_t sub) { return relayed_.Erase(id, sub); }
+
+ private:
+  sim::RelayedPositions relayed_;
+};
+
 TEST(RelayedPositionsTest, KeepsCopiesAndStatistsAndRejectsBadOnes) {
   RelayedPositions relayed;
   EXPECT_EQ(relayed.Take(Position(1, 0, Robot_Position::TYPE_PHYSICAL, 2.0)), "");
@@ -242,10 +301,10 @@ TEST(TuningRelayTest, AnAcceptedChangeGoesOutWithTheNextRoundAndABadOneChangesNo
   core::SwarmConfig config;
   config.flocking.free_will_deg = 90.0;
   config.flocking.cohesion = 0.05;
-  TuningRelay relay(config);
-  Neighbors round;
+  sim::TuningRelay relay(config);
+  core::Round round;
   relay.Fill(&round);
-  EXPECT_TRUE(round.tuning.empty());  // nothing before the first change
+  EXPECT_FALSE(round.tuning.has_value());  // nothing before the first change
   // The values in use change nothing (dynamic_reconfigure's first call).
   EXPECT_EQ(relay.Propose(core::FlockingTuning::Of(config.flocking)), "");
   EXPECT_FALSE(relay.BeginRound(3).has_value());
@@ -254,18 +313,19 @@ TEST(TuningRelayTest, AnAcceptedChangeGoesOutWithTheNextRoundAndABadOneChangesNo
   calm.free_will_deg = 45.0;
   EXPECT_EQ(relay.Propose(calm), "");
   relay.Fill(&round);
-  EXPECT_TRUE(round.tuning.empty()) << "not before its round";
-  const std::optional<Flocking_Tuning> first = relay.BeginRound(7);
+  EXPECT_FALSE(round.tuning.has_value()) << "not before its round";
+  const std::optional<core::TuningGeneration> first = relay.BeginRound(7);
   ASSERT_TRUE(first.has_value());
   EXPECT_EQ(first->generation, 1u);
   EXPECT_EQ(first->tick, 7u);
-  EXPECT_DOUBLE_EQ(first->free_will_deg, 45.0);
-  EXPECT_DOUBLE_EQ(first->cohesion, 0.05);
+  EXPECT_DOUBLE_EQ(first->tuning.free_will_deg, 45.0);
+  EXPECT_DOUBLE_EQ(first->tuning.cohesion, 0.05);
   EXPECT_FALSE(relay.BeginRound(8).has_value()) << "returned once";
   for (std::uint64_t tick : {8u, 100u}) {
     relay.Fill(&round);  // every later round carries it (a robot that joins later too)
-    ASSERT_EQ(round.tuning.size(), 1u) << tick;
-    EXPECT_EQ(round.tuning[0].tick, 7u);
+    ASSERT_TRUE(round.tuning.has_value()) << tick;
+    EXPECT_EQ(round.tuning->tick, 7u);
+    EXPECT_EQ(ToNeighbors(round).tuning.size(), 1u);
   }
 
   core::FlockingTuning bad = calm;
@@ -290,10 +350,10 @@ TEST(TuningRelayTest, AnAcceptedChangeGoesOutWithTheNextRoundAndABadOneChangesNo
   EXPECT_EQ(relay.Propose(calm), "");
   EXPECT_FALSE(relay.BeginRound(10).has_value());
   EXPECT_EQ(relay.Propose(wide), "");
-  const std::optional<Flocking_Tuning> second = relay.BeginRound(11);
+  const std::optional<core::TuningGeneration> second = relay.BeginRound(11);
   ASSERT_TRUE(second.has_value());
   EXPECT_EQ(second->generation, 2u);
-  EXPECT_DOUBLE_EQ(second->local_range_m, 2.0);
+  EXPECT_DOUBLE_EQ(second->tuning.local_range_m, 2.0);
   EXPECT_DOUBLE_EQ(relay.config().flocking.speed_m_per_tick, 0.2);
 }
 

@@ -47,7 +47,7 @@ struct FlockingParams {
 struct Neighbour {
   std::uint16_t id = 0;
   std::uint8_t sub_id = 0;
-  std::uint8_t type = 0;  // 0 physical, 1 virtual copy, 2 statist (Robot_Position.TYPE_*)
+  std::uint8_t type = 0;  // 0 physical, 1 virtual copy, 2 statist (core::Position::Type)
   Vec2 position;
   Angle heading;
 };

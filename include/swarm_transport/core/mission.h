@@ -15,7 +15,7 @@
 namespace swarm_transport {
 namespace core {
 
-// Phases, numbered as Mission_Status.state.
+// Phases, numbered as a status message carries them.
 enum class MissionPhase : std::uint8_t {
   kQueued = 0,
   kGathering = 1,
@@ -26,14 +26,14 @@ enum class MissionPhase : std::uint8_t {
   kAborted = 6,
   kRejected = 7,
 };
-// How many phases there are: a Mission_Status.state from here on is none.
+// How many phases there are: a status value from here on is none.
 constexpr std::size_t kPhaseCount = 8;
 const char* PhaseName(MissionPhase phase);
 
-// Mission_Event.event values.
+// Signal values (LOADED, UNLOADED).
 enum class MissionEventKind : std::uint8_t { kLoaded = 1, kUnloaded = 2 };
 
-// A mission order as the robots and the dispatcher hold it (New_Mission, validated).
+// A mission order as the robots and the dispatcher hold it (an order, validated).
 struct MissionSpec {
   std::uint16_t id = 0;
   // Assigned robot ids as sent: robot_ids if non-empty, else [from, to).
@@ -74,7 +74,7 @@ struct MissionSpec {
   bool LeaderOnly() const;
   // The object as a shape at `centre` (a rectangle of object_size).
   Shape ObjectAt(Vec2 centre) const;
-  // Maximal runs [from, to) covering Assigned(), for Robot_Freeze / Robot_Continue.
+  // Maximal runs [from, to) covering Assigned(), for freeze / continue.
   std::vector<std::pair<std::uint16_t, std::uint16_t>> AssignedRuns() const;
 };
 
@@ -120,7 +120,7 @@ std::optional<std::vector<Vec2>> ObjectRoute(const MissionSpec& mission,
                                              const std::vector<Zone>& zones, double world_size_m);
 
 // Who admits orders (/swarm/mission_admission): the dispatcher (robots act only on the orders it
-// publishes; a hand-made New_Mission reaches them after it admitted it), or, with no dispatcher
+// publishes; a hand-made order reaches them after it admitted it), or, with no dispatcher
 // running, every robot itself with AdmitMission.
 enum class Admission : std::uint8_t { kDispatcher, kRobots };
 bool ParseAdmission(const std::string& name, Admission* out);
@@ -142,7 +142,7 @@ struct Sender {
 // Whether an order from `sender` counts: with admission by the dispatcher only the dispatcher's
 // (and the relay's, which passed only those on); with admission by the robots anyone's.
 bool MayOrder(Admission admission, const Sender& sender);
-// Whether a Mission_Status, Update_Object or Delete_Object from `sender` counts for a mission:
+// Whether a status, object update or object delete from `sender` counts for a mission:
 // only its first leader sends them, besides the dispatcher (REJECTED, ABORTED and the object of
 // an aborted mission). A robot's node counts for a mission that assigns it (any of them: a
 // promoted first leader is one of them); `mission` null (not known to the receiver) lets any

@@ -24,12 +24,12 @@ namespace core {
 // Parameters of the robot-side mission logic.
 struct MissionAgentParams {
   double goal_tolerance_m = 0.05;  // object centre (or leader) at the target within this
-  int object_update_ticks = 1;     // first leader publishes Update_Object every N ticks
+  int object_update_ticks = 1;     // first leader publishes an object update every N ticks
   int progress_every_ticks = 50;   // first leader repeats its status with progress every N
   std::uint64_t phase_timeout_ticks = 20000;  // a phase that lasts longer aborts the mission
   TransportParams transport;                  // gathering and carrying (leaders bound or not)
   double local_range_m = 1.0;  // the flocking's: whether the gathered group is one chain
-  // Plausible Update_Object: inside the arena [0, world_size_m]^2, and no farther from the
+  // A plausible object update: inside the arena [0, world_size_m]^2, and no farther from the
   // last known centre than the object's robots can carry it in the ticks since (issue 11).
   double world_size_m = 11.088889;
   double speed_m_per_tick = 0.1;  // the robots' top speed: the object moves no faster
@@ -83,7 +83,7 @@ struct StatusReport {
 // Messages the robot must publish after this tick (only a first leader fills them).
 struct MissionOutbox {
   std::vector<std::pair<std::uint16_t, std::uint16_t>> freeze;  // [from, to) runs
-  std::vector<std::pair<std::uint16_t, std::uint16_t>> resume;  // Robot_Continue runs
+  std::vector<std::pair<std::uint16_t, std::uint16_t>> resume;  // Continue runs
   std::optional<std::pair<std::uint16_t, Vec2>> update_object;  // mission id, centre
   std::optional<std::uint16_t> delete_object;                   // mission id
   std::vector<StatusReport> statuses;

@@ -41,7 +41,7 @@ struct DueSignal {
   std::uint64_t not_before_tick = 0;
 };
 
-// What a first leader reports (Mission_Status / progress), already checked for finite fields.
+// What a first leader reports (phase status / progress), already checked for finite fields.
 struct MissionReport {
   std::uint16_t mission_id = 0;
   MissionPhase phase = MissionPhase::kQueued;

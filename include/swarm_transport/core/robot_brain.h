@@ -24,7 +24,7 @@
 namespace swarm_transport {
 namespace core {
 
-// A New_Mission the brain took.
+// An order the brain took.
 struct MissionTaken {
   bool first_leader = false;  // it runs the mission's phases and publishes its messages
   // Its first leader's first status (QUEUED, with the object and the robots assigned).

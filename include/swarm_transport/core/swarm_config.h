@@ -43,7 +43,7 @@ struct SwarmConfig {
   std::vector<Zone> danger_zones;  // static danger zones
   double loaded_delay_s = 2.0;     // dispatcher: LOADED this long after LOADING (<0: wait)
   double unloaded_delay_s = 2.0;   // dispatcher: UNLOADED this long after UNLOADING
-  int object_update_ticks = 1;     // a first leader publishes Update_Object every N ticks
+  int object_update_ticks = 1;     // a first leader publishes an object update every N ticks
   // The radio passes positions on hop by hop this many hops for a chain neighbourhood (1: only
   // robots in range are heard; mission peers are always heard over the mission channel).
   int chain_hops = 16;

@@ -29,7 +29,7 @@ enum class GatherPlanner { kNearest, kSelectionMatrix, kOptimal, kBottleneck };
 bool ParseGatherPlanner(const std::string& name, GatherPlanner* out);
 const char* GatherPlannerName(GatherPlanner planner);
 
-// New_Mission.transport_mode.
+// The order's transport_mode.
 enum class TransportMode : std::uint8_t { kSwarm = 0, kFormation = 1 };
 
 // Parameters of carrying; the defaults are the thesis's evaluated code (THESIS_CODE 2).

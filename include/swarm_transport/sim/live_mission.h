@@ -21,7 +21,7 @@ struct LiveMission {
   core::Vec2 object_position;
   core::Vec2 object_size;  // 0 x 0: a leader-only mission
   core::Vec2 target;
-  int phase = -1;  // the last phase its robots reported (Mission_Status state); -1: none yet
+  int phase = -1;  // the last phase its robots reported (status value); -1: none yet
 };
 
 // By mission id.
@@ -33,7 +33,7 @@ using LiveMissions = std::map<std::uint16_t, LiveMission>;
 std::string RegisterMission(const core::MissionSpec& spec, const World2D& world,
                             LiveMissions* missions);
 
-// A first leader's Update_Object: moves a live mission's object when `centre` is finite and
+// A first leader's object update: moves a live mission's object when `centre` is finite and
 // inside `world`'s arena. False when it changed nothing (unknown mission, bad position).
 bool UpdateMissionObject(std::uint16_t mission_id, core::Vec2 centre, const World2D& world,
                          LiveMissions* missions);

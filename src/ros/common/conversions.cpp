@@ -2,50 +2,74 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
+#include <variant>
 
 #include "swarm_transport/ros/common/names.h"
 
 namespace swarm_transport {
 
+namespace {
+
+Pose ToPoseMsg(const core::OwnPose& p) {
+  Pose msg;
+  msg.x = p.x;
+  msg.y = p.y;
+  msg.theta = p.theta;
+  msg.linear_velocity = p.linear_velocity;
+  msg.angular_velocity = p.angular_velocity;
+  return msg;
+}
+
+core::OwnPose ToOwnPose(const Pose& msg) {
+  return core::OwnPose{msg.x, msg.y, msg.theta, msg.linear_velocity, msg.angular_velocity};
+}
+
+std::vector<core::Position> ToPositions(const std::vector<Robot_Position>& list) {
+  std::vector<core::Position> out;
+  out.reserve(list.size());
+  for (const Robot_Position& p : list) out.push_back(ToPosition(p));
+  return out;
+}
+
+}  // namespace
+
 core::Neighbour ToNeighbour(const Robot_Position& msg) {
-  core::Neighbour n;
-  n.id = msg.robot_id;
-  n.sub_id = msg.sub_id;
-  n.type = msg.type;
-  n.position = {msg.pos_x, msg.pos_y};
-  n.heading = core::Angle(msg.angle);
-  return n;
+  return core::NeighbourOf(ToPosition(msg));
 }
 
 Robot_Position ToRobotPosition(std::uint16_t id, const core::Pose2& pose, std::uint8_t sub_id,
                                std::uint8_t type) {
+  return ToRobotPosition(core::PositionOf(id, pose, sub_id, type));
+}
+
+Robot_Position ToRobotPosition(const core::Position& p) {
   Robot_Position msg;
-  msg.robot_id = id;
-  msg.sub_id = sub_id;
-  msg.type = type;
-  msg.pos_x = static_cast<float>(pose.position.x);
-  msg.pos_y = static_cast<float>(pose.position.y);
-  msg.angle = static_cast<float>(pose.heading.degrees());
-  // float rounding may turn 359.9999999 into 360.0f: keep the [0, 360) promise.
-  if (msg.angle >= 360.0f) msg.angle = 0.0f;
+  msg.robot_id = p.robot_id;
+  msg.sub_id = p.sub_id;
+  msg.type = p.type;
+  msg.pos_x = p.x;
+  msg.pos_y = p.y;
+  msg.angle = p.angle_deg;
   return msg;
 }
 
-core::Pose2 ToPose2(const Pose& msg) {
-  return core::Pose2{{msg.x, msg.y}, core::Angle::FromRadians(msg.theta)};
+core::Position ToPosition(const Robot_Position& msg) {
+  return core::Position{msg.robot_id, msg.sub_id, msg.type, msg.pos_x, msg.pos_y, msg.angle};
 }
+
+std::vector<Robot_Position> ToRobotPositions(const std::vector<core::Position>& positions) {
+  std::vector<Robot_Position> out;
+  out.reserve(positions.size());
+  for (const core::Position& p : positions) out.push_back(ToRobotPosition(p));
+  return out;
+}
+
+core::Pose2 ToPose2(const Pose& msg) { return core::Pose2Of(ToOwnPose(msg)); }
 
 Pose ToPoseMsg(const core::Pose2& pose, const core::Velocity& velocity) {
-  Pose msg;
-  msg.x = static_cast<float>(pose.position.x);
-  msg.y = static_cast<float>(pose.position.y);
-  double theta = pose.heading.radians();
-  if (theta > M_PI) theta -= 2.0 * M_PI;
-  msg.theta = static_cast<float>(theta);
-  msg.linear_velocity = static_cast<float>(velocity.linear);
-  msg.angular_velocity = static_cast<float>(velocity.angular);
-  return msg;
+  return ToPoseMsg(core::OwnPoseOf(pose, velocity));
 }
 
 core::Velocity ToVelocity(const geometry_msgs::Twist& msg) {
@@ -70,10 +94,51 @@ bool IsFinite(const geometry_msgs::Twist& msg) {
 }
 
 Mission_Event ToEventMsg(const core::DueSignal& due) {
+  return ToMsg(core::Signal{due.mission_id, due.kind, due.not_before_tick});
+}
+
+New_Mission ToMsg(const core::MissionSpec& m) { return ToNewMission(m); }
+
+Update_Object ToMsg(const core::ObjectUpdate& m) {
+  Update_Object msg;
+  msg.mission_id = m.mission_id;
+  msg.object_position_x = static_cast<float>(m.centre.x);
+  msg.object_position_y = static_cast<float>(m.centre.y);
+  return msg;
+}
+
+Delete_Object ToMsg(const core::ObjectDelete& m) {
+  Delete_Object msg;
+  msg.mission_id = m.mission_id;
+  return msg;
+}
+
+Robot_Freeze ToMsg(const core::Freeze& m) {
+  Robot_Freeze msg;
+  msg.robot_index_from = m.from;
+  msg.robot_index_to = m.to;
+  return msg;
+}
+
+Robot_Continue ToMsg(const core::Continue& m) {
+  Robot_Continue msg;
+  msg.robot_index_from = m.from;
+  msg.robot_index_to = m.to;
+  return msg;
+}
+
+Mission_Event ToMsg(const core::Signal& m) {
   Mission_Event msg;
-  msg.mission_id = due.mission_id;
-  msg.event = static_cast<std::uint8_t>(due.kind);
-  msg.not_before_tick = due.not_before_tick;
+  msg.mission_id = m.mission_id;
+  msg.event = static_cast<std::uint8_t>(m.kind);
+  msg.not_before_tick = m.not_before_tick;
+  return msg;
+}
+
+Mission_Status ToMsg(const core::PhaseStatus& m) {
+  Mission_Status msg;
+  msg.mission_id = m.mission_id;
+  msg.state = static_cast<std::uint8_t>(m.phase);
   return msg;
 }
 
@@ -163,68 +228,126 @@ New_Mission ToNewMission(const core::MissionSpec& spec) {
   return msg;
 }
 
-Neighbors RadioRoundMessage(std::uint64_t tick, double sim_time, const sim::Robot& robot,
-                            const sim::RadioRound& round, const std::vector<Robot_Position>& truth,
-                            const std::vector<Robot_Position>& extras) {
+Neighbors ToNeighbors(const core::Round& round) {
   Neighbors msg;
-  msg.tick = tick;
-  msg.sim_time = sim_time;
-  msg.pose = ToPoseMsg(robot.pose, robot.last_velocity);
-  msg.robots.reserve(round.in_range.size() + round.extras.size());
-  for (std::size_t j : round.in_range) msg.robots.push_back(truth[j]);
-  for (std::size_t e : round.extras) msg.robots.push_back(extras[e]);
-  msg.relayed.reserve(round.chain.size());
-  for (std::size_t j : round.chain) msg.relayed.push_back(truth[j]);
-  msg.mission_peers.reserve(round.peers.size());
-  for (std::size_t j : round.peers) msg.mission_peers.push_back(truth[j]);
+  msg.tick = round.tick;
+  msg.sim_time = round.sim_time;
+  msg.pose = ToPoseMsg(round.pose);
+  msg.robots = ToRobotPositions(round.robots);
+  msg.relayed = ToRobotPositions(round.relayed);
+  msg.mission_peers = ToRobotPositions(round.mission_peers);
+  const auto add = [](const auto& m, auto* list) { list->push_back(ToMsg(m)); };
+  for (const core::MissionMessage& m : round.messages) {
+    std::visit(core::Overloaded{
+                   [&](const core::MissionSpec& x) { add(x, &msg.missions); },
+                   [&](const core::ObjectUpdate& x) { add(x, &msg.object_updates); },
+                   [&](const core::ObjectDelete& x) { add(x, &msg.object_deletes); },
+                   [&](const core::Freeze& x) { add(x, &msg.freezes); },
+                   [&](const core::Continue& x) { add(x, &msg.continues); },
+                   [&](const core::Signal& x) { add(x, &msg.mission_events); },
+                   [&](const core::PhaseStatus& x) { add(x, &msg.statuses); },
+               },
+               m);
+  }
+  if (round.tuning) {
+    msg.tuning.push_back(
+        ToTuningMsg(round.tuning->tuning, round.tuning->generation, round.tuning->tick));
+  }
   return msg;
 }
 
-Tick_Answer ToAnswerMessages(const core::MissionOutbox& outbox,
-                             const std::vector<core::StatusReport>& progress, std::uint64_t tick,
-                             const ros::Time& stamp) {
-  const auto status = [tick, &stamp](const core::StatusReport& r) {
-    Mission_Status m;
-    m.mission_id = r.mission_id;
-    m.state = static_cast<std::uint8_t>(r.phase);
-    m.reason = r.reason;
-    m.stamp = stamp;
-    m.tick = tick;
-    m.robots_assigned = r.assigned;
-    m.robots_inside = r.inside;
-    m.object_position_x = static_cast<float>(r.object.x);
-    m.object_position_y = static_cast<float>(r.object.y);
-    m.distance_to_target = static_cast<float>(r.distance_to_target);
-    return m;
-  };
-  Tick_Answer m;
-  if (outbox.update_object) {
-    Update_Object u;
-    u.mission_id = outbox.update_object->first;
-    u.object_position_x = static_cast<float>(outbox.update_object->second.x);
-    u.object_position_y = static_cast<float>(outbox.update_object->second.y);
-    m.object_updates.push_back(u);
-  }
-  for (const auto& run : outbox.freeze) {
-    Robot_Freeze f;
-    f.robot_index_from = run.first;
-    f.robot_index_to = run.second;
-    m.freezes.push_back(f);
-  }
-  for (const auto& run : outbox.resume) {
-    Robot_Continue c;
-    c.robot_index_from = run.first;
-    c.robot_index_to = run.second;
-    m.continues.push_back(c);
-  }
-  if (outbox.delete_object) {
-    Delete_Object d;
-    d.mission_id = *outbox.delete_object;
-    m.object_deletes.push_back(d);
-  }
-  for (const core::StatusReport& r : outbox.statuses) m.statuses.push_back(status(r));
-  for (const core::StatusReport& r : progress) m.progress.push_back(status(r));
+core::Round ToRound(const Neighbors& msg) {
+  core::Round round;
+  round.tick = msg.tick;
+  round.sim_time = msg.sim_time;
+  round.pose = ToOwnPose(msg.pose);
+  round.robots = ToPositions(msg.robots);
+  round.relayed = ToPositions(msg.relayed);
+  round.mission_peers = ToPositions(msg.mission_peers);
+  round.messages = ToMissionMessages(msg);
+  round.tuning = ToTuning(msg);
+  return round;
+}
+
+std::optional<core::TuningGeneration> ToTuning(const Neighbors& msg) {
+  if (msg.tuning.empty()) return std::nullopt;
+  const Flocking_Tuning& t = msg.tuning.front();
+  return core::TuningGeneration{t.generation, t.tick, ToFlockingTuning(t)};
+}
+
+Mission_Status ToStatusMsg(const core::StatusReport& r, std::uint64_t tick,
+                           const ros::Time& stamp) {
+  Mission_Status m;
+  m.mission_id = r.mission_id;
+  m.state = static_cast<std::uint8_t>(r.phase);
+  m.reason = r.reason;
+  m.stamp = stamp;
+  m.tick = tick;
+  m.robots_assigned = r.assigned;
+  m.robots_inside = r.inside;
+  m.object_position_x = static_cast<float>(r.object.x);
+  m.object_position_y = static_cast<float>(r.object.y);
+  m.distance_to_target = static_cast<float>(r.distance_to_target);
   return m;
+}
+
+Tick_Answer ToTickAnswer(const core::Answer& answer, const ros::Time& stamp) {
+  Tick_Answer msg;
+  msg.tick = answer.tick;
+  msg.command = ToTwist(answer.command);
+  const auto add = [](const auto& m, auto* list) { list->push_back(ToMsg(m)); };
+  for (const core::MissionMessage& m : answer.messages) {
+    std::visit(core::Overloaded{
+                   [&](const core::ObjectUpdate& x) { add(x, &msg.object_updates); },
+                   [&](const core::ObjectDelete& x) { add(x, &msg.object_deletes); },
+                   [&](const core::Freeze& x) { add(x, &msg.freezes); },
+                   [&](const core::Continue& x) { add(x, &msg.continues); },
+                   [](const auto&) {},  // no answer carries the others
+               },
+               m);
+  }
+  for (const core::StatusReport& r : answer.statuses) {
+    msg.statuses.push_back(ToStatusMsg(r, answer.tick, stamp));
+  }
+  for (const core::StatusReport& r : answer.progress) {
+    msg.progress.push_back(ToStatusMsg(r, answer.tick, stamp));
+  }
+  return msg;
+}
+
+core::Answer ToAnswer(const Tick_Answer& msg) {
+  core::Answer answer;
+  answer.tick = msg.tick;
+  answer.command = IsFinite(msg.command)
+                       ? ToVelocity(msg.command)
+                       : core::Velocity{std::numeric_limits<double>::quiet_NaN(), 0.0};
+  const auto add = [&answer](const auto& list) {
+    for (const auto& m : list) answer.messages.push_back(ToMissionMessage(m));
+  };
+  add(msg.object_updates);
+  add(msg.freezes);
+  add(msg.continues);
+  add(msg.object_deletes);
+  for (const Mission_Status& s : msg.statuses) answer.statuses.push_back(ToStatusReport(s));
+  for (const Mission_Status& s : msg.progress) answer.progress.push_back(ToStatusReport(s));
+  if (!msg.statuses.empty()) {
+    answer.sim_time = msg.statuses.front().stamp.toSec();
+  } else if (!msg.progress.empty()) {
+    answer.sim_time = msg.progress.front().stamp.toSec();
+  }
+  return answer;
+}
+
+core::StatusReport ToStatusReport(const Mission_Status& s) {
+  core::StatusReport r;
+  r.mission_id = s.mission_id;
+  r.phase = static_cast<core::MissionPhase>(s.state);
+  r.reason = s.reason;
+  r.assigned = s.robots_assigned;
+  r.inside = s.robots_inside;
+  r.object = {s.object_position_x, s.object_position_y};
+  r.distance_to_target = s.distance_to_target;
+  return r;
 }
 
 core::MissionReport ToMissionReport(const Mission_Status& msg) {

@@ -12,25 +12,22 @@
 #include <utility>
 #include <vector>
 
-#include "swarm_transport/Mission_Event.h"
-#include "swarm_transport/Mission_Status.h"
-#include "swarm_transport/Neighbors.h"
-#include "swarm_transport/Robot_Position.h"
-#include "swarm_transport/Robot_Positions.h"
-#include "swarm_transport/core/dispatcher_policy.h"
 #include "swarm_transport/core/metrics.h"
+#include "swarm_transport/Robot_Position.h"
+#include "swarm_transport/core/dispatcher_policy.h"
 #include "swarm_transport/core/random.h"
+#include "swarm_transport/core/robot_session.h"
+#include "swarm_transport/core/round.h"
 #include "swarm_transport/core/run_metrics.h"
 #include "swarm_transport/ros/common/conversions.h"
 #include "swarm_transport/ros/common/names.h"
 #include "swarm_transport/ros/common/params.h"
 #include "swarm_transport/ros/dispatcher/dispatcher_options.h"
 #include "swarm_transport/ros/engine/batch_files.h"
-#include "swarm_transport/ros/engine/lockstep_engine.h"
 #include "swarm_transport/ros/recorder/recorder.h"
-#include "swarm_transport/ros/robot/robot_session.h"
 #include "swarm_transport/ros/simulator/simulator_params.h"
 #include "swarm_transport/sim/live_mission.h"
+#include "swarm_transport/sim/lockstep_engine.h"
 #include "swarm_transport/sim/radio.h"
 #include "swarm_transport/sim/world2d.h"
 
@@ -48,17 +45,19 @@ double Seconds(Clock::time_point from) {
 // parameters; its order is released at tick 0, its LOADED / UNLOADED go into the next relay.
 class BatchDispatcher : public core::DispatcherOutlet {
  public:
-  BatchDispatcher(const SwarmConfig& config, std::uint64_t* tick, LockstepEngine* engine)
+  BatchDispatcher(const SwarmConfig& config, std::uint64_t* tick, sim::LockstepEngine* engine)
       : engine_(engine), policy_(ParamsOf(config, tick), this) {}
   core::DispatcherPolicy& policy() { return policy_; }
-  std::optional<New_Mission>& order() { return order_; }
+  // The order as the dispatcher publishes it (its message's precision).
+  const std::optional<New_Mission>& order() const { return order_; }
 
   void Order(const core::MissionSpec& spec, std::uint64_t start_tick) override {
     order_ = ToNewMission(spec);
     order_->start_tick = start_tick;
   }
   void Event(const core::DueSignal& signal, const char* /*why*/) override {
-    engine_->relay().Add(names::kDispatcherNode, ToEventMsg(signal));
+    engine_->relay().Add(names::kDispatcherNode,
+                         core::Signal{signal.mission_id, signal.kind, signal.not_before_tick});
   }
   void Rejected(const core::MissionSpec&, const std::string&) override {}
   void Aborted(const core::MissionSpec&, const std::string&) override {}
@@ -73,7 +72,7 @@ class BatchDispatcher : public core::DispatcherOutlet {
     return params;
   }
 
-  LockstepEngine* engine_;
+  sim::LockstepEngine* engine_;
   core::DispatcherPolicy policy_;
   std::optional<New_Mission> order_;
 };
@@ -93,11 +92,12 @@ class Run {
  private:
   // The recorder's frame of the world as /flock/positions carries it (`truth`: the physical
   // robots' poses in world order), and the runner's trace.
-  void TakeFrame(const std::vector<Robot_Position>& truth);
+  void TakeFrame(const std::vector<core::Position>& truth);
   // The robot at world index `i` ticks on its round: its answer joins the tick's answers.
-  void RobotTick(std::size_t i, const Neighbors& round);
-  // A status the robots said: the runner's, the dispatcher's and the recorder's part.
-  void Observe(const Mission_Status& status);
+  void RobotTick(std::size_t i, const core::Round& round);
+  // A status the robots said in tick `tick`: the runner's, the dispatcher's and the recorder's
+  // part.
+  void Observe(const core::StatusReport& status, std::uint64_t tick);
   void WriteMissionRows();
 
   const BatchJob& job_;
@@ -107,8 +107,8 @@ class Run {
   std::unique_ptr<core::Rng> radio_rng_;
   std::unique_ptr<sim::Radio> radio_;
   sim::LiveMissions missions_;  // the simulator's books
-  std::unique_ptr<LockstepEngine> engine_;
-  std::vector<RobotSession> robots_;  // in world order (ascending id)
+  std::unique_ptr<sim::LockstepEngine> engine_;
+  std::vector<core::RobotSession> robots_;  // in world order (ascending id)
   std::set<std::uint16_t> known_robots_;
   std::unique_ptr<BatchDispatcher> dispatcher_;  // with a mission; its order released at tick 0
   std::unique_ptr<core::RunMetrics> metrics_;
@@ -117,9 +117,9 @@ class Run {
   CsvFile swarm_csv_;
   CsvFile missions_csv_;
   CsvFile trace_csv_;
-  LockstepEngine::Answers answers_;  // of the current tick
+  sim::LockstepEngine::Answers answers_;  // of the current tick
   std::vector<core::Velocity> commands_;
-  Neighbors round_;
+  core::Round round_;
   std::uint64_t tick_ = 0;
   bool over_ = false;
   bool files_ok_ = true;
@@ -127,7 +127,7 @@ class Run {
   // What the experiment's runner sees of the mission: each new state with its tick, the last
   // status of a tick > 0, the last swarm sample.
   std::vector<std::pair<int, std::uint64_t>> phases_;
-  std::optional<Mission_Status> last_status_;
+  std::optional<std::pair<core::StatusReport, std::uint64_t>> last_status_;  // with its tick
   std::optional<core::SwarmSample> last_sample_;
   bool recorder_row_ = false;
   std::size_t logged_warnings_ = 0;
@@ -174,7 +174,7 @@ bool Run::SetUp(const XmlRpc::XmlRpcValue& base_config, std::string* error) {
   }
   radio_rng_ = std::make_unique<core::Rng>(config_.seed, sim::kRadioLossStream);
   radio_ = std::make_unique<sim::Radio>(RadioParamsOf(sim_params), radio_rng_.get());
-  engine_ = std::make_unique<LockstepEngine>(world_.get(), radio_.get(), &missions_);
+  engine_ = std::make_unique<sim::LockstepEngine>(world_.get(), radio_.get(), &missions_);
   robots_.reserve(world_->size());
   for (const auto& entry : world_->robots()) {
     robots_.emplace_back(entry.first, config_);
@@ -216,7 +216,8 @@ bool Run::SetUp(const XmlRpc::XmlRpcValue& base_config, std::string* error) {
   }
 
   if (job_.has_mission) {
-    // The dispatcher's ~submit: validated against the swarm, then published as its order.
+    // The dispatcher's ~submit (a dispatcher without private parameters): validated against
+    // the swarm, then published as its order.
     dispatcher_ = std::make_unique<BatchDispatcher>(config_, &tick_, engine_.get());
     std::vector<Robot_Position> swarm;  // as /flock/positions carries it
     for (const auto& entry : world_->robots()) {
@@ -248,22 +249,22 @@ void Run::WriteMissionRows() {
   }
 }
 
-void Run::TakeFrame(const std::vector<Robot_Position>& truth) {
+void Run::TakeFrame(const std::vector<core::Position>& truth) {
   if (job_.trace) {
     char row[96];
-    for (const Robot_Position& p : truth) {
-      if (!std::isfinite(p.pos_x) || !std::isfinite(p.pos_y)) continue;
+    for (const core::Position& p : truth) {
+      if (!std::isfinite(p.x) || !std::isfinite(p.y)) continue;
       std::snprintf(row, sizeof(row), "%llu,%u,%.4f,%.4f,%.2f",
                     static_cast<unsigned long long>(tick_), static_cast<unsigned>(p.robot_id),
-                    static_cast<double>(p.pos_x), static_cast<double>(p.pos_y),
-                    static_cast<double>(p.angle));
+                    static_cast<double>(p.x), static_cast<double>(p.y),
+                    static_cast<double>(p.angle_deg));
       files_ok_ = trace_csv_.Append(row) && files_ok_;
     }
   }
   // As the recorder takes /flock/positions.
   std::size_t bad = 0;
   core::MetricsFrame frame =
-      RecorderFrame(tick_, static_cast<double>(tick_) * config_.tick_period_s, truth, &bad);
+      core::FrameOf(tick_, static_cast<double>(tick_) * config_.tick_period_s, truth, &bad);
   if (track_) track_->Add(frame);
   std::optional<core::SwarmSample> sample;
   metrics_->AddFrame(std::move(frame), &sample);
@@ -274,11 +275,11 @@ void Run::TakeFrame(const std::vector<Robot_Position>& truth) {
   WriteMissionRows();
 }
 
-void Run::RobotTick(std::size_t i, const Neighbors& round) {
-  RobotSession& robot = robots_[i];
+void Run::RobotTick(std::size_t i, const core::Round& round) {
+  core::RobotSession& robot = robots_[i];
   robot.TakeRelayed(round, known_robots_, nullptr);
-  RobotSession::Step step =
-      robot.Tick(ToPerception(robot.id(), round), round.tick, ros::Time(round.sim_time), true);
+  core::RobotSession::Step step =
+      robot.Tick(core::PerceptionOf(robot.id(), round), round.tick, round.sim_time, true);
   const core::RobotBrain& brain = robot.brain();
   const std::optional<core::Carry>& carry = brain.last_plan().carry;
   if (carry && !carry->transport && !carry->loading && !brain.frozen() &&
@@ -286,34 +287,36 @@ void Run::RobotTick(std::size_t i, const Neighbors& round) {
        step.brain.move.outcome == core::MoveOutcome::kSlowed)) {
     ++gathering_swerves_;
   }
-  commands_[i] = LockstepEngine::CommandOf(step.answer);
+  commands_[i] = core::CommandOf(step.answer);
   answers_.emplace_back(robot.id(), std::move(step.answer));
 }
 
-void Run::Observe(const Mission_Status& status) {
+void Run::Observe(const core::StatusReport& status, std::uint64_t tick) {
+  const int state = static_cast<int>(status.phase);
   // The runner: each new state with its tick; the last status of a tick > 0.
   if (job_.has_mission && status.mission_id == job_.mission.mission_id) {
-    if (phases_.empty() || phases_.back().first != status.state) {
-      phases_.emplace_back(status.state, status.tick);
-    }
-    if (status.tick > 0) last_status_ = status;
+    if (phases_.empty() || phases_.back().first != state) phases_.emplace_back(state, tick);
+    if (tick > 0) last_status_.emplace(status, tick);
   }
   // The dispatcher: LOADED / UNLOADED at their stamped ticks, into the next tick's relay.
-  if (dispatcher_ && StatusProblem(status).empty()) {
-    dispatcher_->policy().OnStatus(ToMissionReport(status), "robots");
+  // (MissionDispatcher::OnStatus, which checks the same before it books a status.)
+  if (dispatcher_ && static_cast<std::size_t>(state) < core::kPhaseCount &&
+      std::isfinite(status.object.x) && std::isfinite(status.object.y) &&
+      std::isfinite(status.distance_to_target)) {
+    dispatcher_->policy().OnStatus(core::ReportOf(status, tick), "robots");
   }
   // The recorder.
-  RecordStatus(status, metrics_.get());
+  RecordStatus(status, tick, metrics_.get());
   WriteMissionRows();
 }
 
 void Run::Tick() {
   // The final state at the final time: a frame, no round.
   if (tick_ == job_.max_ticks) {
-    std::vector<Robot_Position> truth;
+    std::vector<core::Position> truth;
     truth.reserve(world_->size());
     for (const auto& entry : world_->robots()) {
-      truth.push_back(ToRobotPosition(entry.first, entry.second.pose));
+      truth.push_back(core::PositionOf(entry.first, entry.second.pose));
     }
     TakeFrame(truth);
     end_ = job_.kind == "flocking" ? "max_ticks" : "TICK_LIMIT";
@@ -321,7 +324,8 @@ void Run::Tick() {
     return;
   }
   if (tick_ == 0 && dispatcher_) {
-    engine_->relay().AddOrder(names::kDispatcherNode, *dispatcher_->order());
+    const New_Mission& order = *dispatcher_->order();
+    engine_->relay().AddOrder(names::kDispatcherNode, ToMissionSpec(order), order.start_tick);
   }
   engine_->ReleaseOrders(tick_);  // one the books refuse, the robots refuse too
   engine_->BeginRound(tick_, static_cast<double>(tick_) * config_.tick_period_s, nullptr, {});
@@ -331,8 +335,8 @@ void Run::Tick() {
     RobotTick(i, round_);
   }
   engine_->EndRound();
-  engine_->TakeAnswers(&answers_, [this](std::uint16_t, const Tick_Answer& a) {
-    for (const Mission_Status& s : a.statuses) Observe(s);
+  engine_->TakeAnswers(&answers_, [this](std::uint16_t, const core::Answer& a) {
+    for (const core::StatusReport& s : a.statuses) Observe(s, a.tick);
   });
   // All answers apply together, then the world steps one tick.
   std::size_t i = 0;
@@ -341,8 +345,9 @@ void Run::Tick() {
   world_->Step(config_.tick_period_s);
   ++tick_;
   for (const auto& phase : phases_) {
-    if (phase.first == Mission_Status::DONE || phase.first == Mission_Status::ABORTED) {
-      end_ = phase.first == Mission_Status::DONE ? "DONE" : "ABORTED";
+    const auto phase_is = [&phase](MissionPhase p) { return phase.first == static_cast<int>(p); };
+    if (phase_is(MissionPhase::kDone) || phase_is(MissionPhase::kAborted)) {
+      end_ = phase_is(MissionPhase::kDone) ? "DONE" : "ABORTED";
       over_ = true;
     }
   }
@@ -375,13 +380,12 @@ void Run::AddResult(double setup_s, double ticking_s, double finish_s, JsonObjec
     o.Add("gathering_swerves", std::to_string(gathering_swerves_));
     JsonObject last;
     if (last_status_) {
-      const Mission_Status& s = *last_status_;
+      const core::StatusReport& s = last_status_->first;
       last.Add("distance_to_target", JsonNumber(s.distance_to_target));
-      last.Add("object", "[" + JsonNumber(s.object_position_x) + ", " +
-                             JsonNumber(s.object_position_y) + "]");
+      last.Add("object", "[" + JsonNumber(s.object.x) + ", " + JsonNumber(s.object.y) + "]");
       last.Add("reason", JsonString(s.reason));
-      last.Add("state", std::to_string(s.state));
-      last.Add("tick", std::to_string(s.tick));
+      last.Add("state", std::to_string(static_cast<int>(s.phase)));
+      last.Add("tick", std::to_string(last_status_->second));
     }
     o.Add("last_status", last.Text(" "));
     if (end_ == "DONE" || end_ == "ABORTED")

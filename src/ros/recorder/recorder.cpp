@@ -72,33 +72,10 @@ core::MetricsFrame RecorderFrame(const Robot_Positions& msg, std::size_t* bad) {
 
 core::MetricsFrame RecorderFrame(std::uint64_t tick, double sim_time,
                                  const std::vector<Robot_Position>& positions, std::size_t* bad) {
-  core::MetricsFrame frame;
-  frame.tick = tick;
-  frame.sim_time_s = sim_time;
-  std::vector<std::pair<std::uint16_t, core::Vec2>> robots;
-  robots.reserve(positions.size());
-  *bad = 0;
-  for (const Robot_Position& r : positions) {
-    if (r.type != Robot_Position::TYPE_PHYSICAL) continue;
-    if (!std::isfinite(r.pos_x) || !std::isfinite(r.pos_y)) {
-      ++*bad;
-      continue;
-    }
-    robots.emplace_back(r.robot_id, core::Vec2{r.pos_x, r.pos_y});
-  }
-  const auto by_id = [](const auto& a, const auto& b) { return a.first < b.first; };
-  // The simulator sends them in id order already.
-  if (!std::is_sorted(robots.begin(), robots.end(), by_id)) {
-    std::stable_sort(robots.begin(), robots.end(), by_id);
-  }
-  frame.ids.reserve(robots.size());
-  frame.positions.reserve(robots.size());
-  for (const auto& r : robots) {
-    if (!frame.ids.empty() && frame.ids.back() == r.first) continue;  // a duplicate id
-    frame.ids.push_back(r.first);
-    frame.positions.push_back(r.second);
-  }
-  return frame;
+  std::vector<core::Position> core_positions;
+  core_positions.reserve(positions.size());
+  for (const Robot_Position& p : positions) core_positions.push_back(ToPosition(p));
+  return core::FrameOf(tick, sim_time, core_positions, bad);
 }
 
 std::string RecordOrder(const New_Mission& msg, const SwarmConfig& swarm,
@@ -114,13 +91,18 @@ std::string RecordOrder(const New_Mission& msg, const SwarmConfig& swarm,
 }
 
 std::string RecordStatus(const Mission_Status& msg, core::RunMetrics* metrics) {
-  if (msg.state > Mission_Status::REJECTED || !std::isfinite(msg.object_position_x) ||
-      !std::isfinite(msg.object_position_y) || !std::isfinite(msg.distance_to_target)) {
-    return "ignored a Mission_Status of mission " + std::to_string(msg.mission_id) +
-           ": unknown state " + std::to_string(msg.state) + " or a non-finite field";
+  return RecordStatus(ToStatusReport(msg), msg.tick, metrics);
+}
+
+std::string RecordStatus(const core::StatusReport& status, std::uint64_t tick,
+                         core::RunMetrics* metrics) {
+  if (status.phase > core::MissionPhase::kRejected || !std::isfinite(status.object.x) ||
+      !std::isfinite(status.object.y) || !std::isfinite(status.distance_to_target)) {
+    return "ignored a Mission_Status of mission " + std::to_string(status.mission_id) +
+           ": unknown state " + std::to_string(static_cast<int>(status.phase)) +
+           " or a non-finite field";
   }
-  return metrics->AddStatus(msg.mission_id, static_cast<core::MissionPhase>(msg.state), msg.tick,
-                            core::Vec2{msg.object_position_x, msg.object_position_y});
+  return metrics->AddStatus(status.mission_id, status.phase, tick, status.object);
 }
 
 bool WriteRunFile(const std::string& run_dir, const std::string& row, std::string* error) {

@@ -148,7 +148,7 @@ void RobotNode::TakeRound(const Neighbors::ConstPtr& msg, double arrival_s) {
   // A round's flocking tuning (issue 13): a generation it does not have yet is used from this
   // tick on (lock-step: every robot at the same tick; real time: on receipt).
   const std::uint32_t had = session_->tuning_generation();
-  Say(session_->TakeTuning(*msg));
+  Say(session_->TakeTuning(ToTuning(*msg), msg->tick));
   if (session_->tuning_generation() != had) {
     ROS_DEBUG("robot %u: flocking tuning %u from tick %llu", id_, session_->tuning_generation(),
               static_cast<unsigned long long>(msg->tick));
@@ -193,21 +193,21 @@ void RobotNode::HearRobots(const Robot_Positions& msg) {
 }
 
 void RobotNode::Hand(const core::MissionMessage& message, const core::Sender& from) {
-  const RobotSession::Taken taken = session_->Take(message, from, known_robots_);
+  const core::RobotSession::Taken taken = session_->Take(message, from, known_robots_);
   // Real time: a new first leader publishes its statuses on topics of its own (lock-step: its
   // answers carry them); published with this tick's messages.
   if (taken.first_leader && !lockstep()) outlets_.Advertise(nh_);
   Say(taken);
 }
 
-void RobotNode::Say(const RobotSession::Taken& taken) {
+void RobotNode::Say(const core::RobotSession::Taken& taken) {
   switch (taken.say) {
-    case RobotSession::Taken::Say::kNothing:
+    case core::RobotSession::Taken::Say::kNothing:
       return;
-    case RobotSession::Taken::Say::kDebug:
+    case core::RobotSession::Taken::Say::kDebug:
       ROS_DEBUG("robot %u: ignored: %s", id_, taken.why.c_str());
       return;
-    case RobotSession::Taken::Say::kWarn: {
+    case core::RobotSession::Taken::Say::kWarn: {
       WarnThrottle& throttle = rejected_.try_emplace(taken.kind, kRejectLogPeriodS).first->second;
       if (!throttle.Due()) return;
       ROS_WARN("robot %u: rejected %s%s", id_, taken.why.c_str(),
@@ -251,20 +251,22 @@ void RobotNode::Tick() {
   // Lock-step: stamped with the tick's own simulated time (as the batch engine does), not with
   // whatever /clock this process has seen by now.
   const ros::Time stamp = lockstep() ? ros::Time(perception_->sim_time) : ros::Time::now();
-  RobotSession::Step step =
-      session_->Tick(std::move(in), perception_->tick, stamp, lockstep() || outlets_.Ready());
+  core::RobotSession::Step step = session_->Tick(std::move(in), perception_->tick,
+                                                 perception_->sim_time,
+                                                 lockstep() || outlets_.Ready());
+  const Tick_Answer answer = ToTickAnswer(step.answer, stamp);
   const core::Velocity command = step.brain.command;
-  for (const Mission_Status& st : step.answer.statuses) {
+  for (const Mission_Status& st : answer.statuses) {
     ROS_INFO("robot %u: mission %u %s", id_, st.mission_id,
              core::PhaseName(static_cast<core::MissionPhase>(st.state)));
   }
   if (lockstep()) {
     // One answer: the command and everything said this tick (the simulator relays it and
     // publishes it for observers).
-    transport_->SendAnswer(step.answer);
+    transport_->SendAnswer(answer);
   } else {
     // Mission messages go out before the command.
-    if (!outlets_.Publish(step.answer)) {
+    if (!outlets_.Publish(answer)) {
       ROS_ERROR("robot %u: has mission messages to send but is no first leader", id_);
     }
     transport_->SendCommand(ToTwist(command));

@@ -4,7 +4,7 @@
 
 namespace swarm_transport {
 
-Robot_State::Response StateOf(const RobotSession& session, std::uint64_t ticks, bool listed) {
+Robot_State::Response StateOf(const core::RobotSession& session, std::uint64_t ticks, bool listed) {
   const core::RobotBrain& brain = session.brain();
   const core::MissionPlan& plan = brain.last_plan();
   const core::MoveDecision& move = brain.last_move();

@@ -1,13 +1,11 @@
 #include "swarm_transport/ros/simulator/event_player.h"
 
 #include <utility>
+#include <variant>
 
-#include "swarm_transport/Mission_Event.h"
-#include "swarm_transport/Robot_Continue.h"
-#include "swarm_transport/Robot_Freeze.h"
-#include "swarm_transport/Robot_Position.h"
-#include "swarm_transport/Update_Object.h"
 #include "swarm_transport/core/angle.h"
+#include "swarm_transport/core/round.h"
+#include "swarm_transport/ros/common/conversions.h"
 #include "swarm_transport/ros/common/names.h"
 
 namespace swarm_transport {
@@ -19,55 +17,38 @@ EventPlayer::EventPlayer(std::vector<TimedEvent> events, LockstepSession* sessio
 void EventPlayer::Connect(ros::NodeHandle nh, std::uint32_t queue) {
   if (session_) return;
   // Real time: a timed event goes out as this node's message (robots take it as relayed).
-  freeze_pub_ = nh.advertise<Robot_Freeze>(names::kFreeze, queue);
-  continue_pub_ = nh.advertise<Robot_Continue>(names::kContinue, queue);
-  update_pub_ = nh.advertise<Update_Object>(names::kObjectUpdate, queue);
-  signal_pub_ = nh.advertise<Mission_Event>(names::kMissionEvent, queue);
+  freeze_pub_ = nh.advertise<MsgOf<core::Freeze>>(names::kFreeze, queue);
+  continue_pub_ = nh.advertise<MsgOf<core::Continue>>(names::kContinue, queue);
+  update_pub_ = nh.advertise<MsgOf<core::ObjectUpdate>>(names::kObjectUpdate, queue);
+  signal_pub_ = nh.advertise<MsgOf<core::Signal>>(names::kMissionEvent, queue);
 }
 
-template <typename M>
-void EventPlayer::Send(const M& msg, const ros::Publisher& pub) {
+void EventPlayer::Send(const core::MissionMessage& message, const ros::Publisher& pub) {
   if (session_) {
-    session_->Inject(msg);
+    session_->Inject(message);
   } else {
-    pub.publish(msg);
+    std::visit([&pub](const auto& m) { pub.publish(ToMsg(m)); }, message);
   }
 }
 
 void EventPlayer::ApplyDue(std::uint64_t tick) {
   for (const TimedEvent& e : schedule_.Due(tick)) {
     switch (e.kind) {
-      case TimedEvent::Kind::kFreeze: {
-        Robot_Freeze msg;
-        msg.robot_index_from = e.from;
-        msg.robot_index_to = e.to;
-        Send(msg, freeze_pub_);
+      case TimedEvent::Kind::kFreeze:
+        Send(core::Freeze{e.from, e.to}, freeze_pub_);
         break;
-      }
-      case TimedEvent::Kind::kContinue: {
-        Robot_Continue msg;
-        msg.robot_index_from = e.from;
-        msg.robot_index_to = e.to;
-        Send(msg, continue_pub_);
+      case TimedEvent::Kind::kContinue:
+        Send(core::Continue{e.from, e.to}, continue_pub_);
         break;
-      }
-      case TimedEvent::Kind::kObjectUpdate: {
-        Update_Object msg;
-        msg.mission_id = e.mission;
-        msg.object_position_x = static_cast<float>(e.x);
-        msg.object_position_y = static_cast<float>(e.y);
+      case TimedEvent::Kind::kObjectUpdate:
         missions_->UpdateObject(e.mission, {e.x, e.y});
-        Send(msg, update_pub_);
+        // At the precision its message carries.
+        Send(core::ObjectUpdate{e.mission, {core::AsSent(e.x), core::AsSent(e.y)}}, update_pub_);
         break;
-      }
-      case TimedEvent::Kind::kSignal: {
-        Mission_Event msg;
-        msg.mission_id = e.mission;
-        msg.event = e.signal;
-        msg.not_before_tick = e.tick;
-        Send(msg, signal_pub_);
+      case TimedEvent::Kind::kSignal:
+        Send(core::Signal{e.mission, static_cast<core::MissionEventKind>(e.signal), e.tick},
+             signal_pub_);
         break;
-      }
       case TimedEvent::Kind::kKill:
         roster_->KillByEvent(e.robot);
         break;
@@ -75,12 +56,12 @@ void EventPlayer::ApplyDue(std::uint64_t tick) {
         roster_->Spawn(e.robot, {{e.x, e.y}, core::Angle(e.theta_deg)});
         break;
       case TimedEvent::Kind::kStatist: {
-        Robot_Position statist;
+        core::Position statist;
         statist.robot_id = e.robot;
         statist.sub_id = e.sub_id;
-        statist.type = Robot_Position::TYPE_STATIST;
-        statist.pos_x = static_cast<float>(e.x);
-        statist.pos_y = static_cast<float>(e.y);
+        statist.type = core::Position::kStatist;
+        statist.x = static_cast<float>(e.x);
+        statist.y = static_cast<float>(e.y);
         roster_->relayed().Take(statist);
         break;
       }

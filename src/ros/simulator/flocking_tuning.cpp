@@ -22,7 +22,7 @@ core::FlockingTuning ToFlockingTuning(const FlockingConfig& config) {
   return t;
 }
 
-FlockingTuningServer::FlockingTuningServer(ros::NodeHandle private_nh, TuningRelay* relay)
+FlockingTuningServer::FlockingTuningServer(ros::NodeHandle private_nh, sim::TuningRelay* relay)
     : relay_(relay) {
   // The server reads its first values from ~free_will_deg etc. (the .cfg's defaults when
   // unset): /swarm's values are put there first, so that it starts with what the swarm uses.

@@ -1,5 +1,6 @@
 #include "swarm_transport/ros/simulator/live_tuning.h"
 
+#include "swarm_transport/ros/common/conversions.h"
 #include "swarm_transport/ros/common/names.h"
 
 namespace swarm_transport {
@@ -14,9 +15,9 @@ void LiveTuning::Shutdown() {
   pub_.shutdown();
 }
 
-std::optional<Flocking_Tuning> LiveTuning::BeginRound(std::uint64_t tick) {
-  std::optional<Flocking_Tuning> tuned = relay_.BeginRound(tick);
-  if (tuned) pub_.publish(*tuned);
+std::optional<core::TuningGeneration> LiveTuning::BeginRound(std::uint64_t tick) {
+  std::optional<core::TuningGeneration> tuned = relay_.BeginRound(tick);
+  if (tuned) pub_.publish(ToTuningMsg(tuned->tuning, tuned->generation, tuned->tick));
   return tuned;
 }
 

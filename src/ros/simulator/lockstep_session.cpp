@@ -1,8 +1,10 @@
 #include "swarm_transport/ros/simulator/lockstep_session.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <type_traits>
+#include <variant>
 
 #include "swarm_transport/Delete_Object.h"
 #include "swarm_transport/Mission_Event.h"
@@ -31,7 +33,7 @@ constexpr double kSettleS = 0.2;
 
 LockstepSession::LockstepSession(ros::NodeHandle nh, const SimulatorParams& params,
                                  RobotLinks* links, ros::CallbackQueue* command_queue,
-                                 LockstepEngine* engine, LockstepHooks hooks)
+                                 sim::LockstepEngine* engine, LockstepHooks hooks)
     : nh_(nh),
       params_(params),
       links_(links),
@@ -77,22 +79,21 @@ void LockstepSession::Connect() {
   }
 }
 
-void LockstepSession::Inject(const Robot_Freeze& msg) {
-  engine_->relay().Add(kEventsSender, msg);
-  freeze_pub_.publish(msg);
+void LockstepSession::Inject(const core::MissionMessage& message) {
+  engine_->relay().Add(kEventsSender, message);
+  PublishForObservers(message);
 }
 
-void LockstepSession::Inject(const Robot_Continue& msg) {
-  engine_->relay().Add(kEventsSender, msg);
-  continue_pub_.publish(msg);
+void LockstepSession::PublishForObservers(const core::MissionMessage& message) {
+  std::visit(core::Overloaded{
+                 [this](const core::ObjectUpdate& m) { update_pub_.publish(ToMsg(m)); },
+                 [this](const core::ObjectDelete& m) { delete_pub_.publish(ToMsg(m)); },
+                 [this](const core::Freeze& m) { freeze_pub_.publish(ToMsg(m)); },
+                 [this](const core::Continue& m) { continue_pub_.publish(ToMsg(m)); },
+                 [](const auto&) {},  // the dispatcher's own topics
+             },
+             message);
 }
-
-void LockstepSession::Inject(const Update_Object& msg) {
-  engine_->relay().Add(kEventsSender, msg);
-  update_pub_.publish(msg);
-}
-
-void LockstepSession::Inject(const Mission_Event& msg) { engine_->relay().Add(kEventsSender, msg); }
 
 void LockstepSession::Shutdown() {
   for (ros::Subscriber& sub : relay_subs_) sub.shutdown();
@@ -110,7 +111,7 @@ void LockstepSession::RemoveRobot(std::uint16_t id) {
   connected_.erase(id);
 }
 
-void LockstepSession::Round(std::size_t index, std::uint16_t id, Neighbors* round) {
+void LockstepSession::Round(std::size_t index, std::uint16_t id, core::Round* round) {
   const std::size_t standing = engine_->Round(index, connected_.erase(id) > 0, round);
   if (standing > 0 && round->tick > 0) {
     ROS_INFO(
@@ -322,10 +323,10 @@ void LockstepSession::Relay(const ros::MessageEvent<const M>& event) {
     }
   }
   if constexpr (std::is_same_v<M, New_Mission>) {
-    engine_->relay().AddOrder(from, msg);
+    engine_->relay().AddOrder(from, ToMissionSpec(msg), msg.start_tick);
     barrier_.OrderArrived(msg.mission_id);
   } else {
-    engine_->relay().Add(from, msg);
+    engine_->relay().Add(from, ToMissionMessage(msg));
   }
   if constexpr (std::is_same_v<M, Mission_Status>) NoteStatus(msg);
   if constexpr (std::is_same_v<M, Mission_Event>) {
@@ -417,14 +418,14 @@ std::vector<Robot_Position> LockstepSession::RecruitStatists(std::uint64_t tick)
   return standing;
 }
 
-void LockstepSession::OnAnswer(std::uint16_t id, const Tick_Answer& answer, std::uint64_t tick) {
+void LockstepSession::OnAnswer(std::uint16_t id, const core::Answer& answer, std::uint64_t tick) {
   RobotLink* link = links_->Find(id);
   if (finished_ || link == nullptr) return;
-  const bool finite = IsFinite(answer.command);
+  const bool finite = std::isfinite(answer.command.linear) && std::isfinite(answer.command.angular);
   if (!finite && bad_answer_warning_.Due()) {
     ROS_WARN("lockstep: robot %u answered with a non-finite command; it stands instead", id);
   }
-  const auto result = barrier_.OnAnswer(id, answer.tick, LockstepEngine::CommandOf(answer));
+  const auto result = barrier_.OnAnswer(id, answer.tick, core::CommandOf(answer));
   switch (result) {
     case sim::LockstepBarrier::Answer::kAnswer:
     case sim::LockstepBarrier::Answer::kStale:
@@ -457,16 +458,16 @@ void LockstepSession::OnAnswer(std::uint16_t id, const Tick_Answer& answer, std:
 
 void LockstepSession::TakeAnswers() {
   // By robot id, then in arrival order (a late answer before the robot's current one).
-  engine_->TakeAnswers(&answers_, [this](std::uint16_t, const Tick_Answer& a) {
-    for (const Update_Object& u : a.object_updates) update_pub_.publish(u);
-    for (const Robot_Freeze& f : a.freezes) freeze_pub_.publish(f);
-    for (const Robot_Continue& c : a.continues) continue_pub_.publish(c);
-    for (const Delete_Object& d : a.object_deletes) delete_pub_.publish(d);
-    for (const Mission_Status& st : a.statuses) {
+  engine_->TakeAnswers(&answers_, [this](std::uint16_t, const core::Answer& a) {
+    for (const core::MissionMessage& m : a.messages) PublishForObservers(m);
+    const ros::Time stamp(a.sim_time);
+    for (const core::StatusReport& r : a.statuses) {
+      const Mission_Status st = ToStatusMsg(r, a.tick, stamp);
       NoteStatus(st);
       status_pub_.publish(st);
     }
-    for (const Mission_Status& st : a.progress) progress_pub_.publish(st);
+    for (const core::StatusReport& r : a.progress)
+      progress_pub_.publish(ToStatusMsg(r, a.tick, stamp));
   });
 }
 

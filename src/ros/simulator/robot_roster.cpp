@@ -151,7 +151,7 @@ bool RobotRoster::OnTeleportRelative(std::uint16_t id, TeleportRelative::Request
 }
 
 void RobotRoster::OnPosition(const Robot_Position::ConstPtr& msg) {
-  const std::string why = relayed_.Take(*msg);
+  const std::string why = relayed_.Take(ToPosition(*msg));
   if (!why.empty() && bad_position_warning_.Due()) {
     ROS_WARN("simulator: rejected a Robot_Position of robot %u/%u: %s%s", msg->robot_id,
              msg->sub_id, why.c_str(), bad_position_warning_.AndMore("rejected").c_str());

@@ -73,7 +73,7 @@ bool Simulator::Initialize() {
   radio_ = std::make_unique<sim::Radio>(RadioParamsOf(params_), radio_rng_.get());
   RobotLinkHandlers handlers;
   handlers.cmd_vel = [this](std::uint16_t id, const geometry_msgs::Twist& m) { OnCmdVel(id, m); };
-  handlers.answer = [this](std::uint16_t id, const Tick_Answer& m) { OnAnswer(id, m); };
+  handlers.answer = [this](std::uint16_t id, const Tick_Answer& m) { OnAnswer(id, ToAnswer(m)); };
   handlers.teleport_absolute = [this](std::uint16_t id, TeleportAbsolute::Request& req,
                                       TeleportAbsolute::Response& res) {
     return roster_->OnTeleportAbsolute(id, req, res);
@@ -85,8 +85,8 @@ bool Simulator::Initialize() {
   links_ = std::make_unique<RobotLinks>(nh_, &cmd_queue_, direct_, lockstep_, params_.pose_topics,
                                         std::move(handlers));
   missions_ = std::make_unique<MissionMirror>(params_.swarm.admission, world_.get());
-  engine_ =
-      std::make_unique<LockstepEngine>(world_.get(), radio_.get(), missions_->mutable_missions());
+  engine_ = std::make_unique<sim::LockstepEngine>(world_.get(), radio_.get(),
+                                                  missions_->mutable_missions());
   if (lockstep_) {
     LockstepHooks hooks;
     hooks.running = &Simulator::Running;
@@ -292,9 +292,10 @@ void Simulator::PublishClock() {
 }
 
 void Simulator::BeginTuningRound() {
-  const std::optional<Flocking_Tuning> tuned = tuning_->BeginRound(tick_);
+  const std::optional<core::TuningGeneration> tuned = tuning_->BeginRound(tick_);
   if (!tuned) return;
-  const double range_m = tuned->local_range_m;
+  const core::FlockingTuning& t = tuned->tuning;
+  const double range_m = t.local_range_m;
   if (radio_follows_range_) {
     params_.radio_range_m = range_m;
     radio_->set_range_m(range_m);
@@ -303,8 +304,8 @@ void Simulator::BeginTuningRound() {
   ROS_INFO(
       "simulator: flocking tuning %u from tick %llu: free_will_deg %g, cohesion %g, "
       "local_range_m %g, speed_m_per_tick %g, radio range %g m",
-      tuned->generation, static_cast<unsigned long long>(tuned->tick), tuned->free_will_deg,
-      tuned->cohesion, tuned->local_range_m, tuned->speed_m_per_tick, params_.radio_range_m);
+      tuned->generation, static_cast<unsigned long long>(tuned->tick), t.free_will_deg, t.cohesion,
+      t.local_range_m, t.speed_m_per_tick, params_.radio_range_m);
 }
 
 void Simulator::PublishRadio() {
@@ -314,7 +315,7 @@ void Simulator::PublishRadio() {
     // The orders due by this tick enter its relay and the simulator's books together (the
     // mission channel, markers); the rest wait for their start tick.
     for (const auto& refused : engine_->ReleaseOrders(tick_)) {
-      ROS_DEBUG("simulator: ignored New_Mission %u: %s", refused.first.mission_id,
+      ROS_DEBUG("simulator: ignored the order of mission %u: %s", refused.first.id,
                 refused.second.c_str());
     }
   }
@@ -336,14 +337,13 @@ void Simulator::PublishRadio() {
     RobotLink* link = links_->Find(robot->first);
     if (link == nullptr) continue;
     if (!(lockstep_ ? session_->Live(robot->first) : link->Listening())) continue;
-    Neighbors msg;
     if (lockstep_) {
-      session_->Round(i, robot->first, &msg);
+      session_->Round(i, robot->first, &round_);
     } else {
-      engine_->Round(i, false, &msg);  // real time relays nothing: its robots hear the topics
+      engine_->Round(i, false, &round_);  // real time relays nothing: its robots hear the topics
     }
-    tuning_->Fill(&msg);
-    link->Deliver(robot->first, direct_, std::move(msg));
+    tuning_->Fill(&round_);
+    link->Deliver(robot->first, direct_, ToNeighbors(round_));
     if (lockstep_) session_->Asked(robot->first);
   }
 
@@ -352,7 +352,7 @@ void Simulator::PublishRadio() {
   Robot_Positions all;
   all.tick = tick_;
   all.sim_time = engine_->sim_time();
-  all.robots = engine_->TakeTruth();
+  all.robots = ToRobotPositions(engine_->TakeTruth());
   positions_pub_.publish(all);
   missions_->PublishObjects(tick_);
 }
@@ -403,10 +403,10 @@ void Simulator::SendCommand(std::uint16_t id, const geometry_msgs::Twist& comman
 }
 
 void Simulator::SendAnswer(std::uint16_t id, const Tick_Answer& answer) {
-  OnSimulatorThread([this, id, answer]() { OnAnswer(id, answer); });
+  OnSimulatorThread([this, id, answer]() { OnAnswer(id, ToAnswer(answer)); });
 }
 
-void Simulator::OnAnswer(std::uint16_t id, const Tick_Answer& answer) {
+void Simulator::OnAnswer(std::uint16_t id, const core::Answer& answer) {
   if (finished_ || links_->Find(id) == nullptr) return;
   session_->OnAnswer(id, answer, tick_);
 }
@@ -434,7 +434,7 @@ void Simulator::ApplyRecruitStatists() {
   for (const Robot_Position& statist : session_->RecruitStatists(tick_)) {
     const auto key = std::make_pair(statist.robot_id, statist.sub_id);
     standing.insert(key);
-    if (recruit_statists_.count(key) == 0) roster_->relayed().Take(statist);
+    if (recruit_statists_.count(key) == 0) roster_->relayed().Take(ToPosition(statist));
   }
   for (const auto& key : recruit_statists_) {
     if (standing.count(key) == 0) roster_->relayed().Erase(key.first, key.second);

@@ -5,6 +5,8 @@
 #include <geometry_msgs/Twist.h>
 
 #include <cstdint>
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include "swarm_transport/Delete_Object.h"
@@ -25,8 +27,8 @@
 #include "swarm_transport/core/mission_agent.h"
 #include "swarm_transport/core/mission_book.h"
 #include "swarm_transport/core/mission_message.h"
+#include "swarm_transport/core/round.h"
 #include "swarm_transport/core/swarm_config.h"
-#include "swarm_transport/sim/radio.h"
 
 namespace swarm_transport {
 
@@ -35,6 +37,10 @@ core::Neighbour ToNeighbour(const Robot_Position& msg);
 // Core pose of robot `id` -> Robot_Position (angle in degrees [0, 360)).
 Robot_Position ToRobotPosition(std::uint16_t id, const core::Pose2& pose, std::uint8_t sub_id = 0,
                                std::uint8_t type = Robot_Position::TYPE_PHYSICAL);
+// Robot_Position <-> the core's position (the same fields).
+Robot_Position ToRobotPosition(const core::Position& p);
+core::Position ToPosition(const Robot_Position& msg);
+std::vector<Robot_Position> ToRobotPositions(const std::vector<core::Position>& positions);
 // turtlesim-like Pose (theta in radians, (-pi, pi]) <-> core pose.
 core::Pose2 ToPose2(const Pose& msg);
 Pose ToPoseMsg(const core::Pose2& pose, const core::Velocity& velocity);
@@ -46,26 +52,28 @@ geometry_msgs::Twist ToTwist(const core::Velocity& velocity);
 bool IsFinite(const Robot_Position& msg);
 bool IsFinite(const geometry_msgs::Twist& msg);
 
-// A robot's Neighbors message of tick `tick` without the relayed mission messages: its own pose
-// and what the radio decided (`robots`, `relayed`, `mission_peers`); `truth` holds the round's
-// physical robots as positions (index = the radio's robot index), `extras` its relayed extras. The
-// simulator and the in-process batch runner build every robot's round with this, so both hand a
-// robot the same bytes.
-Neighbors RadioRoundMessage(std::uint64_t tick, double sim_time, const sim::Robot& robot,
-                            const sim::RadioRound& round, const std::vector<Robot_Position>& truth,
-                            const std::vector<Robot_Position>& extras);
+// A round as robot_<id>/neighbors carries it, and back. The relayed mission messages go into
+// the message's lists by kind (a round holds them in that order already); a relayed status
+// carries only the mission and its phase (all a robot reads of it).
+Neighbors ToNeighbors(const core::Round& round);
+core::Round ToRound(const Neighbors& msg);
+// Its tuning only.
+std::optional<core::TuningGeneration> ToTuning(const Neighbors& msg);
 // What robot `id` perceives of a round when it listens to the radio (comm local): its own
 // pose, then the robots in range, those relayed hop by hop and its mission peers, each list in
 // order; a position with a non-finite value is dropped (the radio relays what robots sent).
 core::Perception ToPerception(std::uint16_t id, const Neighbors& msg);
 
-// What a first leader says in tick `tick`, as messages (a Tick_Answer's lists, without tick
-// and command): its outbox (statuses already sequenced: one per phase) and its progress
-// reports, every status stamped `tick` and `stamp`. The robot node and the batch engine both
-// build them here.
-Tick_Answer ToAnswerMessages(const core::MissionOutbox& outbox,
-                             const std::vector<core::StatusReport>& progress, std::uint64_t tick,
-                             const ros::Time& stamp);
+// An answer as robot_<id>/answer carries it (every status stamped with the answer's tick and
+// `stamp`), and back (the statuses' stamp becomes its sim_time; a command with any non-finite
+// component becomes a non-finite one: the robot stands).
+Tick_Answer ToTickAnswer(const core::Answer& answer, const ros::Time& stamp);
+core::Answer ToAnswer(const Tick_Answer& msg);
+// A Mission_Status as a status report (without its tick and stamp).
+core::StatusReport ToStatusReport(const Mission_Status& msg);
+// A status report of tick `tick`, stamped `stamp`.
+Mission_Status ToStatusMsg(const core::StatusReport& report, std::uint64_t tick,
+                           const ros::Time& stamp);
 
 // A LOADED / UNLOADED the dispatcher's book made due -> its Mission_Event.
 Mission_Event ToEventMsg(const core::DueSignal& due);
@@ -76,6 +84,18 @@ core::MissionReport ToMissionReport(const Mission_Status& msg);
 core::FlockingTuning ToFlockingTuning(const Flocking_Tuning& msg);
 Flocking_Tuning ToTuningMsg(const core::FlockingTuning& tuning, std::uint32_t generation,
                             std::uint64_t tick);
+
+// A core mission message -> its message (a status: its mission and phase only).
+New_Mission ToMsg(const core::MissionSpec& m);
+Update_Object ToMsg(const core::ObjectUpdate& m);
+Delete_Object ToMsg(const core::ObjectDelete& m);
+Robot_Freeze ToMsg(const core::Freeze& m);
+Robot_Continue ToMsg(const core::Continue& m);
+Mission_Event ToMsg(const core::Signal& m);
+Mission_Status ToMsg(const core::PhaseStatus& m);
+// The message type of a core mission message kind (MsgOf<core::Freeze> is its ROS message).
+template <typename C>
+using MsgOf = decltype(ToMsg(std::declval<const C&>()));
 
 // New_Mission -> core mission; all_finite records whether every float of the message is finite
 // (ValidateMission rejects the mission otherwise).

@@ -1,6 +1,6 @@
 // Experiment runs in one process without a ROS master [issue 10, item 9; issue 25]: the
-// lock-step engine that the simulator drives (ros/engine/lockstep_engine.h), driven here with the
-// robots' own sessions (ros/robot/robot_session.h), the dispatcher's book as a dispatcher without
+// lock-step engine that the simulator drives (sim/lockstep_engine.h), driven here with the
+// robots' own sessions (core/robot_session.h), the dispatcher's book as a dispatcher without
 // private parameters makes it (MissionBookParamsOf), and the recorder's bookkeeping and file
 // writers (ros/recorder/recorder.h), so that a run gives the same rows and poses as a launched one
 // (test/batch_equivalence.test, tick by tick) while costing no start-up: a fresh world, robots

@@ -13,6 +13,7 @@
 #include "swarm_transport/Mission_Status.h"
 #include "swarm_transport/New_Mission.h"
 #include "swarm_transport/Robot_Positions.h"
+#include "swarm_transport/core/mission_agent.h"
 #include "swarm_transport/core/run_metrics.h"
 #include "swarm_transport/ros/common/params.h"
 #include "swarm_transport/ros/common/wall_throttle.h"
@@ -71,6 +72,9 @@ std::string RecordOrder(const New_Mission& msg, const SwarmConfig& swarm,
                         core::RunMetrics* metrics);
 // A phase status (state <= REJECTED, finite fields) is booked for its mission.
 std::string RecordStatus(const Mission_Status& msg, core::RunMetrics* metrics);
+// The same of a status report of tick `tick` (the batch runs').
+std::string RecordStatus(const core::StatusReport& status, std::uint64_t tick,
+                         core::RunMetrics* metrics);
 // Writes <run_dir>/run.csv: the header and `row`, written aside and renamed over the old file
 // so that a reader never sees half a file.
 bool WriteRunFile(const std::string& run_dir, const std::string& row, std::string* error);

@@ -21,7 +21,7 @@
 #include "swarm_transport/ros/common/mission_topics.h"
 #include "swarm_transport/ros/common/params.h"
 #include "swarm_transport/ros/common/wall_throttle.h"
-#include "swarm_transport/ros/robot/robot_session.h"
+#include "swarm_transport/core/robot_session.h"
 #include "swarm_transport/ros/robot/robot_stats.h"
 #include "swarm_transport/ros/robot/robot_transport.h"
 
@@ -82,7 +82,7 @@ class RobotNode : public RobotInbox {
   // which keeps only virtual copies and statists of it, nor this process).
   void CountObserver(const std::string& node, int delta);
   // Logs what the session refused, as it says.
-  void Say(const RobotSession::Taken& taken);
+  void Say(const core::RobotSession::Taken& taken);
   // Computes and executes one tick on `perception_` (the session decides, the node sends).
   void Tick();
   void PublishStatusIfDue();
@@ -96,7 +96,7 @@ class RobotNode : public RobotInbox {
   std::uint16_t id_ = 0;
   // Declared before everything it connects: its handles' callbacks may run on its queues.
   std::unique_ptr<RobotTransport> transport_;
-  std::optional<RobotSession> session_;  // its behaviour and state (set by Initialize)
+  std::optional<core::RobotSession> session_;  // its behaviour and state (set by Initialize)
   MissionOutlets outlets_;               // real time, once it is a first leader
   ros::Publisher position_pub_;
   // Nodes other than the simulator and this process subscribed to its /flock/position (it

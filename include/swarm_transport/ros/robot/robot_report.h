@@ -7,13 +7,13 @@
 
 #include "swarm_transport/Robot_State.h"
 #include "swarm_transport/ros/common/diagnostics.h"
-#include "swarm_transport/ros/robot/robot_session.h"
+#include "swarm_transport/core/robot_session.h"
 
 namespace swarm_transport {
 
 // ~state: its state, typed (for tools and tests). `ticks`: the ticks it ran; `listed`: it is in
 // the simulator's robot list.
-Robot_State::Response StateOf(const RobotSession& session, std::uint64_t ticks, bool listed);
+Robot_State::Response StateOf(const core::RobotSession& session, std::uint64_t ticks, bool listed);
 // ~describe: the same in one line for people.
 std::string Describe(const Robot_State::Response& state);
 // Its /diagnostics status at radio round `tick`.

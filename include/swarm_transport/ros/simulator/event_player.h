@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "swarm_transport/core/mission_message.h"
 #include "swarm_transport/ros/common/event_schedule.h"
 #include "swarm_transport/ros/simulator/lockstep_session.h"
 #include "swarm_transport/ros/simulator/mission_mirror.h"
@@ -31,8 +32,8 @@ class EventPlayer {
   void ApplyDue(std::uint64_t tick);
 
  private:
-  template <typename M>
-  void Send(const M& msg, const ros::Publisher& pub);
+  // Lock-step: into the session's relay; real time: on `pub` (advertised for its kind).
+  void Send(const core::MissionMessage& message, const ros::Publisher& pub);
 
   EventSchedule schedule_;
   LockstepSession* session_;

@@ -1,6 +1,6 @@
 // The simulator's dynamic_reconfigure server of the flocking parameters (issue 13): free will,
 // cohesion, local range and speed of a running swarm (cfg/Flocking.cfg). It only validates and
-// hands a change to the TuningRelay (ros/engine/mission_relay.h), which carries it to every robot.
+// hands a change to the sim::TuningRelay (sim/mission_relay.h), which carries it to every robot.
 #ifndef SWARM_TRANSPORT_ROS_FLOCKING_TUNING_H_
 #define SWARM_TRANSPORT_ROS_FLOCKING_TUNING_H_
 
@@ -12,22 +12,22 @@
 #include <memory>
 
 #include "swarm_transport/FlockingConfig.h"
-#include "swarm_transport/ros/engine/mission_relay.h"
+#include "swarm_transport/sim/mission_relay.h"
 
 namespace swarm_transport {
 
-// dynamic_reconfigure <-> TuningRelay. At start the server holds /swarm's values (not the
+// dynamic_reconfigure <-> sim::TuningRelay. At start the server holds /swarm's values (not the
 // .cfg's defaults). A change that fails the robots' check is refused with one ROS_ERROR naming
 // the key and the accepted range: the server keeps (and answers with) the values in use.
 class FlockingTuningServer {
  public:
   // `relay` must outlive the server; its callbacks run on `private_nh`'s queue.
-  FlockingTuningServer(ros::NodeHandle private_nh, TuningRelay* relay);
+  FlockingTuningServer(ros::NodeHandle private_nh, sim::TuningRelay* relay);
 
  private:
   void OnReconfigure(FlockingConfig& config, std::uint32_t level);  // NOLINT: its signature
 
-  TuningRelay* relay_;
+  sim::TuningRelay* relay_;
   boost::recursive_mutex mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<FlockingConfig>> server_;
 };

@@ -10,14 +10,15 @@
 #include <optional>
 
 #include "swarm_transport/Flocking_Tuning.h"
-#include "swarm_transport/Neighbors.h"
+#include "swarm_transport/core/round.h"
 #include "swarm_transport/core/swarm_config.h"
-#include "swarm_transport/ros/engine/mission_relay.h"
 #include "swarm_transport/ros/simulator/flocking_tuning.h"
+#include "swarm_transport/sim/mission_relay.h"
 
 namespace swarm_transport {
 
-// TuningRelay + FlockingTuningServer + /flock/tuning, on the simulator's thread (global queue).
+// sim::TuningRelay + FlockingTuningServer + /flock/tuning, on the simulator's thread (global
+// queue).
 class LiveTuning {
  public:
   explicit LiveTuning(const core::SwarmConfig& swarm) : relay_(swarm) {}
@@ -28,13 +29,13 @@ class LiveTuning {
 
   // Round `tick` begins: a tuning accepted since the last round becomes current, goes out on
   // /flock/tuning and is returned (once).
-  std::optional<Flocking_Tuning> BeginRound(std::uint64_t tick);
+  std::optional<core::TuningGeneration> BeginRound(std::uint64_t tick);
   // The current tuning into a robot's round (nothing before the first change).
-  void Fill(Neighbors* round) const { relay_.Fill(round); }
+  void Fill(core::Round* round) const { relay_.Fill(round); }
   std::uint32_t generation() const { return relay_.generation(); }
 
  private:
-  TuningRelay relay_;
+  sim::TuningRelay relay_;
   std::unique_ptr<FlockingTuningServer> server_;
   ros::Publisher pub_;
 };

@@ -1,6 +1,6 @@
 // The simulator's lock-step protocol over ROS [SPEC 7]: who is live and when a tick is
 // complete. The tick itself (rounds, relay, answers) is the engine's
-// (ros/engine/lockstep_engine.h), the decisions are the pure barrier's (sim/lockstep_barrier.h);
+// (sim/lockstep_engine.h), the decisions are the pure barrier's (sim/lockstep_barrier.h);
 // this class feeds them from topics and the robots' links, waits, and tells observers what the
 // robots said.
 //
@@ -25,17 +25,17 @@
 
 #include "swarm_transport/Mission_Schedule.h"
 #include "swarm_transport/Mission_Status.h"
-#include "swarm_transport/Neighbors.h"
 #include "swarm_transport/New_Mission.h"
 #include "swarm_transport/Robot_Position.h"
-#include "swarm_transport/Tick_Answer.h"
 #include "swarm_transport/core/kinematics.h"
+#include "swarm_transport/core/mission_message.h"
+#include "swarm_transport/core/round.h"
 #include "swarm_transport/ros/common/wall_throttle.h"
-#include "swarm_transport/ros/engine/lockstep_engine.h"
-#include "swarm_transport/ros/engine/mission_relay.h"
 #include "swarm_transport/ros/simulator/robot_links.h"
 #include "swarm_transport/ros/simulator/simulator_params.h"
 #include "swarm_transport/sim/lockstep_barrier.h"
+#include "swarm_transport/sim/lockstep_engine.h"
+#include "swarm_transport/sim/mission_relay.h"
 
 namespace swarm_transport {
 
@@ -51,7 +51,8 @@ class LockstepSession {
  public:
   // `links`, `command_queue` (where answers arrive) and `engine` must outlive the session.
   LockstepSession(ros::NodeHandle nh, const SimulatorParams& params, RobotLinks* links,
-                  ros::CallbackQueue* command_queue, LockstepEngine* engine, LockstepHooks hooks);
+                  ros::CallbackQueue* command_queue, sim::LockstepEngine* engine,
+                  LockstepHooks hooks);
 
   // Subscribes the relayed mission topics (and the dispatcher's schedule), advertises the
   // observers' topics.
@@ -59,10 +60,7 @@ class LockstepSession {
   void Shutdown();
   // A scenario's timed event (the simulator's own message): relayed to every robot in this
   // tick's round and published for observers.
-  void Inject(const Robot_Freeze& msg);
-  void Inject(const Robot_Continue& msg);
-  void Inject(const Update_Object& msg);
-  void Inject(const Mission_Event& msg);
+  void Inject(const core::MissionMessage& message);
   // A robot enters the barrier; after the start, one whose process already runs is waited for
   // when the next tick begins (see WaitForJoining).
   void AddRobot(std::uint16_t id);
@@ -86,7 +84,7 @@ class LockstepSession {
   // The round of robot `id` at world index `index`; the first after its process connected (at
   // tick 0 or when it joins or comes back) also carries the orders of the missions that have
   // not ended (MissionRelay::FillStanding).
-  void Round(std::size_t index, std::uint16_t id, Neighbors* round);
+  void Round(std::size_t index, std::uint16_t id, core::Round* round);
   void Asked(std::uint16_t id) { barrier_.Ask(id); }
   void EndRound() { engine_->EndRound(); }
   // Spins until every live robot answered tick `tick` or the timeout passed; robots that did
@@ -97,12 +95,14 @@ class LockstepSession {
   // After the last tick: nobody is asked anything, late answers are ignored.
   void Finish();
   // Robot `id`'s answer (a topic's or a direct link's), during tick `tick`.
-  void OnAnswer(std::uint16_t id, const Tick_Answer& answer, std::uint64_t tick);
+  void OnAnswer(std::uint16_t id, const core::Answer& answer, std::uint64_t tick);
 
  private:
   template <typename M>
   void Relay(const ros::MessageEvent<const M>& event);
   void NoteStatus(const Mission_Status& status);
+  // A relayed mission message on its /flock/ topic, for observers.
+  void PublishForObservers(const core::MissionMessage& message);
   void OnSchedule(const Mission_Schedule::ConstPtr& msg);
   bool RelaysConnected(const ros::Publisher& robot_list) const;
   // Robots spawned since the last tick whose process already runs (it publishes their answer
@@ -118,10 +118,10 @@ class LockstepSession {
   const SimulatorParams& params_;
   RobotLinks* links_;
   ros::CallbackQueue* command_queue_;
-  LockstepEngine* engine_;
+  sim::LockstepEngine* engine_;
   LockstepHooks hooks_;
   sim::LockstepBarrier barrier_;
-  LockstepEngine::Answers answers_;  // not taken yet
+  sim::LockstepEngine::Answers answers_;  // not taken yet
   bool finished_ = false;
   bool started_ = false;               // WaitForStart is done
   std::set<std::uint16_t> joining_;    // added since the last tick began (after the start)

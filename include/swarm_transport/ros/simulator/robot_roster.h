@@ -21,9 +21,9 @@
 #include "swarm_transport/core/random.h"
 #include "swarm_transport/ros/common/direct_link.h"
 #include "swarm_transport/ros/common/wall_throttle.h"
-#include "swarm_transport/ros/engine/mission_relay.h"
 #include "swarm_transport/ros/simulator/lockstep_session.h"
 #include "swarm_transport/ros/simulator/robot_links.h"
+#include "swarm_transport/sim/mission_relay.h"
 #include "swarm_transport/sim/world2d.h"
 
 namespace swarm_transport {
@@ -57,7 +57,7 @@ class RobotRoster {
                           TeleportRelative::Response& res);
 
   // Virtual copies and statists, relayed by the radio.
-  RelayedPositions& relayed() { return relayed_; }
+  sim::RelayedPositions& relayed() { return relayed_; }
   const ros::Publisher& list_publisher() const { return robots_pub_; }
 
  private:
@@ -78,7 +78,7 @@ class RobotRoster {
   DirectRobots* direct_;
   const std::uint64_t* tick_;
   core::Rng spawn_rng_;  // poses of robots that join by New_Robot
-  RelayedPositions relayed_;
+  sim::RelayedPositions relayed_;
   ros::Publisher robots_pub_;
   ros::ServiceServer spawn_srv_;
   ros::ServiceServer kill_srv_;

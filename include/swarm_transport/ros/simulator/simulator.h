@@ -26,7 +26,6 @@
 #include "swarm_transport/ros/common/diagnostics.h"
 #include "swarm_transport/ros/common/direct_link.h"
 #include "swarm_transport/ros/common/wall_throttle.h"
-#include "swarm_transport/ros/engine/lockstep_engine.h"
 #include "swarm_transport/ros/simulator/event_player.h"
 #include "swarm_transport/ros/simulator/live_tuning.h"
 #include "swarm_transport/ros/simulator/lockstep_hold.h"
@@ -36,6 +35,7 @@
 #include "swarm_transport/ros/simulator/robot_roster.h"
 #include "swarm_transport/ros/simulator/simulator_params.h"
 #include "swarm_transport/ros/simulator/visuals.h"
+#include "swarm_transport/sim/lockstep_engine.h"
 #include "swarm_transport/sim/radio.h"
 #include "swarm_transport/sim/world2d.h"
 
@@ -97,7 +97,7 @@ class Simulator : public RobotOutlet {
   // round (and on /flock/tuning); the radio's range and the markers follow its local range.
   void BeginTuningRound();
   // Lock-step: robot `id`'s answer, for the session (ignored after the last tick).
-  void OnAnswer(std::uint16_t id, const Tick_Answer& answer);
+  void OnAnswer(std::uint16_t id, const core::Answer& answer);
   void PublishPoses();
   void PublishClock();
   // Markers and tf when their wall-clock period has passed, and the node's diagnostic status.
@@ -137,9 +137,10 @@ class Simulator : public RobotOutlet {
   // Live tuning of the flocking parameters (dynamic_reconfigure on the private handle).
   std::unique_ptr<LiveTuning> tuning_;
   bool radio_follows_range_ = true;  // ~radio_range_m unset: the radio's range is the local range
-  std::unique_ptr<RobotRoster> roster_;      // spawn, kill, teleports, copies and statists
-  std::unique_ptr<MissionMirror> missions_;  // what the robots act on, for radio and markers
-  std::unique_ptr<LockstepEngine> engine_;   // the rounds (lock-step: and the relay)
+  std::unique_ptr<RobotRoster> roster_;          // spawn, kill, teleports, copies and statists
+  std::unique_ptr<MissionMirror> missions_;      // what the robots act on, for radio and markers
+  std::unique_ptr<sim::LockstepEngine> engine_;  // the rounds (lock-step: and the relay)
+  core::Round round_;                            // the round being made (its buffers kept)
 
   ros::Publisher positions_pub_;
   std::unique_ptr<LockstepSession> session_;  // lock-step only

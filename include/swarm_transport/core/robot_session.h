@@ -1,32 +1,32 @@
-// One robot between its messages, without ROS's transport: its brain, the status sequence of the
-// missions it leads and its live tuning - a round (or one mission message) in, an answer out.
-// Every deployment runs a robot through this class: a robot process and a host's robots
-// (RobotNode, which only moves messages between a transport and the session) and the batch
-// runs (batch_run.h: the lock-step engine hands them their rounds). No node handle, no clock,
-// no log: what a transport must say about a message it is told (Taken::say).
-#ifndef SWARM_TRANSPORT_ROS_ROBOT_SESSION_H_
-#define SWARM_TRANSPORT_ROS_ROBOT_SESSION_H_
-
-#include <ros/time.h>
+// One robot between its messages, without a transport: its brain, the status sequence of the
+// missions it leads and its live tuning - a round (or one mission message) in, an answer out
+// (core/round.h). Every deployment runs a robot through this class: a robot process and a
+// host's robots (RobotNode, which only converts and moves messages between a transport and the
+// session) and the batch runs (the lock-step engine hands them their rounds as they are). No
+// transport, no clock, no log: what a transport must say about a message it is told
+// (Taken::say).
+#ifndef SWARM_TRANSPORT_CORE_ROBOT_SESSION_H_
+#define SWARM_TRANSPORT_CORE_ROBOT_SESSION_H_
 
 #include <cstdint>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
-#include "swarm_transport/Neighbors.h"
-#include "swarm_transport/Tick_Answer.h"
 #include "swarm_transport/core/mission.h"
 #include "swarm_transport/core/mission_message.h"
 #include "swarm_transport/core/robot_brain.h"
+#include "swarm_transport/core/round.h"
 #include "swarm_transport/core/swarm_config.h"
 
 namespace swarm_transport {
+namespace core {
 
 class RobotSession {
  public:
   // `config` must be valid (SwarmConfig::Validate).
-  RobotSession(std::uint16_t id, const core::SwarmConfig& config);
+  RobotSession(std::uint16_t id, const SwarmConfig& config);
 
   // What became of one message, and what its transport should say about it.
   struct Taken {
@@ -37,7 +37,7 @@ class RobotSession {
       kWarn,     // bad input: worth a (throttled) warning
     };
     Say say = Say::kNothing;
-    std::string kind;  // the message's type name ("New_Mission", ...)
+    std::string kind;  // the message's kind (KindName: "order", ...)
     std::string why;   // empty when taken
     // It took a mission as its first leader (a real-time transport advertises its mission
     // topics now).
@@ -47,41 +47,44 @@ class RobotSession {
   // One mission message from `from` (a topic's publisher; the relay for a lock-step round),
   // checked against who may send it (core::MayOrder, core::MayReport). `known_robots`: the
   // physical robots the swarm has now.
-  Taken Take(const core::MissionMessage& message, const core::Sender& from,
+  Taken Take(const MissionMessage& message, const Sender& from,
              const std::set<std::uint16_t>& known_robots);
   // A lock-step round's relayed mission messages, in the round's order (from the relay);
   // what it refused is appended to `refused` (may be null).
-  void TakeRelayed(const Neighbors& round, const std::set<std::uint16_t>& known_robots,
+  void TakeRelayed(const Round& round, const std::set<std::uint16_t>& known_robots,
                    std::vector<Taken>* refused);
   // A round's flocking tuning (issue 13): a generation it does not have yet is used from this
   // tick on. Returns a refusal (once per generation), else nothing to say.
-  Taken TakeTuning(const Neighbors& round);
+  Taken TakeTuning(const std::optional<TuningGeneration>& tuning, std::uint64_t tick);
+  Taken TakeTuning(const Round& round) { return TakeTuning(round.tuning, round.tick); }
 
-  // One tick on `in`. `ready`: its mission messages can go out now (a real-time first leader
-  // whose subscribers are not connected yet holds its phase machine and says nothing). The
-  // answer carries every mission message it says (statuses sequenced: one per phase, the
-  // rest progress), stamped `tick` and `stamp`, with `tick` and its command.
+  // One tick on `in`, the round of tick `tick` at simulated time `sim_time`. `ready`: its
+  // mission messages can go out now (a real-time first leader whose subscribers are not
+  // connected yet holds its phase machine and says nothing). The answer carries every mission
+  // message it says (statuses sequenced: one per phase, the rest progress), with `tick`,
+  // `sim_time` and its command.
   struct Step {
-    core::BrainTick brain;
-    Tick_Answer answer;
+    BrainTick brain;
+    Answer answer;
   };
-  Step Tick(core::Perception in, std::uint64_t tick, const ros::Time& stamp, bool ready);
+  Step Tick(Perception in, std::uint64_t tick, double sim_time, bool ready);
 
   std::uint16_t id() const { return brain_.id(); }
-  const core::RobotBrain& brain() const { return brain_; }
+  const RobotBrain& brain() const { return brain_; }
   std::uint32_t tuning_generation() const { return tuning_generation_; }
   std::uint64_t tuning_tick() const { return tuning_tick_; }
 
  private:
-  core::RobotBrain brain_;
+  RobotBrain brain_;
   // The QUEUED of the missions it took as first leader and the phase last reported per mission:
   // every status of a mission comes from its first leader, in order.
-  core::StatusSequencer statuses_;
+  StatusSequencer statuses_;
   std::uint32_t tuning_generation_ = 0;   // the live tuning it took (0: its configuration's)
   std::uint64_t tuning_tick_ = 0;         // ... at the round of this tick
   std::uint32_t refused_generation_ = 0;  // the last one it refused (said once)
 };
 
+}  // namespace core
 }  // namespace swarm_transport
 
-#endif  // SWARM_TRANSPORT_ROS_ROBOT_SESSION_H_
+#endif  // SWARM_TRANSPORT_CORE_ROBOT_SESSION_H_

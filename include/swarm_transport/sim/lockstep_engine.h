@@ -1,9 +1,9 @@
 // The lock-step tick [SPEC 7], once: what the world, the radio and the relay make of a tick -
 // every robot's round, and what the robots' answers do to the next round and to the
 // simulator's books. The ROS simulator drives it between its waits (LockstepSession: who is
-// live, when a tick is complete) and the batch engine (batch_run.h) drives it with its robots'
-// sessions in the same process; neither has a tick of its own. Messages only: no node handle,
-// no clock, no waiting.
+// live, when a tick is complete) and the batch runs (ros/engine/batch_run.h) drive it with their
+// robots' sessions in the same process; neither has a tick of its own. Rounds and answers are
+// core types (core/round.h): no ROS, no clock, no waiting.
 //
 // A tick:
 //   ReleaseOrders   the orders due enter the relay and the books
@@ -11,9 +11,9 @@
 //   Round           per robot that gets a round, in world order: radio + relay
 //   EndRound        the relay's lists start empty for what the answers say
 //   TakeAnswers     the tick's answers, by robot id: into the next relay and the books
-//   CommandOf       an answer's command (a non-finite one stands)
-#ifndef SWARM_TRANSPORT_ROS_LOCKSTEP_ENGINE_H_
-#define SWARM_TRANSPORT_ROS_LOCKSTEP_ENGINE_H_
+//   core::CommandOf an answer's command (a non-finite one stands)
+#ifndef SWARM_TRANSPORT_SIM_LOCKSTEP_ENGINE_H_
+#define SWARM_TRANSPORT_SIM_LOCKSTEP_ENGINE_H_
 
 #include <cstdint>
 #include <functional>
@@ -22,32 +22,30 @@
 #include <utility>
 #include <vector>
 
-#include "swarm_transport/Neighbors.h"
-#include "swarm_transport/New_Mission.h"
-#include "swarm_transport/Robot_Position.h"
-#include "swarm_transport/Tick_Answer.h"
 #include "swarm_transport/core/kinematics.h"
-#include "swarm_transport/ros/engine/mission_relay.h"
+#include "swarm_transport/core/round.h"
 #include "swarm_transport/sim/live_mission.h"
+#include "swarm_transport/sim/mission_relay.h"
 #include "swarm_transport/sim/radio.h"
 #include "swarm_transport/sim/world2d.h"
 
 namespace swarm_transport {
+namespace sim {
 
 class LockstepEngine {
  public:
   // `world`, `radio` and `missions` (the simulator's books: the mission channel and the
   // markers) must outlive the engine.
-  LockstepEngine(const sim::World2D* world, sim::Radio* radio, sim::LiveMissions* missions);
+  LockstepEngine(const World2D* world, Radio* radio, LiveMissions* missions);
 
   // Where the dispatcher's orders and messages, the robots' topics and a scenario's events
   // enter the relay (each with its sender).
   MissionRelay& relay() { return relay_; }
-  const sim::LiveMissions& missions() const { return *missions_; }
+  const LiveMissions& missions() const { return *missions_; }
 
   // Tick `tick` begins: the held orders due by then enter this tick's relay and the books.
   // Returns those the books did not enter, with why (an order the robots refuse too).
-  std::vector<std::pair<New_Mission, std::string>> ReleaseOrders(std::uint64_t tick);
+  std::vector<std::pair<core::MissionSpec, std::string>> ReleaseOrders(std::uint64_t tick);
   // The radio samples the world for round `tick` at simulated time `sim_time`: `relayed`
   // (may be null) are the positions relayed besides the world's robots (virtual copies,
   // statists), `quiet` the robots nobody hears this round.
@@ -57,36 +55,34 @@ class LockstepEngine {
   // its losses in call order): its pose, what it hears, the relayed mission messages, and, for
   // a robot whose process has just connected, the orders of the missions that have not ended
   // (MissionRelay::FillStanding; returns how many it added).
-  std::size_t Round(std::size_t index, bool connected, Neighbors* out);
+  std::size_t Round(std::size_t index, bool connected, core::Round* out);
   double sim_time() const { return sim_time_; }
   // The physical robots' true poses of the round, in world order (/flock/positions).
-  const std::vector<Robot_Position>& truth() const { return truth_; }
-  std::vector<Robot_Position> TakeTruth() { return std::move(truth_); }
+  const std::vector<core::Position>& truth() const { return truth_; }
+  std::vector<core::Position> TakeTruth() { return std::move(truth_); }
   // Every round went out: the relay's lists start empty (held orders stay).
   void EndRound() { relay_.Clear(); }
 
   // A tick's answers (a late one before its robot's current one): sorted by robot id (stable),
   // each into the next tick's relay and the books, then handed to `observe` (the simulator's
   // topics for observers; the batch engine's dispatcher and recorder). Empties `answers`.
-  using Answers = std::vector<std::pair<std::uint16_t, Tick_Answer>>;
+  using Answers = std::vector<std::pair<std::uint16_t, core::Answer>>;
   void TakeAnswers(Answers* answers,
-                   const std::function<void(std::uint16_t, const Tick_Answer&)>& observe);
-
-  // The command an answer drives: a non-finite one stands (zero velocity).
-  static core::Velocity CommandOf(const Tick_Answer& answer);
+                   const std::function<void(std::uint16_t, const core::Answer&)>& observe);
 
  private:
-  const sim::World2D* world_;
-  sim::Radio* radio_;
-  sim::LiveMissions* missions_;
+  const World2D* world_;
+  Radio* radio_;
+  LiveMissions* missions_;
   MissionRelay relay_;
   std::uint64_t tick_ = 0;
   double sim_time_ = 0.0;
-  std::vector<Robot_Position> truth_;
-  std::vector<Robot_Position> relayed_;
-  sim::RadioRound heard_;
+  std::vector<core::Position> truth_;
+  std::vector<core::Position> relayed_;
+  RadioRound heard_;
 };
 
+}  // namespace sim
 }  // namespace swarm_transport
 
-#endif  // SWARM_TRANSPORT_ROS_LOCKSTEP_ENGINE_H_
+#endif  // SWARM_TRANSPORT_SIM_LOCKSTEP_ENGINE_H_
