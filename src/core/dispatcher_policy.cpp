@@ -275,7 +275,7 @@ MissionBook::StatusOutcome DispatcherPolicy::OnStatus(const MissionReport& repor
     Log(false, "mission %u is %s%s%s", report.mission_id, PhaseName(m.phase),
         m.reason.empty() ? "" : ": ", m.reason.c_str());
   }
-  for (const DueSignal& due : outcome.signals) outlet_->Event(due, "with the configured delay");
+  for (const core::Signal& due : outcome.signals) outlet_->Event(due, "with the configured delay");
   return outcome;
 }
 
@@ -291,7 +291,7 @@ std::string DispatcherPolicy::Signal(std::uint16_t mission_id, MissionEventKind 
     Log(true, "refused a signal: %s", why.c_str());
     return why;
   }
-  outlet_->Event(DueSignal{mission_id, kind, 0}, "requested through ~signal");
+  outlet_->Event(core::Signal{mission_id, kind, 0}, "requested through ~signal");
   return why;
 }
 

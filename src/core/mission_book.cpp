@@ -196,7 +196,7 @@ void MissionBook::OnProgress(const MissionReport& report, double now_s) {
 }
 
 void MissionBook::EnterPhase(std::uint16_t id, Entry* m, MissionPhase phase, double now_s,
-                             std::vector<DueSignal>* signals) {
+                             std::vector<core::Signal>* signals) {
   const auto index = static_cast<unsigned>(phase);
   m->phase = phase;
   if ((m->reached & (1u << index)) == 0) {
@@ -245,7 +245,7 @@ bool MissionBook::Abort(std::uint16_t mission_id, const std::string& reason, dou
   auto it = entries_.find(mission_id);
   if (it == entries_.end() || !it->second.Live()) return false;
   it->second.reason = reason;
-  std::vector<DueSignal> none;
+  std::vector<core::Signal> none;
   EnterPhase(mission_id, &it->second, MissionPhase::kAborted, now_s, &none);
   return true;
 }

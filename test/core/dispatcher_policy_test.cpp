@@ -23,7 +23,7 @@ struct Outlet : DispatcherOutlet {
   std::vector<std::pair<MissionSpec, std::uint64_t>> orders;
   std::vector<std::pair<std::uint16_t, std::string>> rejected;
   std::vector<std::pair<std::uint16_t, std::string>> aborted;
-  std::vector<DueSignal> events;
+  std::vector<Signal> events;
   std::vector<std::uint16_t> statists_up;
   std::vector<std::uint16_t> statists_down;
   std::vector<DispatcherAnswer> answers;
@@ -38,7 +38,7 @@ struct Outlet : DispatcherOutlet {
   void Aborted(const MissionSpec& spec, const std::string& reason) override {
     aborted.emplace_back(spec.id, reason);
   }
-  void Event(const DueSignal& signal, const char*) override { events.push_back(signal); }
+  void Event(const Signal& signal, const char*) override { events.push_back(signal); }
   void StatistUp(std::uint16_t id, Vec2, int) override { statists_up.push_back(id); }
   void StatistDown(std::uint16_t id, int) override { statists_down.push_back(id); }
   void Answer(const DispatcherAnswer& answer) override { answers.push_back(answer); }

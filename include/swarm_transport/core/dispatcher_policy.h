@@ -70,7 +70,7 @@ class DispatcherOutlet {
   // A mission ended as ABORTED (its first leader is silent): its status and its object's delete.
   virtual void Aborted(const MissionSpec& spec, const std::string& reason) = 0;
   // A LOADED / UNLOADED, `why` for the log.
-  virtual void Event(const DueSignal& signal, const char* why) = 0;
+  virtual void Event(const Signal& signal, const char* why) = 0;
   // Real time: a recruit's statist stands (or is gone), stacked `copies` times.
   virtual void StatistUp(std::uint16_t /*statist_id*/, Vec2 /*at*/, int /*copies*/) {}
   virtual void StatistDown(std::uint16_t /*statist_id*/, int /*copies*/) {}

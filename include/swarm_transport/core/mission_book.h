@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "swarm_transport/core/mission.h"
+#include "swarm_transport/core/mission_message.h"
 
 namespace swarm_transport {
 namespace core {
@@ -32,13 +33,6 @@ struct MissionBookParams {
   // progress report) for this long is silent: its first leader is lost (< 0: never).
   double silent_after_s = -1.0;
   std::vector<Zone> static_zones;  // a transport must have a route around them (SPEC 9.8)
-};
-
-// A LOADED / UNLOADED the dispatcher must send now, taking effect at `not_before_tick`.
-struct DueSignal {
-  std::uint16_t mission_id = 0;
-  MissionEventKind kind = MissionEventKind::kLoaded;
-  std::uint64_t not_before_tick = 0;
 };
 
 // What a first leader reports (phase status / progress), already checked for finite fields.
@@ -102,10 +96,10 @@ class MissionBook {
 
   // What a first leader's phase report did.
   struct StatusOutcome {
-    std::vector<DueSignal> signals;  // due now: LOADED after LOADING, UNLOADED after UNLOADING
-    bool entered = false;            // the mission entered the reported phase
-    bool followed = false;           // first seen through this report (its order never heard)
-    std::string ignored;             // why it changed nothing, when it did not
+    std::vector<core::Signal> signals;  // due now: LOADED after LOADING, UNLOADED after UNLOADING
+    bool entered = false;               // the mission entered the reported phase
+    bool followed = false;              // first seen through this report (its order never heard)
+    std::string ignored;                // why it changed nothing, when it did not
   };
   // A first leader's phase report: each signal is due once, with the configured delay stamped
   // as a tick (SignalTick). Ignored: a finished mission's late news, a REJECTED from elsewhere,
@@ -138,7 +132,7 @@ class MissionBook {
 
  private:
   void EnterPhase(std::uint16_t id, Entry* entry, MissionPhase phase, double now_s,
-                  std::vector<DueSignal>* signals);
+                  std::vector<core::Signal>* signals);
   void Forget();
 
   MissionBookParams params_;

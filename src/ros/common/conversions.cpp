@@ -93,10 +93,6 @@ bool IsFinite(const geometry_msgs::Twist& msg) {
          std::isfinite(msg.angular.y) && std::isfinite(msg.angular.z);
 }
 
-Mission_Event ToEventMsg(const core::DueSignal& due) {
-  return ToMsg(core::Signal{due.mission_id, due.kind, due.not_before_tick});
-}
-
 New_Mission ToMsg(const core::MissionSpec& m) { return ToNewMission(m); }
 
 Update_Object ToMsg(const core::ObjectUpdate& m) {

@@ -148,8 +148,8 @@ void MissionDispatcher::Aborted(const core::MissionSpec& spec, const std::string
   delete_pub_.publish(msg);
 }
 
-void MissionDispatcher::Event(const core::DueSignal& signal, const char* why) {
-  event_pub_.publish(ToEventMsg(signal));
+void MissionDispatcher::Event(const core::Signal& signal, const char* why) {
+  event_pub_.publish(ToMsg(signal));
   ROS_INFO("%s: sent %s for mission %u (%s; from tick %llu)", kNode, EventName(signal.kind),
            signal.mission_id, why, static_cast<unsigned long long>(signal.not_before_tick));
 }

@@ -12,9 +12,9 @@
 #include <utility>
 #include <vector>
 
-#include "swarm_transport/core/metrics.h"
 #include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/core/dispatcher_policy.h"
+#include "swarm_transport/core/metrics.h"
 #include "swarm_transport/core/random.h"
 #include "swarm_transport/core/robot_session.h"
 #include "swarm_transport/core/round.h"
@@ -55,9 +55,8 @@ class BatchDispatcher : public core::DispatcherOutlet {
     order_ = ToNewMission(spec);
     order_->start_tick = start_tick;
   }
-  void Event(const core::DueSignal& signal, const char* /*why*/) override {
-    engine_->relay().Add(names::kDispatcherNode,
-                         core::Signal{signal.mission_id, signal.kind, signal.not_before_tick});
+  void Event(const core::Signal& signal, const char* /*why*/) override {
+    engine_->relay().Add(names::kDispatcherNode, signal);
   }
   void Rejected(const core::MissionSpec&, const std::string&) override {}
   void Aborted(const core::MissionSpec&, const std::string&) override {}

@@ -251,9 +251,8 @@ void RobotNode::Tick() {
   // Lock-step: stamped with the tick's own simulated time (as the batch engine does), not with
   // whatever /clock this process has seen by now.
   const ros::Time stamp = lockstep() ? ros::Time(perception_->sim_time) : ros::Time::now();
-  core::RobotSession::Step step = session_->Tick(std::move(in), perception_->tick,
-                                                 perception_->sim_time,
-                                                 lockstep() || outlets_.Ready());
+  core::RobotSession::Step step = session_->Tick(
+      std::move(in), perception_->tick, perception_->sim_time, lockstep() || outlets_.Ready());
   const Tick_Answer answer = ToTickAnswer(step.answer, stamp);
   const core::Velocity command = step.brain.command;
   for (const Mission_Status& st : answer.statuses) {

@@ -75,8 +75,6 @@ core::StatusReport ToStatusReport(const Mission_Status& msg);
 Mission_Status ToStatusMsg(const core::StatusReport& report, std::uint64_t tick,
                            const ros::Time& stamp);
 
-// A LOADED / UNLOADED the dispatcher's book made due -> its Mission_Event.
-Mission_Event ToEventMsg(const core::DueSignal& due);
 // A first leader's (or the dispatcher's) Mission_Status -> the report the dispatcher books.
 core::MissionReport ToMissionReport(const Mission_Status& msg);
 

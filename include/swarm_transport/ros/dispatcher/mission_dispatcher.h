@@ -51,7 +51,7 @@ class MissionDispatcher : private core::DispatcherOutlet {
   void Order(const core::MissionSpec& spec, std::uint64_t start_tick) override;
   void Rejected(const core::MissionSpec& spec, const std::string& reason) override;
   void Aborted(const core::MissionSpec& spec, const std::string& reason) override;
-  void Event(const core::DueSignal& signal, const char* why) override;
+  void Event(const core::Signal& signal, const char* why) override;
   void StatistUp(std::uint16_t statist_id, core::Vec2 at, int copies) override;
   void StatistDown(std::uint16_t statist_id, int copies) override;
   void Answer(const core::DispatcherAnswer& answer) override;

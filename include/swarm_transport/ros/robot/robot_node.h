@@ -17,11 +17,11 @@
 #include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/Robot_State.h"
 #include "swarm_transport/core/modes.h"
+#include "swarm_transport/core/robot_session.h"
 #include "swarm_transport/ros/common/diagnostics.h"
 #include "swarm_transport/ros/common/mission_topics.h"
 #include "swarm_transport/ros/common/params.h"
 #include "swarm_transport/ros/common/wall_throttle.h"
-#include "swarm_transport/core/robot_session.h"
 #include "swarm_transport/ros/robot/robot_stats.h"
 #include "swarm_transport/ros/robot/robot_transport.h"
 
@@ -97,7 +97,7 @@ class RobotNode : public RobotInbox {
   // Declared before everything it connects: its handles' callbacks may run on its queues.
   std::unique_ptr<RobotTransport> transport_;
   std::optional<core::RobotSession> session_;  // its behaviour and state (set by Initialize)
-  MissionOutlets outlets_;               // real time, once it is a first leader
+  MissionOutlets outlets_;                     // real time, once it is a first leader
   ros::Publisher position_pub_;
   // Nodes other than the simulator and this process subscribed to its /flock/position (it
   // publishes its own position each tick only while there are some).

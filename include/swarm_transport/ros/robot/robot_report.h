@@ -6,8 +6,8 @@
 #include <string>
 
 #include "swarm_transport/Robot_State.h"
-#include "swarm_transport/ros/common/diagnostics.h"
 #include "swarm_transport/core/robot_session.h"
+#include "swarm_transport/ros/common/diagnostics.h"
 
 namespace swarm_transport {
 
