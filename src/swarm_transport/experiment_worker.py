@@ -261,12 +261,15 @@ def _run_mission(job, ros, state, lock, waiter, trace=None):
         final = FINAL.get(phases[-1][0]) if phases and phases[-1][0] in FINAL else 'TICK_LIMIT'
         out = {'end': final, 'phases': [[s, t] for s, t in phases],
                'end_tick': pos_state['tick'], 'last_status': dict(last)}
+    if final in ('DONE', 'ABORTED') and (track is not None or trace is not None):
+        # The poses up to the end (the final report's tick): its status travels on another
+        # connection and can overtake them (a host_sim run's trace once ended before tick 0).
+        end_tick = phases[-1][1]
+        waiter.until(lambda: pos_state['tick'] >= end_tick,
+                     'no /flock/positions up to the end at tick %d' % end_tick)
     if track is not None and final == 'DONE':
         # The track up to the arrival (the DONE report's tick) for the leader's swarm at 100 %.
-        done_tick = phases[-1][1]
-        waiter.until(lambda: pos_state['tick'] >= done_tick,
-                     'no /flock/positions up to the arrival at tick %d' % done_tick)
-        track.arrived(done_tick)
+        track.arrived(phases[-1][1])
     if final in ('DONE', 'ABORTED'):
         path = os.path.join(job['record_dir'], job['run_name'], 'missions.csv')
         flushed = time.time() + RECORDER_FLUSH_TIMEOUT_S
