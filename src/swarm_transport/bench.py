@@ -68,7 +68,11 @@ def parse_args(argv):
     p.add_argument('--ticks', type=int, default=40, help='batch: ticks of the run (default 40)')
     p.add_argument('--mission', action='store_true',
                    help='batch: a transport mission of robots 0-11 (2 leaders) from tick 0')
-    p.add_argument('--batch-binary', default='', help=argparse.SUPPRESS)  # another build's
+    p.add_argument('--batch-binary', default='',
+                   help='batch: the experiment_batch of another build (its libraries beside '
+                        'it), to compare two builds back to back')
+    p.add_argument('--no-build', action='store_true',
+                   help='skip the quiet build first (scripts/bench; ST_NO_BUILD=1 too)')
     p.add_argument('--comm', default='local', choices=('local', 'broadcast', 'both'),
                    help='local: the radio relays in-range positions (SPEC 7); broadcast: every '
                         'robot hears every /flock/position (the thesis); both: run both and '
