@@ -1,6 +1,8 @@
 #include "swarm_transport/ros/common/mission_topics.h"
 
 #include <algorithm>
+#include <type_traits>
+#include <variant>
 
 #include "swarm_transport/ros/common/conversions.h"
 #include "swarm_transport/ros/common/names.h"
@@ -24,34 +26,60 @@ void MissionTopics::Add(ros::NodeHandle& nh, const char* topic, std::uint32_t qu
   subs_.push_back(nh.subscribe<M>(topic, queue_size,
                                   boost::function<void(const ros::MessageEvent<M const>&)>(
                                       [this](const ros::MessageEvent<M const>& event) {
-                                        take_(ToMissionMessage(*event.getConstMessage()),
-                                              SenderOf(event.getPublisherName()));
+                                        const M& msg = *event.getConstMessage();
+                                        std::uint64_t start_tick = 0;
+                                        if constexpr (std::is_same_v<M, New_Mission>) {
+                                          start_tick = msg.start_tick;
+                                        }
+                                        take_(ToMissionMessage(msg), event.getPublisherName(),
+                                              start_tick);
                                       })));
 }
 
+void MissionTopics::AddAll(ros::NodeHandle& nh, std::uint32_t queue_size) {
+  const auto queue = [queue_size](std::uint32_t own) { return queue_size > 0 ? queue_size : own; };
+  Add<Robot_Freeze>(nh, names::kFreeze, queue(kQueue));
+  Add<Robot_Continue>(nh, names::kContinue, queue(kQueue));
+  Add<New_Mission>(nh, names::kMissionNew, queue(kMissionQueue));
+  Add<Update_Object>(nh, names::kObjectUpdate, queue(kQueue));
+  Add<Delete_Object>(nh, names::kObjectDelete, queue(kQueue));
+  Add<Mission_Event>(nh, names::kMissionEvent, queue(kQueue));
+  Add<Mission_Status>(nh, names::kMissionStatus, queue(kStatusQueue));
+}
+
 void MissionTopics::Subscribe(ros::NodeHandle nh, Take take) {
+  take_ = [take = std::move(take)](const core::MissionMessage& message,
+                                   const std::string& publisher, std::uint64_t /*start_tick*/) {
+    take(message, SenderOf(publisher));
+  };
+  AddAll(nh, 0);
+}
+
+void MissionTopics::SubscribeFrom(ros::NodeHandle nh, TakeFrom take, std::uint32_t queue_size) {
   take_ = std::move(take);
-  Add<Robot_Freeze>(nh, names::kFreeze, kQueue);
-  Add<Robot_Continue>(nh, names::kContinue, kQueue);
-  Add<New_Mission>(nh, names::kMissionNew, kMissionQueue);
-  Add<Update_Object>(nh, names::kObjectUpdate, kQueue);
-  Add<Delete_Object>(nh, names::kObjectDelete, kQueue);
-  Add<Mission_Event>(nh, names::kMissionEvent, kQueue);
-  Add<Mission_Status>(nh, names::kMissionStatus, kStatusQueue);
+  AddAll(nh, queue_size);
 }
 
 void MissionTopics::Shutdown() {
   for (ros::Subscriber& sub : subs_) sub.shutdown();
 }
 
-void MissionOutlets::Advertise(ros::NodeHandle nh) {
+bool MissionTopics::AllConnected(const TopicNodeCounts& graph) const {
+  for (const ros::Subscriber& sub : subs_) {
+    if (!graph.AllConnected(sub)) return false;
+  }
+  return true;
+}
+
+void MissionOutlets::Advertise(ros::NodeHandle nh, std::uint32_t queue_size) {
   if (status_pub_) return;
-  freeze_pub_ = nh.advertise<Robot_Freeze>(names::kFreeze, kQueue);
-  continue_pub_ = nh.advertise<Robot_Continue>(names::kContinue, kQueue);
-  update_pub_ = nh.advertise<Update_Object>(names::kObjectUpdate, kQueue);
-  delete_pub_ = nh.advertise<Delete_Object>(names::kObjectDelete, kQueue);
-  status_pub_ = nh.advertise<Mission_Status>(names::kMissionStatus, kStatusQueue);
-  progress_pub_ = nh.advertise<Mission_Status>(names::kMissionProgress, kProgressQueue);
+  const auto queue = [queue_size](std::uint32_t own) { return queue_size > 0 ? queue_size : own; };
+  freeze_pub_ = nh.advertise<Robot_Freeze>(names::kFreeze, queue(kQueue));
+  continue_pub_ = nh.advertise<Robot_Continue>(names::kContinue, queue(kQueue));
+  update_pub_ = nh.advertise<Update_Object>(names::kObjectUpdate, queue(kQueue));
+  delete_pub_ = nh.advertise<Delete_Object>(names::kObjectDelete, queue(kQueue));
+  status_pub_ = nh.advertise<Mission_Status>(names::kMissionStatus, queue(kStatusQueue));
+  progress_pub_ = nh.advertise<Mission_Status>(names::kMissionProgress, queue(kProgressQueue));
   since_ = ros::WallTime::now();
   ready_ = false;
   if (!QueryTopicNodeCounts(&expected_, true)) expected_ = TopicNodeCounts();
@@ -81,6 +109,25 @@ bool MissionOutlets::Publish(const Tick_Answer& m) {
   for (const auto& d : m.object_deletes) delete_pub_.publish(d);
   for (const auto& st : m.statuses) status_pub_.publish(st);
   for (const auto& st : m.progress) progress_pub_.publish(st);
+  return true;
+}
+
+void MissionOutlets::Publish(const core::MissionMessage& message) {
+  std::visit(core::Overloaded{
+                 [this](const core::ObjectUpdate& m) { update_pub_.publish(ToMsg(m)); },
+                 [this](const core::ObjectDelete& m) { delete_pub_.publish(ToMsg(m)); },
+                 [this](const core::Freeze& m) { freeze_pub_.publish(ToMsg(m)); },
+                 [this](const core::Continue& m) { continue_pub_.publish(ToMsg(m)); },
+                 [](const auto&) {},  // the dispatcher's own topics
+             },
+             message);
+}
+
+bool MissionOutlets::AllConnected(const TopicNodeCounts& graph) const {
+  for (const ros::Publisher* pub :
+       {&status_pub_, &progress_pub_, &update_pub_, &delete_pub_, &freeze_pub_, &continue_pub_}) {
+    if (!graph.AllConnected(*pub)) return false;
+  }
   return true;
 }
 

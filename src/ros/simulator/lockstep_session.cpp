@@ -3,14 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
-#include <type_traits>
 #include <variant>
 
-#include "swarm_transport/Delete_Object.h"
 #include "swarm_transport/Mission_Event.h"
-#include "swarm_transport/Robot_Continue.h"
-#include "swarm_transport/Robot_Freeze.h"
-#include "swarm_transport/Update_Object.h"
 #include "swarm_transport/ros/common/conversions.h"
 #include "swarm_transport/ros/common/graph.h"
 #include "swarm_transport/ros/common/names.h"
@@ -43,31 +38,14 @@ LockstepSession::LockstepSession(ros::NodeHandle nh, const SimulatorParams& para
 
 void LockstepSession::Connect() {
   // The lock-step barrier for mission messages: what arrives during tick k is relayed in every
-  // Neighbors of tick k + 1 (robots in lock-step do not subscribe to these topics). The relay
-  // orders messages by their publishing node (and skips what this node publishes itself), so
-  // the callbacks must get the connection header: a lambda given to subscribe<M>() would be
-  // wrapped as a `const M::ConstPtr&` callback, whose MessageEvent names every sender
-  // "unknown_publisher" (the dispatcher's statuses then counted as a robot's).
-  auto relay = [this](const char* topic, auto type) {
-    using M = decltype(type);
-    ros::SubscribeOptions ops;
-    ops.initByFullCallbackType<const ros::MessageEvent<const M>&>(
-        topic, kMissionQueue, [this](const ros::MessageEvent<const M>& event) { Relay<M>(event); });
-    relay_subs_.push_back(nh_.subscribe(ops));
-  };
-  relay(names::kMissionNew, New_Mission());
-  relay(names::kObjectUpdate, Update_Object());
-  relay(names::kObjectDelete, Delete_Object());
-  relay(names::kFreeze, Robot_Freeze());
-  relay(names::kContinue, Robot_Continue());
-  relay(names::kMissionEvent, Mission_Event());
-  relay(names::kMissionStatus, Mission_Status());
-  status_pub_ = nh_.advertise<Mission_Status>(names::kMissionStatus, kMissionQueue);
-  progress_pub_ = nh_.advertise<Mission_Status>(names::kMissionProgress, kMissionQueue);
-  update_pub_ = nh_.advertise<Update_Object>(names::kObjectUpdate, kMissionQueue);
-  delete_pub_ = nh_.advertise<Delete_Object>(names::kObjectDelete, kMissionQueue);
-  freeze_pub_ = nh_.advertise<Robot_Freeze>(names::kFreeze, kMissionQueue);
-  continue_pub_ = nh_.advertise<Robot_Continue>(names::kContinue, kMissionQueue);
+  // round of tick k + 1 (robots in lock-step do not subscribe to these topics). The relay
+  // orders messages by their publishing node (and skips what this node publishes itself).
+  relay_topics_.SubscribeFrom(
+      nh_,
+      [this](const core::MissionMessage& message, const std::string& publisher,
+             std::uint64_t start_tick) { Relay(message, publisher, start_tick); },
+      kMissionQueue);
+  observer_topics_.Advertise(nh_, kMissionQueue);
   if (params_.lockstep_dispatcher) {
     // Its file missions enter at stamped ticks; tick 1 on waits for its schedule.
     barrier_.ExpectSchedule();
@@ -81,22 +59,11 @@ void LockstepSession::Connect() {
 
 void LockstepSession::Inject(const core::MissionMessage& message) {
   engine_->relay().Add(kEventsSender, message);
-  PublishForObservers(message);
-}
-
-void LockstepSession::PublishForObservers(const core::MissionMessage& message) {
-  std::visit(core::Overloaded{
-                 [this](const core::ObjectUpdate& m) { update_pub_.publish(ToMsg(m)); },
-                 [this](const core::ObjectDelete& m) { delete_pub_.publish(ToMsg(m)); },
-                 [this](const core::Freeze& m) { freeze_pub_.publish(ToMsg(m)); },
-                 [this](const core::Continue& m) { continue_pub_.publish(ToMsg(m)); },
-                 [](const auto&) {},  // the dispatcher's own topics
-             },
-             message);
+  observer_topics_.Publish(message);
 }
 
 void LockstepSession::Shutdown() {
-  for (ros::Subscriber& sub : relay_subs_) sub.shutdown();
+  relay_topics_.Shutdown();
   schedule_sub_.shutdown();
 }
 
@@ -136,16 +103,11 @@ void LockstepSession::Finish() {
 bool LockstepSession::RelaysConnected(const ros::Publisher& robot_list) const {
   TopicNodeCounts graph;
   if (!QueryTopicNodeCounts(&graph)) return false;
-  for (const ros::Subscriber& sub : relay_subs_) {
-    if (!graph.AllConnected(sub)) return false;
-  }
+  if (!relay_topics_.AllConnected(graph)) return false;
   // Every observer of the robots' mission messages (a recorder, an experiment's runner) hears
   // them from the first tick: not latched, and a short lock-step mission may be over in a
   // fraction of a wall second, before a connection still under way is up.
-  for (const ros::Publisher* pub :
-       {&status_pub_, &progress_pub_, &update_pub_, &delete_pub_, &freeze_pub_, &continue_pub_}) {
-    if (!graph.AllConnected(*pub)) return false;
-  }
+  if (!observer_topics_.AllConnected(graph)) return false;
   // Every subscriber of the (latched) robot list has it: a robot checks a mission's robots
   // against it, and one without it would accept an order naming a robot that does not exist.
   return graph.AllConnected(robot_list);
@@ -296,48 +258,49 @@ void LockstepSession::WaitForAnswers(std::uint64_t tick) {
   }
 }
 
-template <typename M>
-void LockstepSession::Relay(const ros::MessageEvent<const M>& event) {
-  const std::string& from = event.getPublisherName();
+void LockstepSession::Relay(const core::MissionMessage& message, const std::string& from,
+                            std::uint64_t start_tick) {
   // What this node publishes are its robots' answers, relayed by TakeAnswers already.
   if (from == ros::this_node::getName()) return;
-  const M& msg = *event.getConstMessage();
   // Robots send their mission messages inside their answers; on the topics only the
   // dispatcher's orders (with admission by the robots anyone's) and its statuses, object deletes
   // and updates count (core::MayOrder, core::MayReport): a hand-made status or object message
   // never reaches the robots.
   const core::Sender sender = SenderOf(from);
-  if constexpr (std::is_same_v<M, New_Mission>) {
-    if (!core::MayOrder(params_.swarm.admission, sender)) return;
-  }
-  if constexpr (std::is_same_v<M, Mission_Status> || std::is_same_v<M, Update_Object> ||
-                std::is_same_v<M, Delete_Object>) {
-    if (sender.kind != core::SenderKind::kDispatcher) {
-      if (refused_warning_.Due()) {
-        ROS_WARN(
-            "lockstep: ignored a mission message of mission %u from %s: only the mission's "
-            "robots and the dispatcher may send it",
-            msg.mission_id, from.c_str());
-      }
-      return;
+  const auto* order = std::get_if<core::MissionSpec>(&message);
+  if (order != nullptr && !core::MayOrder(params_.swarm.admission, sender)) return;
+  if ((std::holds_alternative<core::PhaseStatus>(message) ||
+       std::holds_alternative<core::ObjectUpdate>(message) ||
+       std::holds_alternative<core::ObjectDelete>(message)) &&
+      sender.kind != core::SenderKind::kDispatcher) {
+    if (refused_warning_.Due()) {
+      ROS_WARN(
+          "lockstep: ignored a mission message of mission %u from %s: only the mission's "
+          "robots and the dispatcher may send it",
+          core::MissionIdOf(message), from.c_str());
     }
+    return;
   }
-  if constexpr (std::is_same_v<M, New_Mission>) {
-    engine_->relay().AddOrder(from, ToMissionSpec(msg), msg.start_tick);
-    barrier_.OrderArrived(msg.mission_id);
+  if (order != nullptr) {
+    engine_->relay().AddOrder(from, *order, start_tick);
+    barrier_.OrderArrived(order->id);
   } else {
-    engine_->relay().Add(from, ToMissionMessage(msg));
+    engine_->relay().Add(from, message);
   }
-  if constexpr (std::is_same_v<M, Mission_Status>) NoteStatus(msg);
-  if constexpr (std::is_same_v<M, Mission_Event>) {
-    if (params_.lockstep_dispatcher) barrier_.Seen({msg.mission_id, msg.event});
+  if (const auto* status = std::get_if<core::PhaseStatus>(&message)) {
+    NoteStatus(status->mission_id, status->phase);
+  }
+  if (const auto* signal = std::get_if<core::Signal>(&message)) {
+    if (params_.lockstep_dispatcher) {
+      barrier_.Seen({signal->mission_id, static_cast<std::uint8_t>(signal->kind)});
+    }
   }
 }
 
-void LockstepSession::NoteStatus(const Mission_Status& status) {
+void LockstepSession::NoteStatus(std::uint16_t mission_id, core::MissionPhase phase) {
   if (!params_.lockstep_dispatcher) return;
-  barrier_.OnPhase(status.mission_id, static_cast<core::MissionPhase>(status.state),
-                   params_.swarm.loaded_delay_s >= 0.0, params_.swarm.unloaded_delay_s >= 0.0);
+  barrier_.OnPhase(mission_id, phase, params_.swarm.loaded_delay_s >= 0.0,
+                   params_.swarm.unloaded_delay_s >= 0.0);
 }
 
 void LockstepSession::WaitForDispatcher(std::uint64_t tick) {
@@ -459,15 +422,15 @@ void LockstepSession::OnAnswer(std::uint16_t id, const core::Answer& answer, std
 void LockstepSession::TakeAnswers() {
   // By robot id, then in arrival order (a late answer before the robot's current one).
   engine_->TakeAnswers(&answers_, [this](std::uint16_t, const core::Answer& a) {
-    for (const core::MissionMessage& m : a.messages) PublishForObservers(m);
+    for (const core::MissionMessage& m : a.messages) observer_topics_.Publish(m);
     const ros::Time stamp(a.sim_time);
     for (const core::StatusReport& r : a.statuses) {
       const Mission_Status st = ToStatusMsg(r, a.tick, stamp);
-      NoteStatus(st);
-      status_pub_.publish(st);
+      NoteStatus(st.mission_id, static_cast<core::MissionPhase>(st.state));
+      observer_topics_.PublishStatus(st);
     }
     for (const core::StatusReport& r : a.progress)
-      progress_pub_.publish(ToStatusMsg(r, a.tick, stamp));
+      observer_topics_.PublishProgress(ToStatusMsg(r, a.tick, stamp));
   });
 }
 

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "swarm_transport/Mission_Status.h"
 #include "swarm_transport/Tick_Answer.h"
 #include "swarm_transport/core/mission.h"
 #include "swarm_transport/core/mission_message.h"
@@ -28,23 +29,34 @@ class MissionTopics {
  public:
   using Take = std::function<void(const core::MissionMessage&, const core::Sender&)>;
   void Subscribe(ros::NodeHandle nh, Take take);
+  // The same with the publisher's node name and, for an order, its start tick (0 for the
+  // others): a lock-step relay orders by publisher and holds an order until its tick. Every
+  // topic gets `queue_size`.
+  using TakeFrom = std::function<void(const core::MissionMessage&, const std::string& publisher,
+                                      std::uint64_t start_tick)>;
+  void SubscribeFrom(ros::NodeHandle nh, TakeFrom take, std::uint32_t queue_size);
   // Stops every subscription (each waits for its callback in progress).
   void Shutdown();
+  // Every publisher the master lists for each topic is connected.
+  bool AllConnected(const TopicNodeCounts& graph) const;
 
  private:
   template <typename M>
   void Add(ros::NodeHandle& nh, const char* topic, std::uint32_t queue_size);
-  Take take_;
+  void AddAll(ros::NodeHandle& nh, std::uint32_t queue_size);
+  TakeFrom take_;
   std::vector<ros::Subscriber> subs_;
 };
 
-// A real-time first leader's publishers of the mission topics: only robots that became one
-// advertise them, so the swarm does not become all-to-all.
+// A real-time first leader's publishers of the mission topics (only robots that became one
+// advertise them, so the swarm does not become all-to-all), and a lock-step simulator's, which
+// publishes its robots' answers on them for observers.
 class MissionOutlets {
  public:
   bool advertised() const { return static_cast<bool>(status_pub_); }
-  // Advertises them (once) and asks the master how many nodes subscribe to each.
-  void Advertise(ros::NodeHandle nh);
+  // Advertises them (once) and asks the master how many nodes subscribe to each; `queue_size`
+  // 0: each topic's own.
+  void Advertise(ros::NodeHandle nh, std::uint32_t queue_size = 0);
   // True when every robot can hear them (or none are advertised): a message published before a
   // subscriber connected is lost for it, so a first leader holds its phase machine until every
   // node that subscribed when it got the mission is connected, or 5 s of wall time passed.
@@ -52,6 +64,13 @@ class MissionOutlets {
   // Publishes an answer's mission messages (statuses on /flock/mission/status, progress on
   // .../progress, ...). False when it has some but the outlets are not advertised.
   bool Publish(const Tick_Answer& answer);
+  // One mission message on its topic (object update and delete, freeze, continue; the others
+  // are the dispatcher's topics and are not published here), one status or progress report.
+  void Publish(const core::MissionMessage& message);
+  void PublishStatus(const Mission_Status& status) { status_pub_.publish(status); }
+  void PublishProgress(const Mission_Status& status) { progress_pub_.publish(status); }
+  // Every subscriber the master lists for each topic is connected.
+  bool AllConnected(const TopicNodeCounts& graph) const;
 
  private:
   ros::Publisher freeze_pub_;

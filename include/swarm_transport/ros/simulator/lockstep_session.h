@@ -20,16 +20,16 @@
 #include <cstdint>
 #include <functional>
 #include <set>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "swarm_transport/Mission_Schedule.h"
-#include "swarm_transport/Mission_Status.h"
-#include "swarm_transport/New_Mission.h"
 #include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/core/kinematics.h"
 #include "swarm_transport/core/mission_message.h"
 #include "swarm_transport/core/round.h"
+#include "swarm_transport/ros/common/mission_topics.h"
 #include "swarm_transport/ros/common/wall_throttle.h"
 #include "swarm_transport/ros/simulator/robot_links.h"
 #include "swarm_transport/ros/simulator/simulator_params.h"
@@ -98,11 +98,10 @@ class LockstepSession {
   void OnAnswer(std::uint16_t id, const core::Answer& answer, std::uint64_t tick);
 
  private:
-  template <typename M>
-  void Relay(const ros::MessageEvent<const M>& event);
-  void NoteStatus(const Mission_Status& status);
-  // A relayed mission message on its /flock/ topic, for observers.
-  void PublishForObservers(const core::MissionMessage& message);
+  // A mission message heard on its topic from `publisher` (an order with its start tick).
+  void Relay(const core::MissionMessage& message, const std::string& publisher,
+             std::uint64_t start_tick);
+  void NoteStatus(std::uint16_t mission_id, core::MissionPhase phase);
   void OnSchedule(const Mission_Schedule::ConstPtr& msg);
   bool RelaysConnected(const ros::Publisher& robot_list) const;
   // Robots spawned since the last tick whose process already runs (it publishes their answer
@@ -126,16 +125,11 @@ class LockstepSession {
   bool started_ = false;               // WaitForStart is done
   std::set<std::uint16_t> joining_;    // added since the last tick began (after the start)
   std::set<std::uint16_t> connected_;  // became live this tick: their round carries the orders
-  std::vector<ros::Subscriber> relay_subs_;
+  MissionTopics relay_topics_;
   ros::Subscriber schedule_sub_;
   std::vector<std::pair<std::uint64_t, Robot_Position>> recruit_statists_;  // (first tick, statist)
   // The answers' mission messages for observers (robots in lock-step publish no mission topic).
-  ros::Publisher status_pub_;
-  ros::Publisher progress_pub_;
-  ros::Publisher update_pub_;
-  ros::Publisher delete_pub_;
-  ros::Publisher freeze_pub_;
-  ros::Publisher continue_pub_;
+  MissionOutlets observer_topics_;
   WarnThrottle late_warning_;  // wall-clock throttles of repeated warnings
   WarnThrottle refused_warning_;
   WarnThrottle bad_answer_warning_;
