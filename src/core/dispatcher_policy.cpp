@@ -149,23 +149,35 @@ MissionBook::Verdict DispatcherPolicy::StartRecruit(MissionSpec spec, const std:
   return verdict;
 }
 
-void DispatcherPolicy::SendAnswer(std::vector<std::pair<std::uint16_t, std::uint64_t>> orders) {
+void DispatcherPolicy::SendAnswer(std::vector<std::pair<std::uint16_t, std::uint64_t>> orders,
+                                  std::vector<core::Signal> events,
+                                  std::optional<StatusKey> status) {
   DispatcherAnswer answer;
+  answer.has_positions = has_swarm_;
   answer.checked_tick = swarm_tick_;
+  answer.status = status;
   answer.orders = std::move(orders);
+  answer.events = std::move(events);
+  // Before its first positions the file missions are not scheduled yet: tick 1 on waits. A
+  // recruit watches the positions of every tick after its statist's first (its order may enter
+  // the next tick).
+  answer.hold_from_tick = has_swarm_ ? 0 : 1;
   for (const auto& kv : recruiting_) {
     const Recruiting& r = kv.second;
     answer.recruiting.push_back(
         {kv.first, r.statist_id, r.spec.object_centre, kRecruitStatistCopies, r.start_tick});
+    if (answer.hold_from_tick == 0 || r.start_tick + 1 < answer.hold_from_tick) {
+      answer.hold_from_tick = r.start_tick + 1;
+    }
   }
   outlet_->Answer(answer);
 }
 
-void DispatcherPolicy::WatchRecruits() {
-  if (recruiting_.empty()) return;
+std::vector<std::pair<std::uint16_t, std::uint64_t>> DispatcherPolicy::WatchRecruits() {
+  std::vector<std::pair<std::uint16_t, std::uint64_t>> due;
+  if (recruiting_.empty()) return due;
   std::map<std::uint16_t, Vec2> idle;
   for (const auto& kv : IdleRobots()) idle[kv.first] = kv.second.position;
-  std::vector<std::pair<std::uint16_t, std::uint64_t>> due;
   for (auto it = recruiting_.begin(); it != recruiting_.end();) {
     Recruiting& r = it->second;
     // Lock-step: its statist stands from its start tick; the robots before it are not watched.
@@ -193,7 +205,7 @@ void DispatcherPolicy::WatchRecruits() {
     const MissionBook::Verdict verdict = Submit(order, source, false, true, start);
     if (verdict.accepted && params_.lockstep) due.emplace_back(verdict.id, start);
   }
-  if (params_.lockstep) SendAnswer(std::move(due));
+  return due;
 }
 
 void DispatcherPolicy::SetSwarm(std::uint64_t tick, std::map<std::uint16_t, PlannerRobot> robots) {
@@ -207,12 +219,15 @@ std::vector<std::pair<std::uint64_t, double>> DispatcherPolicy::OnSwarm(
   SetSwarm(tick, std::move(robots));
   std::vector<std::pair<std::uint64_t, double>> later;
   if (params_.lockstep) {
-    // Even without a file: a lock-step simulator holds tick 1 for the first answer.
+    // Every positions is answered (even without a file: a lock-step simulator holds tick 1 for
+    // the first answer), with the file missions at the first and the recruits' orders.
+    std::vector<std::pair<std::uint16_t, std::uint64_t>> orders;
     if (!file_missions_scheduled_) {
-      ScheduleFileMissions();
+      orders = ScheduleFileMissions();
       file_missions_scheduled_ = true;
     }
-    WatchRecruits();
+    for (const auto& order : WatchRecruits()) orders.push_back(order);
+    SendAnswer(std::move(orders));
     return later;
   }
   WatchRecruits();
@@ -238,7 +253,7 @@ void DispatcherPolicy::SubmitFileMissions(std::uint64_t at_tick) {
   }
 }
 
-void DispatcherPolicy::ScheduleFileMissions() {
+std::vector<std::pair<std::uint16_t, std::uint64_t>> DispatcherPolicy::ScheduleFileMissions() {
   // The tick of start_delay_s from the run's start, and never one that has begun.
   const auto delay_ticks = static_cast<std::uint64_t>(
       std::ceil(params_.start_delay_s / params_.book.tick_period_s - 1e-9));
@@ -259,8 +274,7 @@ void DispatcherPolicy::ScheduleFileMissions() {
         static_cast<unsigned long long>(start));
   }
   file_missions_.clear();
-  // With the recruiting file missions and their statists (SPEC 9.4).
-  SendAnswer(std::move(due));
+  return due;
 }
 
 MissionBook::StatusOutcome DispatcherPolicy::OnStatus(const MissionReport& report,
@@ -276,7 +290,14 @@ MissionBook::StatusOutcome DispatcherPolicy::OnStatus(const MissionReport& repor
         m.reason.empty() ? "" : ": ", m.reason.c_str());
   }
   for (const core::Signal& due : outcome.signals) outlet_->Event(due, "with the configured delay");
+  if (params_.lockstep) {
+    SendAnswer({}, outcome.signals, StatusKey{report.mission_id, report.phase, report.tick});
+  }
   return outcome;
+}
+
+void DispatcherPolicy::SkipStatus(const StatusKey& status) {
+  if (params_.lockstep) SendAnswer({}, {}, status);
 }
 
 std::string DispatcherPolicy::Signal(std::uint16_t mission_id, MissionEventKind kind) {

@@ -69,109 +69,105 @@ LockstepBarrier::Answer LockstepBarrier::OnAnswer(std::uint16_t id, std::uint64_
   return Answer::kAnswer;
 }
 
-void LockstepBarrier::Await(const EventKey& event) {
-  if (events_seen_.count(event) == 0) events_awaited_.insert(event);
+void LockstepBarrier::StatusRelayed(const core::StatusKey& status) {
+  statuses_owed_.insert(status);
 }
 
-void LockstepBarrier::Seen(const EventKey& event) {
-  events_seen_.insert(event);
-  events_awaited_.erase(event);
-}
-
-void LockstepBarrier::Forget(std::uint16_t mission_id) {
-  orders_early_.erase(mission_id);
-  for (auto it = events_awaited_.begin(); it != events_awaited_.end();) {
-    it = it->first == mission_id ? events_awaited_.erase(it) : std::next(it);
+void LockstepBarrier::OnDispatcherAnswer(const core::DispatcherAnswer& answer) {
+  if (answer.has_positions) {
+    checked_ = answered_ ? std::max(checked_, answer.checked_tick) : answer.checked_tick;
+    answered_ = true;
   }
-  for (auto it = events_seen_.begin(); it != events_seen_.end();) {
-    it = it->first == mission_id ? events_seen_.erase(it) : std::next(it);
+  hold_from_ = answer.hold_from_tick;
+  if (answer.status) {
+    const auto it = statuses_owed_.find(*answer.status);
+    if (it != statuses_owed_.end()) statuses_owed_.erase(it);
   }
-}
-
-void LockstepBarrier::OnPhase(std::uint16_t mission_id, core::MissionPhase phase, bool loaded_auto,
-                              bool unloaded_auto) {
-  using core::MissionEventKind;
-  using core::MissionPhase;
-  switch (phase) {
-    case MissionPhase::kLoading:
-      if (loaded_auto) Await({mission_id, static_cast<std::uint8_t>(MissionEventKind::kLoaded)});
-      break;
-    case MissionPhase::kUnloading:
-      if (unloaded_auto) {
-        Await({mission_id, static_cast<std::uint8_t>(MissionEventKind::kUnloaded)});
-      }
-      break;
-    case MissionPhase::kDone:
-    case MissionPhase::kAborted:
-    case MissionPhase::kRejected:
-      // The id may be used again by a later mission.
-      Forget(mission_id);
-      break;
-    default:
-      break;
-  }
-}
-
-std::vector<LockstepBarrier::EventKey> LockstepBarrier::GiveUpEvents() {
-  std::vector<EventKey> given_up(events_awaited_.begin(), events_awaited_.end());
-  for (const EventKey& event : given_up) events_seen_.insert(event);
-  events_awaited_.clear();
-  return given_up;
-}
-
-void LockstepBarrier::OnSchedule(
-    const std::vector<std::pair<std::uint16_t, std::uint64_t>>& orders) {
-  have_schedule_ = true;
-  for (const auto& order : orders) {
+  for (const auto& order : answer.orders) {
     if (orders_early_.erase(order.first) == 0) orders_due_[order.first] = order.second;
+  }
+  for (const core::Signal& signal : answer.events) {
+    const EventKey key{signal.mission_id, static_cast<std::uint8_t>(signal.kind)};
+    const auto early = events_early_.find(key);
+    if (early != events_early_.end()) {
+      events_early_.erase(early);
+    } else {
+      events_awaited_.insert(key);
+    }
   }
 }
 
 void LockstepBarrier::OrderArrived(std::uint16_t mission_id) {
-  // Not due (yet): a later schedule may name it (a recruit's order and the schedule naming it
-  // travel on two topics, in either order).
   if (orders_due_.erase(mission_id) == 0) orders_early_.insert(mission_id);
 }
 
-void LockstepBarrier::OnRecruits(
-    std::uint64_t checked_tick,
-    const std::vector<std::pair<std::uint16_t, std::uint64_t>>& recruiting) {
-  recruit_checked_ = std::max(recruit_checked_, checked_tick);
-  recruits_.clear();
-  for (const auto& r : recruiting) recruits_[r.first] = r.second;
+void LockstepBarrier::EventArrived(const EventKey& event) {
+  if (events_awaited_.erase(event) == 0) events_early_.insert(event);
 }
 
-bool LockstepBarrier::RecruitsUnchecked(std::uint64_t tick) const {
-  if (tick == 0) return false;
-  for (const auto& r : recruits_) {
-    if (r.second < tick && recruit_checked_ < tick - 1) return true;
+void LockstepBarrier::Forget(std::uint16_t mission_id) {
+  orders_early_.erase(mission_id);
+  for (auto it = events_early_.begin(); it != events_early_.end();) {
+    it = it->first == mission_id ? events_early_.erase(it) : std::next(it);
   }
-  return false;
 }
 
-void LockstepBarrier::GiveUpRecruits(std::uint64_t tick) {
-  if (tick >= 1) recruit_checked_ = std::max(recruit_checked_, tick - 1);
+bool LockstepBarrier::AnswerDue(std::uint64_t tick) const {
+  return tick >= 1 && hold_from_ != 0 && tick >= hold_from_ && (!answered_ || checked_ < tick - 1);
 }
 
-bool LockstepBarrier::OrdersMissing(std::uint64_t tick) const {
-  if (tick >= 1 && ScheduleMissing()) return true;
+bool LockstepBarrier::DispatcherPending(std::uint64_t tick) const {
+  if (AnswerDue(tick)) return true;
+  if (!statuses_owed_.empty() || !events_awaited_.empty()) return true;
   for (const auto& order : orders_due_) {
     if (order.second <= tick) return true;
   }
   return false;
 }
 
-std::vector<std::uint16_t> LockstepBarrier::GiveUpOrders(std::uint64_t tick) {
-  if (tick >= 1) have_schedule_ = true;
-  std::vector<std::uint16_t> given_up;
-  for (auto it = orders_due_.begin(); it != orders_due_.end();) {
-    if (it->second <= tick) {
-      given_up.push_back(it->first);
-      it = orders_due_.erase(it);
-    } else {
-      ++it;
-    }
+LockstepBarrier::DispatcherWait LockstepBarrier::WaitsFor(std::uint64_t tick) const {
+  DispatcherWait wait;
+  wait.answer = AnswerDue(tick);
+  wait.first = wait.answer && !answered_;
+  wait.statuses.assign(statuses_owed_.begin(), statuses_owed_.end());
+  wait.events.assign(events_awaited_.begin(), events_awaited_.end());
+  for (const auto& order : orders_due_) {
+    if (order.second <= tick) wait.orders.push_back(order.first);
   }
+  return wait;
+}
+
+std::string LockstepBarrier::DispatcherWait::Text(std::uint64_t tick) const {
+  std::string text;
+  const auto add = [&text](const std::string& what) { text += (text.empty() ? "" : "; ") + what; };
+  if (answer) {
+    add(first ? std::string("no first answer")
+              : "no answer to the positions of tick " + std::to_string(tick - 1));
+  }
+  for (const core::StatusKey& s : statuses) {
+    add("no answer to the " + std::string(core::PhaseName(s.phase)) + " of mission " +
+        std::to_string(s.mission_id) + " (tick " + std::to_string(s.tick) + ")");
+  }
+  for (std::uint16_t id : orders) add("no order of mission " + std::to_string(id));
+  for (const EventKey& e : events) {
+    add(std::string("no ") +
+        (e.second == static_cast<std::uint8_t>(core::MissionEventKind::kLoaded) ? "LOADED"
+                                                                                : "UNLOADED") +
+        " for mission " + std::to_string(e.first));
+  }
+  return text;
+}
+
+LockstepBarrier::DispatcherWait LockstepBarrier::GiveUpDispatcher(std::uint64_t tick) {
+  DispatcherWait given_up = WaitsFor(tick);
+  if (given_up.first) {
+    hold_from_ = 0;  // no dispatcher answers: not waited for again until one does
+  } else if (given_up.answer) {
+    checked_ = tick - 1;
+  }
+  statuses_owed_.clear();
+  events_awaited_.clear();
+  for (std::uint16_t id : given_up.orders) orders_due_.erase(id);
   return given_up;
 }
 

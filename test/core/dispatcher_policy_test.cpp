@@ -135,13 +135,18 @@ TEST_F(PolicyTest, LockstepFileMissionsAreStampedAndAnsweredAtTheFirstSwarm) {
   EXPECT_EQ(outlet.orders[1].second, 30u);
   ASSERT_EQ(outlet.answers.size(), 1u);
   const DispatcherAnswer& answer = outlet.answers[0];
+  EXPECT_TRUE(answer.has_positions);
   EXPECT_EQ(answer.checked_tick, 2u);
   EXPECT_EQ(answer.orders, (std::vector<std::pair<std::uint16_t, std::uint64_t>>{
                                {outlet.orders[0].first.id, 10}, {outlet.orders[1].first.id, 30}}));
-  // Later swarms schedule nothing more and, without recruits, answer nothing.
+  EXPECT_EQ(answer.hold_from_tick, 0u);  // no recruit: no later tick waits for its answers
+  // Later swarms schedule nothing more; each is answered, naming nothing.
   policy.OnSwarm(3, Row(8));
   EXPECT_EQ(outlet.orders.size(), 2u);
-  EXPECT_EQ(outlet.answers.size(), 1u);
+  ASSERT_EQ(outlet.answers.size(), 2u);
+  EXPECT_EQ(outlet.answers[1].checked_tick, 3u);
+  EXPECT_TRUE(outlet.answers[1].orders.empty());
+  EXPECT_FALSE(outlet.answers[1].status.has_value());
 }
 
 TEST_F(PolicyTest, RealTimeFileMissionsAreLeftToTheCallersTimers) {
@@ -174,6 +179,8 @@ TEST_F(PolicyTest, ARecruitSendsItsOrderTheTickAfterEnoughRobotsEntered) {
   EXPECT_EQ(statist.statist_id, kRecruitStatistId);
   EXPECT_EQ(statist.from_tick, 1u);
   EXPECT_EQ(statist.copies, DispatcherPolicy::kRecruitStatistCopies);
+  // Every tick after its statist's first waits for the answer to the tick before.
+  EXPECT_EQ(outlet.answers[1].hold_from_tick, 2u);
   EXPECT_TRUE(outlet.orders.empty());
   // Robot 2 enters at tick 5, robot 0 at tick 6: the order goes out for tick 7.
   auto robots = Row(4);
@@ -187,6 +194,7 @@ TEST_F(PolicyTest, ARecruitSendsItsOrderTheTickAfterEnoughRobotsEntered) {
   EXPECT_EQ(outlet.orders[0].first.robot_ids, (std::vector<std::uint16_t>{0, 2}));
   EXPECT_EQ(outlet.orders[0].second, 7u);
   EXPECT_TRUE(outlet.answers.back().recruiting.empty());
+  EXPECT_EQ(outlet.answers.back().hold_from_tick, 0u);
   EXPECT_EQ(outlet.answers.back().orders,
             (std::vector<std::pair<std::uint16_t, std::uint64_t>>{{verdict.id, 7}}));
   EXPECT_TRUE(outlet.statists_up.empty());  // lock-step: the simulator places it
@@ -226,6 +234,17 @@ TEST_F(PolicyTest, LoadedIsSentWithItsDelayAndSignalsAreChecked) {
   ASSERT_EQ(outlet.events.size(), 1u);
   EXPECT_EQ(outlet.events[0].kind, MissionEventKind::kLoaded);
   EXPECT_EQ(outlet.events[0].not_before_tick, 43u);  // 40 + ceil(0.25 / 0.1)
+  // Lock-step: an answer names the status it took and the LOADED it sent for it.
+  ASSERT_EQ(outlet.answers.size(), 1u);
+  ASSERT_TRUE(outlet.answers[0].status.has_value());
+  EXPECT_TRUE(*outlet.answers[0].status == (StatusKey{7, MissionPhase::kLoading, 40}));
+  ASSERT_EQ(outlet.answers[0].events.size(), 1u);
+  EXPECT_EQ(outlet.answers[0].events[0].kind, MissionEventKind::kLoaded);
+  // A status not booked is answered all the same, naming nothing.
+  policy.SkipStatus(StatusKey{99, MissionPhase::kGathering, 41});
+  ASSERT_EQ(outlet.answers.size(), 2u);
+  EXPECT_TRUE(outlet.answers[1].events.empty());
+  EXPECT_EQ(outlet.answers[1].status->mission_id, 99);
   EXPECT_FALSE(policy.Signal(99, MissionEventKind::kUnloaded).empty());
   EXPECT_FALSE(policy.Signal(7, static_cast<MissionEventKind>(5)).empty());
   EXPECT_EQ(outlet.events.size(), 1u);

@@ -108,111 +108,157 @@ TEST(LockstepBarrierTest, RemovingOrDisconnectingARobotItWaitsForEndsTheWait) {
   EXPECT_TRUE(c.AllAnswered());
 }
 
-// Race fixed in a95f00d: a tick waits for the dispatcher's stamped LOADED once LOADING was
-// relayed, unless it arrived already; giving up names what it stops waiting for.
-TEST(LockstepBarrierTest, HoldsForAwaitedDispatcherEvents) {
+using core::DispatcherAnswer;
+using core::MissionEventKind;
+using core::MissionPhase;
+using core::StatusKey;
+using Event = LockstepBarrier::EventKey;
+
+// The dispatcher's answer to the positions of tick `checked` (no recruit: nothing held later).
+DispatcherAnswer Positions(std::uint64_t checked, std::uint64_t hold_from = 0) {
+  DispatcherAnswer a;
+  a.has_positions = true;
+  a.checked_tick = checked;
+  a.hold_from_tick = hold_from;
+  return a;
+}
+
+core::Signal Loaded(std::uint16_t mission_id) {
+  return core::Signal{mission_id, MissionEventKind::kLoaded, 0};
+}
+
+// With a dispatcher, tick 1 on waits for its first answer to positions (tick 0 runs: it answers
+// the positions of tick 0); an answer after a status before any positions does not count.
+TEST(LockstepBarrierTest, TickOneWaitsForTheDispatchersFirstAnswer) {
+  LockstepBarrier none;
+  EXPECT_FALSE(none.DispatcherPending(1));  // no dispatcher expected
   LockstepBarrier b;
-  EXPECT_FALSE(b.EventsAwaited());
-  b.Await({4, 1});
-  EXPECT_TRUE(b.EventsAwaited());
-  b.Seen({4, 1});
-  EXPECT_FALSE(b.EventsAwaited());
-  b.Await({4, 1});  // the same event again (a repeated status): it arrived already
-  EXPECT_FALSE(b.EventsAwaited());
-  b.Await({4, 2});
-  EXPECT_EQ(b.GiveUpEvents(), (std::vector<LockstepBarrier::EventKey>{{4, 2}}));
-  EXPECT_FALSE(b.EventsAwaited());
-  // The mission ends: its id may come back with events of its own.
+  b.ExpectDispatcher();
+  EXPECT_FALSE(b.DispatcherPending(0));
+  EXPECT_TRUE(b.DispatcherPending(1));
+  EXPECT_TRUE(b.WaitsFor(1).first);
+  DispatcherAnswer before = Positions(0, 1);
+  before.has_positions = false;
+  b.OnDispatcherAnswer(before);
+  EXPECT_TRUE(b.DispatcherPending(1));
+  b.OnDispatcherAnswer(Positions(0));
+  EXPECT_FALSE(b.DispatcherPending(1));
+  EXPECT_FALSE(b.DispatcherPending(50));  // it holds nothing later
+}
+
+// Every status relayed from the robots waits for the answer naming it, and what that answer
+// names (a LOADED) for its arrival, whichever of the two topics delivers first. The barrier does
+// not know which phase owes what: an answer that names no event releases the tick.
+TEST(LockstepBarrierTest, ARelayedStatusWaitsForItsAnswerAndWhatItNames) {
+  LockstepBarrier b;
+  b.ExpectDispatcher();
+  b.OnDispatcherAnswer(Positions(0));
+  const StatusKey gathering{4, MissionPhase::kGathering, 3};
+  b.StatusRelayed(gathering);
+  EXPECT_TRUE(b.DispatcherPending(4));
+  ASSERT_EQ(b.WaitsFor(4).statuses.size(), 1u);
+  DispatcherAnswer took = Positions(3);
+  took.status = StatusKey{4, MissionPhase::kGathering, 2};  // another status: not this one
+  b.OnDispatcherAnswer(took);
+  EXPECT_TRUE(b.DispatcherPending(4));
+  took.status = gathering;
+  b.OnDispatcherAnswer(took);
+  EXPECT_FALSE(b.DispatcherPending(4));
+  // LOADING: its answer names a LOADED, which arrives after it.
+  const StatusKey loading{4, MissionPhase::kLoading, 9};
+  b.StatusRelayed(loading);
+  took.status = loading;
+  took.events = {Loaded(4)};
+  b.OnDispatcherAnswer(took);
+  EXPECT_TRUE(b.DispatcherPending(10));
+  EXPECT_EQ(b.WaitsFor(10).events, (std::vector<Event>{{4, 1}}));
+  b.EventArrived({4, 1});
+  EXPECT_FALSE(b.DispatcherPending(10));
+  // UNLOADING: the UNLOADED overtakes the answer naming it.
+  const StatusKey unloading{4, MissionPhase::kUnloading, 20};
+  b.StatusRelayed(unloading);
+  b.EventArrived({4, 2});
+  EXPECT_TRUE(b.DispatcherPending(21));
+  took.status = unloading;
+  took.events = {core::Signal{4, MissionEventKind::kUnloaded, 23}};
+  b.OnDispatcherAnswer(took);
+  EXPECT_FALSE(b.DispatcherPending(21));
+}
+
+// A mission's end forgets what arrived for it unnamed (a user's LOADED): the next mission with
+// that id waits for its own.
+TEST(LockstepBarrierTest, AnEndedMissionsUnnamedEventsAreForgotten) {
+  LockstepBarrier b;
+  b.EventArrived({4, 1});  // a user's LOADED, named by no answer
   b.Forget(4);
-  b.Await({4, 1});
-  EXPECT_TRUE(b.EventsAwaited());
+  DispatcherAnswer took;
+  took.events = {Loaded(4)};
+  b.OnDispatcherAnswer(took);
+  EXPECT_TRUE(b.DispatcherPending(5));
 }
 
-// A relayed phase status owes the dispatcher's event only when the dispatcher sends it on its
-// own (a delay >= 0); an ended mission releases what was owed for it.
-TEST(LockstepBarrierTest, PhaseStatusesOweTheDispatchersEvents) {
-  using swarm_transport::core::MissionPhase;
+// Missions at a defined tick (issue 10, item 4): each order an answer names waits from its start
+// tick until it arrived, whichever of the two topics delivers first.
+TEST(LockstepBarrierTest, NamedOrdersAreWaitedForFromTheirStartTick) {
   LockstepBarrier b;
-  b.OnPhase(4, MissionPhase::kGathering, true, true);
-  EXPECT_FALSE(b.EventsAwaited());
-  b.OnPhase(4, MissionPhase::kLoading, false, true);  // LOADED by hand: not waited for
-  EXPECT_FALSE(b.EventsAwaited());
-  b.OnPhase(4, MissionPhase::kLoading, true, true);
-  EXPECT_TRUE(b.EventsAwaited());
-  b.Seen({4, 1});
-  EXPECT_FALSE(b.EventsAwaited());
-  b.OnPhase(4, MissionPhase::kUnloading, true, false);
-  EXPECT_FALSE(b.EventsAwaited());
-  b.OnPhase(4, MissionPhase::kUnloading, true, true);
-  EXPECT_TRUE(b.EventsAwaited());
-  b.OnPhase(4, MissionPhase::kAborted, true, true);
-  EXPECT_FALSE(b.EventsAwaited());
-  // Forgotten: LOADED of the id's next mission is owed again although the old one was seen.
-  b.OnPhase(4, MissionPhase::kLoading, true, true);
-  EXPECT_TRUE(b.EventsAwaited());
-}
-
-// Missions at a defined tick (issue 10, item 4): with a dispatcher, tick 1 waits for its
-// schedule, and each scheduled order's start tick waits until the order arrived, whichever of
-// the two topics delivers first.
-TEST(LockstepBarrierTest, HoldsTicksForTheDispatchersScheduledOrders) {
-  LockstepBarrier b;
-  EXPECT_FALSE(b.OrdersMissing(1));  // no dispatcher expected
-  b.ExpectSchedule();
-  EXPECT_FALSE(b.OrdersMissing(0));  // tick 0 runs: the dispatcher schedules at tick 0
-  EXPECT_TRUE(b.OrdersMissing(1));
-  b.OrderArrived(7);  // the order overtook the schedule
-  b.OnSchedule({{7, 10}, {8, 10}, {9, 30}});
-  EXPECT_FALSE(b.OrdersMissing(1));
-  EXPECT_FALSE(b.OrdersMissing(9));
-  EXPECT_TRUE(b.OrdersMissing(10));  // 8 is due
+  b.ExpectDispatcher();
+  b.OrderArrived(7);  // the order overtook the answer
+  DispatcherAnswer first = Positions(0);
+  first.orders = {{7, 10}, {8, 10}, {9, 30}};
+  b.OnDispatcherAnswer(first);
+  EXPECT_FALSE(b.DispatcherPending(1));
+  EXPECT_FALSE(b.DispatcherPending(9));
+  EXPECT_TRUE(b.DispatcherPending(10));  // 8 is due
+  EXPECT_EQ(b.WaitsFor(10).orders, (std::vector<std::uint16_t>{8}));
   b.OrderArrived(8);
-  EXPECT_FALSE(b.OrdersMissing(10));
-  EXPECT_FALSE(b.OrdersMissing(29));
-  EXPECT_TRUE(b.OrdersMissing(30));
-  EXPECT_EQ(b.GiveUpOrders(30), (std::vector<std::uint16_t>{9}));
-  EXPECT_FALSE(b.OrdersMissing(31));
-  b.OrderArrived(12);  // a raw order nobody scheduled: nothing to wait for
-  EXPECT_FALSE(b.OrdersMissing(40));
+  EXPECT_FALSE(b.DispatcherPending(10));
+  EXPECT_TRUE(b.DispatcherPending(30));
+  EXPECT_EQ(b.GiveUpDispatcher(30).orders, (std::vector<std::uint16_t>{9}));
+  EXPECT_FALSE(b.DispatcherPending(31));
+  b.OrderArrived(12);  // a raw order nobody named: nothing to wait for
+  EXPECT_FALSE(b.DispatcherPending(40));
 }
 
-// Statist as dispatcher (SPEC 9.4): while a mission recruits, each tick after its statist's
-// first waits until the dispatcher watched the previous tick's positions; its order, scheduled
-// for the next tick, is waited for whichever topic delivers first.
-TEST(LockstepBarrierTest, HoldsTicksWhileAMissionRecruits) {
+// Statist as dispatcher (SPEC 9.4), seen from the barrier: the answers hold every tick from
+// hold_from_tick on until the answer to the previous tick's positions arrived.
+TEST(LockstepBarrierTest, AnAnswerHoldsLaterTicksForTheNextAnswers) {
   LockstepBarrier b;
-  b.ExpectSchedule();
-  b.OnSchedule({});
-  b.OnRecruits(0, {{5, 20}});
-  EXPECT_FALSE(b.RecruitsUnchecked(20));  // the statist stands from tick 20
-  EXPECT_TRUE(b.RecruitsUnchecked(21));   // the dispatcher has not watched tick 20
-  b.OnRecruits(20, {{5, 20}});
-  EXPECT_FALSE(b.RecruitsUnchecked(21));
-  EXPECT_TRUE(b.RecruitsUnchecked(22));
-  b.GiveUpRecruits(22);
-  EXPECT_FALSE(b.RecruitsUnchecked(22));
-  // Enough robots at tick 30: the order (sent before the schedule) enters at 31.
+  b.ExpectDispatcher();
+  b.OnDispatcherAnswer(Positions(0, 21));
+  EXPECT_FALSE(b.DispatcherPending(20));
+  EXPECT_TRUE(b.DispatcherPending(21));  // it has not answered tick 20
+  EXPECT_TRUE(b.WaitsFor(21).answer);
+  EXPECT_FALSE(b.WaitsFor(21).first);
+  b.OnDispatcherAnswer(Positions(20, 21));
+  EXPECT_FALSE(b.DispatcherPending(21));
+  EXPECT_TRUE(b.DispatcherPending(22));
+  b.GiveUpDispatcher(22);
+  EXPECT_FALSE(b.DispatcherPending(22));
+  EXPECT_TRUE(b.DispatcherPending(23));  // given up for one tick only
+  // An older answer arriving late does not undo a newer one.
+  b.OnDispatcherAnswer(Positions(30, 21));
+  b.OnDispatcherAnswer(Positions(25, 21));
+  EXPECT_FALSE(b.DispatcherPending(31));
+  // Its order, named for the next tick, is waited for; the hold ends with the recruit.
+  DispatcherAnswer found = Positions(31, 0);
+  found.orders = {{5, 32}};
+  b.OnDispatcherAnswer(found);
+  EXPECT_TRUE(b.DispatcherPending(32));
   b.OrderArrived(5);
-  b.OnRecruits(30, {});
-  b.OnSchedule({{5, 31}});
-  EXPECT_FALSE(b.RecruitsUnchecked(31));
-  EXPECT_FALSE(b.OrdersMissing(31));
-  // The other way round: the schedule first, then the order.
-  b.OnRecruits(40, {{6, 40}});
-  b.OnRecruits(45, {});
-  b.OnSchedule({{6, 46}});
-  EXPECT_TRUE(b.OrdersMissing(46));
-  b.OrderArrived(6);
-  EXPECT_FALSE(b.OrdersMissing(46));
+  EXPECT_FALSE(b.DispatcherPending(32));
+  EXPECT_FALSE(b.DispatcherPending(100));
 }
 
-TEST(LockstepBarrierTest, GivingUpOnAMissingScheduleLetsTheRunGoOn) {
+TEST(LockstepBarrierTest, GivingUpOnTheFirstAnswerLetsTheRunGoOn) {
   LockstepBarrier b;
-  b.ExpectSchedule();
-  EXPECT_TRUE(b.ScheduleMissing());
-  EXPECT_TRUE(b.GiveUpOrders(1).empty());
-  EXPECT_FALSE(b.ScheduleMissing());
-  EXPECT_FALSE(b.OrdersMissing(2));
+  b.ExpectDispatcher();
+  b.StatusRelayed({4, MissionPhase::kGathering, 0});
+  const LockstepBarrier::DispatcherWait given_up = b.GiveUpDispatcher(1);
+  EXPECT_TRUE(given_up.first);
+  EXPECT_EQ(given_up.statuses.size(), 1u);
+  EXPECT_EQ(given_up.Text(1), "no first answer; no answer to the GATHERING of mission 4 (tick 0)");
+  EXPECT_FALSE(b.DispatcherPending(1));
+  EXPECT_FALSE(b.DispatcherPending(2));
 }
 
 TEST(LockstepBarrierTest, EndAllAsksNobody) {

@@ -10,12 +10,14 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "swarm_transport/core/assignment.h"
+#include "swarm_transport/core/dispatcher_answer.h"
 #include "swarm_transport/core/mission.h"
 #include "swarm_transport/core/mission_book.h"
 #include "swarm_transport/core/recruit.h"
@@ -30,7 +32,8 @@ struct DispatcherPolicyParams {
   MissionBookParams book;
   SelectionParams selection;  // count-only picking (SPEC 9.10)
   // Lock-step (the simulator's clock): file missions and recruits' orders are stamped with the
-  // tick they enter, and each step is told in a DispatcherAnswer; else they go when due.
+  // tick they enter, and every positions and status taken is answered with a DispatcherAnswer
+  // (core/dispatcher_answer.h); else they go when due.
   bool lockstep = false;
   double start_delay_s = 1.0;  // file missions without at_tick: this long after the first swarm
   // Lock-step: the robots at tick `tick` given those of now (a scenario's spawns and kills);
@@ -38,25 +41,6 @@ struct DispatcherPolicyParams {
   std::function<std::set<std::uint16_t>(const std::set<std::uint16_t>&, std::uint64_t)> robots_at;
   // The run's clock in seconds (ros::Time: simulated in lock-step): the book's times.
   std::function<double()> clock = [] { return 0.0; };
-};
-
-// A recruiting mission's statist as the simulator must place it (SPEC 9.4, lock-step).
-struct RecruitStatist {
-  std::uint16_t mission_id = 0;
-  std::uint16_t statist_id = kRecruitStatistId;
-  Vec2 at;                      // its object's centre
-  int copies = 1;               // stacked as sub_ids 0 .. copies - 1
-  std::uint64_t from_tick = 0;  // it stands from this tick
-};
-
-// Lock-step: what the dispatcher did at a tick and what the simulator must wait for before the
-// next one (published as swarm_transport/Dispatcher_Answer).
-struct DispatcherAnswer {
-  std::uint64_t checked_tick = 0;  // the latest tick whose positions it has taken
-  // Its orders since the last answer (id, start tick): each tick from the start tick on waits
-  // until the order is relayed.
-  std::vector<std::pair<std::uint16_t, std::uint64_t>> orders;
-  std::vector<RecruitStatist> recruiting;  // every mission recruiting now, with its statist
 };
 
 // What the policy does: carried out by its owner, in the order of the calls.
@@ -74,7 +58,7 @@ class DispatcherOutlet {
   // Real time: a recruit's statist stands (or is gone), stacked `copies` times.
   virtual void StatistUp(std::uint16_t /*statist_id*/, Vec2 /*at*/, int /*copies*/) {}
   virtual void StatistDown(std::uint16_t /*statist_id*/, int /*copies*/) {}
-  // Lock-step: the answer at a tick.
+  // Lock-step: an answer to the simulator's barrier.
   virtual void Answer(const DispatcherAnswer& /*answer*/) {}
   virtual void Log(bool warn, const std::string& text) = 0;
 };
@@ -103,8 +87,8 @@ class DispatcherPolicy {
 
   // The physical robots of a new positions message of tick `tick` (by id). Lock-step: the
   // first schedules the missions file at its stamped ticks; every one is watched by the
-  // recruits. Real time: the first submits the file missions due now and returns the later
-  // groups (at_tick, delay s) for the caller to submit with SubmitFileMissions when due.
+  // recruits and answered. Real time: the first submits the file missions due now and returns the
+  // later groups (at_tick, delay s) for the caller to submit with SubmitFileMissions when due.
   std::vector<std::pair<std::uint64_t, double>> OnSwarm(
       std::uint64_t tick, std::map<std::uint16_t, PlannerRobot> robots);
   // Only the swarm, nothing else (a driver that schedules nothing).
@@ -113,8 +97,10 @@ class DispatcherPolicy {
   void SubmitFileMissions(std::uint64_t at_tick);
 
   // A first leader's phase report (its fields checked) from `from`: the LOADED / UNLOADED now
-  // due go out.
+  // due go out (lock-step: and an answer naming the status and them).
   MissionBook::StatusOutcome OnStatus(const MissionReport& report, const std::string& from);
+  // Lock-step: a status taken but not booked (a bad or foreign one) is answered all the same.
+  void SkipStatus(const StatusKey& status);
   void OnProgress(const MissionReport& report) { book_.OnProgress(report, params_.clock()); }
   // A user's LOADED / UNLOADED: sent (empty) or why not.
   std::string Signal(std::uint16_t mission_id, MissionEventKind kind);
@@ -145,9 +131,13 @@ class DispatcherPolicy {
   MissionBook::Verdict Refuse(MissionSpec spec, const std::string& source, const std::string& why);
   MissionBook::Verdict StartRecruit(MissionSpec spec, const std::string& source, bool auto_id,
                                     std::uint64_t start_tick);
-  void WatchRecruits();
-  void ScheduleFileMissions();
-  void SendAnswer(std::vector<std::pair<std::uint16_t, std::uint64_t>> orders);
+  // Lock-step: the orders they send (id, start tick).
+  std::vector<std::pair<std::uint16_t, std::uint64_t>> WatchRecruits();
+  std::vector<std::pair<std::uint16_t, std::uint64_t>> ScheduleFileMissions();
+  // Lock-step: the answer with what was sent since the last one.
+  void SendAnswer(std::vector<std::pair<std::uint16_t, std::uint64_t>> orders,
+                  std::vector<core::Signal> events = {},
+                  std::optional<StatusKey> status = std::nullopt);
   std::set<std::uint16_t> KnownRobots() const;
   std::map<std::uint16_t, PlannerRobot> IdleRobots() const;
   void Log(bool warn, const char* format, ...);

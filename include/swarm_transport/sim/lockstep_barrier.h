@@ -3,9 +3,11 @@
 //
 // A tick is complete when every live robot asked answered it - one answer per robot and tick,
 // naming the tick and carrying the command and every mission message the robot sends in it, so
-// nothing else has to be counted or waited for (issue 10, item 4) - and, with a dispatcher,
-// when every LOADED / UNLOADED it owes for a relayed LOADING / UNLOADING arrived (it is stamped
-// with the tick at which it applies), and its scheduled orders due by then.
+// nothing else has to be counted or waited for (issue 10, item 4). With a dispatcher, a tick
+// begins once the dispatcher's answers (core/dispatcher_answer.h) name every status relayed
+// from the robots, what they name has arrived (its LOADED / UNLOADED; its orders from their
+// start ticks), and, from the tick its answers hold, its answer to the previous tick's
+// positions. The barrier knows nothing of why the dispatcher sends what it sends.
 #ifndef SWARM_TRANSPORT_SIM_LOCKSTEP_BARRIER_H_
 #define SWARM_TRANSPORT_SIM_LOCKSTEP_BARRIER_H_
 
@@ -13,11 +15,12 @@
 #include <cstdint>
 #include <map>
 #include <set>
+#include <string>
 #include <utility>
 #include <vector>
 
+#include "swarm_transport/core/dispatcher_answer.h"
 #include "swarm_transport/core/kinematics.h"
-#include "swarm_transport/core/mission.h"
 
 namespace swarm_transport {
 namespace sim {
@@ -50,35 +53,33 @@ class LockstepBarrier {
   void Ask(std::uint16_t id);
   // Robot `id`'s answer to tick `tick` with its command.
   Answer OnAnswer(std::uint16_t id, std::uint64_t tick, const core::Velocity& velocity);
-  // Dispatcher events: one is owed (unless it arrived already), one arrived, a mission ended
-  // (its id may be used again).
-  void Await(const EventKey& event);
-  void Seen(const EventKey& event);
-  void Forget(std::uint16_t mission_id);
-  // A relayed phase status of a mission: LOADING owes a LOADED when `loaded_auto` (the
-  // dispatcher sends it on its own after a delay), UNLOADING an UNLOADED when `unloaded_auto`;
-  // an ended mission is forgotten.
-  void OnPhase(std::uint16_t mission_id, core::MissionPhase phase, bool loaded_auto,
-               bool unloaded_auto);
-
-  // A dispatcher's scheduled orders (Mission_Schedule): with ExpectSchedule, tick 1 on waits
-  // for the schedule; each order waits from its start tick until it arrived.
-  void ExpectSchedule() { expect_schedule_ = true; }
-  void OnSchedule(const std::vector<std::pair<std::uint16_t, std::uint64_t>>& orders);
+  // The dispatcher (lock-step with one). From ExpectDispatcher on, tick 1 on waits for its
+  // first answer; each answer replaces which ticks wait for its next.
+  void ExpectDispatcher() { hold_from_ = 1; }
+  // A status relayed from the robots: the next tick waits until an answer names it.
+  void StatusRelayed(const core::StatusKey& status);
+  void OnDispatcherAnswer(const core::DispatcherAnswer& answer);
+  // The dispatcher's order / LOADED or UNLOADED arrived on its topic (before or after the
+  // answer naming it: they travel on different topics).
   void OrderArrived(std::uint16_t mission_id);
-  // Tick `tick` must wait: for the schedule, or for an order due by then.
-  bool OrdersMissing(std::uint64_t tick) const;
-  // Stops waiting for what OrdersMissing(tick) waits for; returns the orders given up.
-  std::vector<std::uint16_t> GiveUpOrders(std::uint64_t tick);
-  bool ScheduleMissing() const { return expect_schedule_ && !have_schedule_; }
-  // Statist as dispatcher (SPEC 9.4): the missions recruiting now (id, the tick their statist
-  // stands from) and the last tick whose positions the dispatcher has watched. Tick t waits
-  // while a recruit started before t and the dispatcher has not watched tick t - 1 (its order
-  // may enter at t); GiveUpRecruits(t) stops waiting for that.
-  void OnRecruits(std::uint64_t checked_tick,
-                  const std::vector<std::pair<std::uint16_t, std::uint64_t>>& recruiting);
-  bool RecruitsUnchecked(std::uint64_t tick) const;
-  void GiveUpRecruits(std::uint64_t tick);
+  void EventArrived(const EventKey& event);
+  // A mission ended (its id may be used again): what arrived for it unnamed is forgotten.
+  void Forget(std::uint16_t mission_id);
+  // What tick `tick` still waits for from the dispatcher.
+  struct DispatcherWait {
+    bool answer = false;                    // its answer to the positions of tick - 1
+    bool first = false;                     // ... its first answer (none yet)
+    std::vector<core::StatusKey> statuses;  // relayed, no answer names them yet
+    std::vector<EventKey> events;           // named, not arrived
+    std::vector<std::uint16_t> orders;      // named and due by `tick`, not arrived
+    bool empty() const { return !answer && statuses.empty() && events.empty() && orders.empty(); }
+    // For a log line: "no answer to the positions of tick 4; no LOADED for mission 3".
+    std::string Text(std::uint64_t tick) const;
+  };
+  bool DispatcherPending(std::uint64_t tick) const;
+  DispatcherWait WaitsFor(std::uint64_t tick) const;
+  // Stops waiting for all of it; returns what was given up.
+  DispatcherWait GiveUpDispatcher(std::uint64_t tick);
 
   // Every live robot asked this tick answered it.
   bool AllAnswered() const { return awaiting_ == 0; }
@@ -99,17 +100,21 @@ class LockstepBarrier {
     core::Velocity answer;
   };
 
+  // Tick `tick` waits for the dispatcher's answer to the previous tick's positions.
+  bool AnswerDue(std::uint64_t tick) const;
+
   std::uint64_t tick_ = 0;
   std::size_t awaiting_ = 0;  // live robots asked this tick that have not answered
   std::map<std::uint16_t, Slot> robots_;
-  bool expect_schedule_ = false;
-  bool have_schedule_ = false;
-  std::map<std::uint16_t, std::uint64_t> orders_due_;  // scheduled, not arrived: start tick
-  std::set<std::uint16_t> orders_early_;               // arrived before the schedule named them
-  std::set<EventKey> events_awaited_;
-  std::map<std::uint16_t, std::uint64_t> recruits_;  // recruiting mission: statist's first tick
-  std::uint64_t recruit_checked_ = 0;
-  std::set<EventKey> events_seen_;
+  // The dispatcher's side.
+  std::uint64_t hold_from_ = 0;  // ticks from this on wait for its previous tick's answer (0: none)
+  bool answered_ = false;        // an answer with positions arrived
+  std::uint64_t checked_ = 0;    // the latest tick its answers checked
+  std::multiset<core::StatusKey> statuses_owed_;       // relayed, not named yet
+  std::map<std::uint16_t, std::uint64_t> orders_due_;  // named, not arrived: start tick
+  std::set<std::uint16_t> orders_early_;               // arrived before an answer named them
+  std::set<EventKey> events_awaited_;                  // named, not arrived
+  std::multiset<EventKey> events_early_;               // arrived before an answer named them
 };
 
 }  // namespace sim

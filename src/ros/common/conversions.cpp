@@ -373,6 +373,70 @@ core::Perception ToPerception(std::uint16_t id, const Neighbors& msg) {
   return in;
 }
 
+Dispatcher_Answer ToMsg(const core::DispatcherAnswer& answer) {
+  Dispatcher_Answer msg;
+  msg.has_positions = answer.has_positions;
+  msg.checked_tick = answer.checked_tick;
+  if (answer.status) {
+    msg.took_status = true;
+    msg.status_mission_id = answer.status->mission_id;
+    msg.status_state = static_cast<std::uint8_t>(answer.status->phase);
+    msg.status_tick = answer.status->tick;
+  }
+  for (const auto& order : answer.orders) {
+    msg.order_ids.push_back(order.first);
+    msg.order_start_ticks.push_back(order.second);
+  }
+  for (const core::Signal& signal : answer.events) msg.events.push_back(ToMsg(signal));
+  msg.hold_from_tick = answer.hold_from_tick;
+  for (const core::RecruitStatist& r : answer.recruiting) {
+    msg.recruiting.push_back(r.mission_id);
+    msg.statists.push_back(StatistPosition(r.statist_id, r.at, 0));
+    msg.statist_copies.push_back(static_cast<std::uint8_t>(r.copies));
+    msg.statist_from_ticks.push_back(r.from_tick);
+  }
+  return msg;
+}
+
+core::DispatcherAnswer ToDispatcherAnswer(const Dispatcher_Answer& msg) {
+  core::DispatcherAnswer answer;
+  answer.has_positions = msg.has_positions;
+  answer.checked_tick = msg.checked_tick;
+  if (msg.took_status) {
+    answer.status = core::StatusKey{
+        msg.status_mission_id, static_cast<core::MissionPhase>(msg.status_state), msg.status_tick};
+  }
+  const std::size_t n = std::min(msg.order_ids.size(), msg.order_start_ticks.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    answer.orders.emplace_back(msg.order_ids[i], msg.order_start_ticks[i]);
+  }
+  for (const Mission_Event& e : msg.events) {
+    answer.events.push_back(std::get<core::Signal>(ToMissionMessage(e)));
+  }
+  answer.hold_from_tick = msg.hold_from_tick;
+  const std::size_t r = std::min({msg.recruiting.size(), msg.statists.size(),
+                                  msg.statist_copies.size(), msg.statist_from_ticks.size()});
+  for (std::size_t i = 0; i < r; ++i) {
+    const Robot_Position& s = msg.statists[i];
+    answer.recruiting.push_back({msg.recruiting[i],
+                                 s.robot_id,
+                                 {s.pos_x, s.pos_y},
+                                 msg.statist_copies[i],
+                                 msg.statist_from_ticks[i]});
+  }
+  return answer;
+}
+
+Robot_Position StatistPosition(std::uint16_t statist_id, core::Vec2 at, std::uint8_t sub_id) {
+  Robot_Position statist;
+  statist.robot_id = statist_id;
+  statist.sub_id = sub_id;
+  statist.type = Robot_Position::TYPE_STATIST;
+  statist.pos_x = static_cast<float>(at.x);
+  statist.pos_y = static_cast<float>(at.y);
+  return statist;
+}
+
 core::Sender SenderOf(const std::string& node_name) {
   core::Sender sender;
   if (node_name == names::kDispatcherNode) {

@@ -328,22 +328,4 @@ std::map<std::uint16_t, core::PlannerRobot> SwarmOf(const std::vector<Robot_Posi
   return swarm;
 }
 
-Mission_Schedule ToScheduleMsg(const core::DispatcherAnswer& answer) {
-  Mission_Schedule schedule;
-  for (const auto& order : answer.orders) {
-    schedule.mission_ids.push_back(order.first);
-    schedule.start_ticks.push_back(order.second);
-  }
-  schedule.checked_tick = answer.checked_tick;
-  for (const core::RecruitStatist& r : answer.recruiting) {
-    schedule.recruiting.push_back(r.mission_id);
-    schedule.recruit_start_ticks.push_back(r.from_tick);
-    schedule.statist_x.push_back(static_cast<float>(r.at.x));
-    schedule.statist_y.push_back(static_cast<float>(r.at.y));
-    schedule.statist_ids.push_back(r.statist_id);
-    schedule.statist_copies.push_back(static_cast<std::uint8_t>(r.copies));
-  }
-  return schedule;
-}
-
 }  // namespace swarm_transport

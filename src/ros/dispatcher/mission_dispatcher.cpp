@@ -4,8 +4,8 @@
 
 #include "swarm_transport/Delete_Object.h"
 #include "swarm_transport/Delete_Robot.h"
+#include "swarm_transport/Dispatcher_Answer.h"
 #include "swarm_transport/Mission_Event.h"
-#include "swarm_transport/Mission_Schedule.h"
 #include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/ros/common/conversions.h"
 #include "swarm_transport/ros/common/graph.h"
@@ -54,9 +54,9 @@ bool MissionDispatcher::Initialize() {
   status_pub_ = nh_.advertise<Mission_Status>(names::kMissionStatus, 100);
   event_pub_ = nh_.advertise<Mission_Event>(names::kMissionEvent, 10);
   delete_pub_ = nh_.advertise<Delete_Object>(names::kObjectDelete, 10);
-  // Lock-step: published again at every tick a mission recruits (SPEC 9.4); none may be lost.
+  // Lock-step: an answer at every positions and status it takes; none may be lost.
   if (lockstep_) {
-    schedule_pub_ = nh_.advertise<Mission_Schedule>(names::kMissionSchedule, 100, true);
+    answer_pub_ = nh_.advertise<Dispatcher_Answer>(names::kDispatcherAnswer, 100, true);
   } else {
     statist_pub_ = nh_.advertise<Robot_Position>(names::kPosition, 10);
     statist_delete_pub_ = nh_.advertise<Delete_Robot>(names::kRobotDelete, 10);
@@ -107,10 +107,6 @@ void MissionDispatcher::Shutdown() {
   status_timer_.stop();
 }
 
-bool MissionDispatcher::FromSelf(const std::string& publisher) const {
-  return publisher == ros::this_node::getName();
-}
-
 void MissionDispatcher::PublishStatus(const core::MissionSpec& spec, MissionPhase phase,
                                       const std::string& reason, std::uint64_t tick) {
   Mission_Status msg;
@@ -155,14 +151,8 @@ void MissionDispatcher::Event(const core::Signal& signal, const char* why) {
 }
 
 void MissionDispatcher::StatistUp(std::uint16_t statist_id, core::Vec2 at, int copies) {
-  Robot_Position statist;
-  statist.robot_id = statist_id;
-  statist.type = Robot_Position::TYPE_STATIST;
-  statist.pos_x = static_cast<float>(at.x);
-  statist.pos_y = static_cast<float>(at.y);
   for (int copy = 0; copy < copies; ++copy) {
-    statist.sub_id = static_cast<std::uint8_t>(copy);
-    statist_pub_.publish(statist);
+    statist_pub_.publish(StatistPosition(statist_id, at, static_cast<std::uint8_t>(copy)));
   }
 }
 
@@ -176,7 +166,7 @@ void MissionDispatcher::StatistDown(std::uint16_t statist_id, int copies) {
 }
 
 void MissionDispatcher::Answer(const core::DispatcherAnswer& answer) {
-  schedule_pub_.publish(ToScheduleMsg(answer));
+  answer_pub_.publish(ToMsg(answer));
 }
 
 void MissionDispatcher::Log(bool warn, const std::string& text) {
@@ -225,11 +215,14 @@ bool MissionDispatcher::MayReport(const char* kind, std::uint16_t mission_id,
 void MissionDispatcher::OnStatus(const ros::MessageEvent<Mission_Status const>& event) {
   if (FromSelf(event.getPublisherName())) return;
   const Mission_Status& msg = *event.getMessage();
-  if (!MayReport("Mission_Status", msg.mission_id, event.getPublisherName())) return;
   const std::string problem = StatusProblem(msg);
-  if (!problem.empty()) {
+  const bool may = MayReport("Mission_Status", msg.mission_id, event.getPublisherName());
+  if (may && !problem.empty()) {
     ROS_WARN("%s: ignored a Mission_Status of mission %u from %s: %s", kNode, msg.mission_id,
              event.getPublisherName().c_str(), problem.c_str());
+  }
+  if (!may || !problem.empty()) {  // lock-step: answered all the same
+    policy_->SkipStatus({msg.mission_id, static_cast<MissionPhase>(msg.state), msg.tick});
     return;
   }
   const core::MissionBook::StatusOutcome outcome =

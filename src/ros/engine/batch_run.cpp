@@ -27,6 +27,7 @@
 #include "swarm_transport/ros/recorder/recorder.h"
 #include "swarm_transport/ros/simulator/simulator_params.h"
 #include "swarm_transport/sim/live_mission.h"
+#include "swarm_transport/sim/lockstep_barrier.h"
 #include "swarm_transport/sim/lockstep_engine.h"
 #include "swarm_transport/sim/radio.h"
 #include "swarm_transport/sim/world2d.h"
@@ -43,11 +44,31 @@ double Seconds(Clock::time_point from) {
 
 // The dispatcher of a batch run: its policy as the dispatcher node has it without private
 // parameters; its order is released at tick 0, its LOADED / UNLOADED go into the next relay.
+// Its answers go to the dispatcher's side of a lock-step barrier as in a launched run; in one
+// process each tick finds them complete (else the run fails).
 class BatchDispatcher : public core::DispatcherOutlet {
  public:
   BatchDispatcher(const SwarmConfig& config, std::uint64_t* tick, sim::LockstepEngine* engine)
       : engine_(engine), policy_(ParamsOf(config, tick), this) {}
   core::DispatcherPolicy& policy() { return policy_; }
+  // A status the robots said in tick `tick`, taken as MissionDispatcher::OnStatus takes it
+  // (booked when its fields are sound, answered either way).
+  void TakeStatus(const core::StatusReport& status, std::uint64_t tick) {
+    const core::StatusKey key{status.mission_id, status.phase, tick};
+    barrier_.StatusRelayed(key);
+    if (static_cast<std::size_t>(status.phase) < core::kPhaseCount &&
+        std::isfinite(status.object.x) && std::isfinite(status.object.y) &&
+        std::isfinite(status.distance_to_target)) {
+      policy_.OnStatus(core::ReportOf(status, tick), "robots");
+    } else {
+      policy_.SkipStatus(key);
+    }
+  }
+  // Before tick `tick`: what the barrier would wait for has come; why not, else empty.
+  std::string Missing(std::uint64_t tick) const {
+    if (!barrier_.DispatcherPending(tick)) return "";
+    return "the dispatcher's answers were incomplete before tick " + std::to_string(tick);
+  }
   // The order as the dispatcher publishes it (its message's precision).
   const std::optional<New_Mission>& order() const { return order_; }
 
@@ -57,6 +78,10 @@ class BatchDispatcher : public core::DispatcherOutlet {
   }
   void Event(const core::Signal& signal, const char* /*why*/) override {
     engine_->relay().Add(names::kDispatcherNode, signal);
+    barrier_.EventArrived({signal.mission_id, static_cast<std::uint8_t>(signal.kind)});
+  }
+  void Answer(const core::DispatcherAnswer& answer) override {
+    barrier_.OnDispatcherAnswer(answer);
   }
   void Rejected(const core::MissionSpec&, const std::string&) override {}
   void Aborted(const core::MissionSpec&, const std::string&) override {}
@@ -74,6 +99,7 @@ class BatchDispatcher : public core::DispatcherOutlet {
   sim::LockstepEngine* engine_;
   core::DispatcherPolicy policy_;
   std::optional<New_Mission> order_;
+  sim::LockstepBarrier barrier_;  // its dispatcher side
 };
 
 class Run {
@@ -110,6 +136,7 @@ class Run {
   std::vector<core::RobotSession> robots_;  // in world order (ascending id)
   std::set<std::uint16_t> known_robots_;
   std::unique_ptr<BatchDispatcher> dispatcher_;  // with a mission; its order released at tick 0
+  std::string dispatcher_failure_;               // a tick began without its answers
   std::unique_ptr<core::RunMetrics> metrics_;
   std::unique_ptr<LeaderTrack> track_;
   std::string record_path_;
@@ -298,12 +325,7 @@ void Run::Observe(const core::StatusReport& status, std::uint64_t tick) {
     if (tick > 0) last_status_.emplace(status, tick);
   }
   // The dispatcher: LOADED / UNLOADED at their stamped ticks, into the next tick's relay.
-  // (MissionDispatcher::OnStatus, which checks the same before it books a status.)
-  if (dispatcher_ && static_cast<std::size_t>(state) < core::kPhaseCount &&
-      std::isfinite(status.object.x) && std::isfinite(status.object.y) &&
-      std::isfinite(status.distance_to_target)) {
-    dispatcher_->policy().OnStatus(core::ReportOf(status, tick), "robots");
-  }
+  if (dispatcher_) dispatcher_->TakeStatus(status, tick);
   // The recorder.
   RecordStatus(status, tick, metrics_.get());
   WriteMissionRows();
@@ -322,6 +344,7 @@ void Run::Tick() {
     over_ = true;
     return;
   }
+  if (dispatcher_ && dispatcher_failure_.empty()) dispatcher_failure_ = dispatcher_->Missing(tick_);
   if (tick_ == 0 && dispatcher_) {
     const New_Mission& order = *dispatcher_->order();
     engine_->relay().AddOrder(names::kDispatcherNode, ToMissionSpec(order), order.start_tick);
@@ -361,7 +384,8 @@ bool Run::Finish(std::string* error) {
   if (!WriteRunFile(record_path_, metrics_->RunRow(job_.run_name, job_.seed), &why)) ok = false;
   if (track_ && !track_->Write(job_.run_dir + "/leader_track.csv")) ok = false;
   if (!ok) *error = "cannot write the files of " + record_path_ + (why.empty() ? "" : ": " + why);
-  return ok;
+  if (!dispatcher_failure_.empty()) *error = dispatcher_failure_;
+  return ok && dispatcher_failure_.empty();
 }
 
 void Run::AddResult(double setup_s, double ticking_s, double finish_s, JsonObject* result) const {

@@ -5,7 +5,6 @@
 #include <string>
 #include <variant>
 
-#include "swarm_transport/Mission_Event.h"
 #include "swarm_transport/ros/common/conversions.h"
 #include "swarm_transport/ros/common/graph.h"
 #include "swarm_transport/ros/common/names.h"
@@ -47,13 +46,11 @@ void LockstepSession::Connect() {
       kMissionQueue);
   observer_topics_.Advertise(nh_, kMissionQueue);
   if (params_.lockstep_dispatcher) {
-    // Its file missions enter at stamped ticks; tick 1 on waits for its schedule.
-    barrier_.ExpectSchedule();
-    schedule_sub_ =
-        nh_.subscribe(names::kMissionSchedule, kMissionQueue, &LockstepSession::OnSchedule, this);
-    ROS_INFO("lockstep: a dispatcher sends LOADED %s, UNLOADED %s; ticks wait for them",
-             params_.swarm.loaded_delay_s >= 0.0 ? "on its own" : "never (waits for you)",
-             params_.swarm.unloaded_delay_s >= 0.0 ? "on its own" : "never (waits for you)");
+    // Its answers (Dispatcher_Answer): tick 1 on waits for the first.
+    barrier_.ExpectDispatcher();
+    answer_sub_ = nh_.subscribe(names::kDispatcherAnswer, kMissionQueue,
+                                &LockstepSession::OnDispatcherAnswer, this);
+    ROS_INFO("lockstep: ticks wait for the dispatcher's answers and what they name");
   }
 }
 
@@ -64,7 +61,7 @@ void LockstepSession::Inject(const core::MissionMessage& message) {
 
 void LockstepSession::Shutdown() {
   relay_topics_.Shutdown();
-  schedule_sub_.shutdown();
+  answer_sub_.shutdown();
 }
 
 void LockstepSession::AddRobot(std::uint16_t id) {
@@ -292,91 +289,53 @@ void LockstepSession::Relay(const core::MissionMessage& message, const std::stri
   }
   if (const auto* signal = std::get_if<core::Signal>(&message)) {
     if (params_.lockstep_dispatcher) {
-      barrier_.Seen({signal->mission_id, static_cast<std::uint8_t>(signal->kind)});
+      barrier_.EventArrived({signal->mission_id, static_cast<std::uint8_t>(signal->kind)});
     }
   }
 }
 
 void LockstepSession::NoteStatus(std::uint16_t mission_id, core::MissionPhase phase) {
   if (!params_.lockstep_dispatcher) return;
-  barrier_.OnPhase(mission_id, phase, params_.swarm.loaded_delay_s >= 0.0,
-                   params_.swarm.unloaded_delay_s >= 0.0);
+  // An ended mission's id may be used again.
+  if (phase == core::MissionPhase::kDone || phase == core::MissionPhase::kAborted ||
+      phase == core::MissionPhase::kRejected) {
+    barrier_.Forget(mission_id);
+  }
 }
 
 void LockstepSession::WaitForDispatcher(std::uint64_t tick) {
-  const auto holding = [this, tick] {
-    return barrier_.EventsAwaited() || barrier_.OrdersMissing(tick) ||
-           barrier_.RecruitsUnchecked(tick);
-  };
-  if (!holding()) return;
-  // An order or the schedule is due once per run and may wait for the dispatcher's listeners:
-  // the start-up timeout; a LOADED / UNLOADED the tick timeout.
-  const double timeout_s =
-      barrier_.OrdersMissing(tick) ? params_.lockstep_start_timeout_s : params_.lockstep_timeout_s;
+  if (!barrier_.DispatcherPending(tick)) return;
+  // Its first answer or an order is due once per run and may wait for the dispatcher's
+  // listeners: the start-up timeout; the rest the tick timeout.
+  const sim::LockstepBarrier::DispatcherWait waiting = barrier_.WaitsFor(tick);
+  const double timeout_s = waiting.first || !waiting.orders.empty()
+                               ? params_.lockstep_start_timeout_s
+                               : params_.lockstep_timeout_s;
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout_s);
-  while (holding() && hooks_.running() && ros::WallTime::now() < deadline) {
+  while (barrier_.DispatcherPending(tick) && hooks_.running() && ros::WallTime::now() < deadline) {
     hooks_.spin(kPollS);
   }
-  if (!holding() || !hooks_.running()) return;
-  if (barrier_.ScheduleMissing() && tick >= 1) {
-    ROS_WARN(
-        "lockstep tick %llu: no %s from the dispatcher within %.2f s; not waiting for it "
-        "any longer",
-        static_cast<unsigned long long>(tick), names::kMissionSchedule, timeout_s);
-  }
-  for (std::uint16_t id : barrier_.GiveUpOrders(tick)) {
-    ROS_WARN(
-        "lockstep tick %llu: the order of scheduled mission %u did not arrive within "
-        "%.2f s; not waiting for it any longer",
-        static_cast<unsigned long long>(tick), id, timeout_s);
-  }
-  if (barrier_.RecruitsUnchecked(tick)) {
-    ROS_WARN(
-        "lockstep tick %llu: the dispatcher did not watch tick %llu for its recruiting "
-        "missions within %.2f s; not waiting for it at this tick",
-        static_cast<unsigned long long>(tick), static_cast<unsigned long long>(tick - 1),
-        timeout_s);
-    barrier_.GiveUpRecruits(tick);
-  }
-  for (const auto& key : barrier_.GiveUpEvents()) {
-    ROS_WARN(
-        "lockstep tick %llu: no %s for mission %u from the dispatcher within %.2f s; "
-        "not waiting for it any longer",
-        static_cast<unsigned long long>(tick),
-        key.second == Mission_Event::LOADED ? "LOADED" : "UNLOADED", key.first, timeout_s);
-  }
+  if (!barrier_.DispatcherPending(tick) || !hooks_.running()) return;
+  ROS_WARN(
+      "lockstep tick %llu: the dispatcher's answers (%s) are incomplete after %.2f s (%s); not "
+      "waiting for them any longer",
+      static_cast<unsigned long long>(tick), names::kDispatcherAnswer, timeout_s,
+      barrier_.GiveUpDispatcher(tick).Text(tick).c_str());
 }
 
-void LockstepSession::OnSchedule(const Mission_Schedule::ConstPtr& msg) {
-  std::vector<std::pair<std::uint16_t, std::uint64_t>> orders;
-  const std::size_t n = std::min(msg->mission_ids.size(), msg->start_ticks.size());
-  for (std::size_t i = 0; i < n; ++i) orders.emplace_back(msg->mission_ids[i], msg->start_ticks[i]);
-  barrier_.OnSchedule(orders);
+void LockstepSession::OnDispatcherAnswer(const Dispatcher_Answer::ConstPtr& msg) {
+  core::DispatcherAnswer answer = ToDispatcherAnswer(*msg);
+  barrier_.OnDispatcherAnswer(answer);
   // The recruiting missions (SPEC 9.4): the whole list each time, with their statists.
-  std::vector<std::pair<std::uint16_t, std::uint64_t>> recruiting;
-  recruit_statists_.clear();
-  const std::size_t r =
-      std::min({msg->recruiting.size(), msg->recruit_start_ticks.size(), msg->statist_x.size(),
-                msg->statist_y.size(), msg->statist_ids.size(), msg->statist_copies.size()});
-  for (std::size_t i = 0; i < r; ++i) {
-    recruiting.emplace_back(msg->recruiting[i], msg->recruit_start_ticks[i]);
-    Robot_Position statist;
-    statist.robot_id = msg->statist_ids[i];
-    statist.type = Robot_Position::TYPE_STATIST;
-    statist.pos_x = msg->statist_x[i];
-    statist.pos_y = msg->statist_y[i];
-    for (int copy = 0; copy < msg->statist_copies[i]; ++copy) {
-      statist.sub_id = static_cast<std::uint8_t>(copy);
-      recruit_statists_.emplace_back(msg->recruit_start_ticks[i], statist);
-    }
-  }
-  barrier_.OnRecruits(msg->checked_tick, recruiting);
+  recruiting_ = std::move(answer.recruiting);
 }
 
 std::vector<Robot_Position> LockstepSession::RecruitStatists(std::uint64_t tick) const {
   std::vector<Robot_Position> standing;
-  for (const auto& s : recruit_statists_) {
-    if (s.first <= tick) standing.push_back(s.second);
+  for (const core::RecruitStatist& r : recruiting_) {
+    for (int copy = 0; copy < r.copies && r.from_tick <= tick; ++copy) {
+      standing.push_back(StatistPosition(r.statist_id, r.at, static_cast<std::uint8_t>(copy)));
+    }
   }
   return standing;
 }
@@ -427,6 +386,10 @@ void LockstepSession::TakeAnswers() {
     for (const core::StatusReport& r : a.statuses) {
       const Mission_Status st = ToStatusMsg(r, a.tick, stamp);
       NoteStatus(st.mission_id, static_cast<core::MissionPhase>(st.state));
+      // The dispatcher answers every status it takes: the next tick waits for that answer.
+      if (params_.lockstep_dispatcher) {
+        barrier_.StatusRelayed({st.mission_id, static_cast<core::MissionPhase>(st.state), st.tick});
+      }
       observer_topics_.PublishStatus(st);
     }
     for (const core::StatusReport& r : a.progress)

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "swarm_transport/Delete_Object.h"
+#include "swarm_transport/Dispatcher_Answer.h"
 #include "swarm_transport/Flocking_Tuning.h"
 #include "swarm_transport/Mission_Event.h"
 #include "swarm_transport/Mission_Status.h"
@@ -21,6 +22,7 @@
 #include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/Tick_Answer.h"
 #include "swarm_transport/Update_Object.h"
+#include "swarm_transport/core/dispatcher_answer.h"
 #include "swarm_transport/core/flocking.h"
 #include "swarm_transport/core/kinematics.h"
 #include "swarm_transport/core/mission.h"
@@ -109,6 +111,11 @@ core::MissionMessage ToMissionMessage(const Mission_Status& msg);
 // A lock-step round's relayed mission messages in the order a robot takes them (Neighbors.msg):
 // missions, object updates, object deletes, freezes, continues, events, statuses.
 std::vector<core::MissionMessage> ToMissionMessages(const Neighbors& round);
+// The dispatcher's lock-step answer (core/dispatcher_answer.h) <-> Dispatcher_Answer.
+Dispatcher_Answer ToMsg(const core::DispatcherAnswer& answer);
+core::DispatcherAnswer ToDispatcherAnswer(const Dispatcher_Answer& msg);
+// A recruit's statist (TYPE_STATIST) at `at`, its copy `sub_id`.
+Robot_Position StatistPosition(std::uint16_t statist_id, core::Vec2 at, std::uint8_t sub_id);
 // Who published a mission message, from its publisher's node name (MessageEvent): the
 // dispatcher (names::kDispatcherNode), the simulator or a robot host (relay: they carry robots'
 // messages), a robot's node (/robot_<id>/robot), else other.

@@ -10,7 +10,6 @@
 #include <string>
 #include <vector>
 
-#include "swarm_transport/Mission_Schedule.h"
 #include "swarm_transport/Mission_Status.h"
 #include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/core/dispatcher_policy.h"
@@ -84,9 +83,6 @@ std::string StatusProblem(const Mission_Status& status);
 
 // The physical robots of a /flock/positions with their poses, by id: the swarm the policy knows.
 std::map<std::uint16_t, core::PlannerRobot> SwarmOf(const std::vector<Robot_Position>& robots);
-
-// The lock-step answer as the simulator's session takes it.
-Mission_Schedule ToScheduleMsg(const core::DispatcherAnswer& answer);
 
 }  // namespace swarm_transport
 

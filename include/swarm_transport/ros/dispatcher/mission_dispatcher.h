@@ -62,7 +62,9 @@ class MissionDispatcher : private core::DispatcherOutlet {
   // Before a new order: waits (at most kListenerWaitS) until every registered subscriber of
   // the order topic is connected.
   void AwaitListeners();
-  bool FromSelf(const std::string& publisher) const;
+  bool FromSelf(const std::string& publisher) const {
+    return publisher == ros::this_node::getName();
+  }
 
   void OnPositions(const Robot_Positions::ConstPtr& msg);
   void OnNewMission(const ros::MessageEvent<New_Mission const>& event);
@@ -86,7 +88,7 @@ class MissionDispatcher : private core::DispatcherOutlet {
   ros::Publisher status_pub_;
   ros::Publisher event_pub_;
   ros::Publisher delete_pub_;
-  ros::Publisher schedule_pub_;        // lock-step only
+  ros::Publisher answer_pub_;          // lock-step only
   ros::Publisher statist_pub_;         // real time: /flock/position
   ros::Publisher statist_delete_pub_;  // real time: /flock/robot/delete
   ros::Subscriber positions_sub_;

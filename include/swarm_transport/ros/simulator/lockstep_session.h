@@ -24,7 +24,7 @@
 #include <utility>
 #include <vector>
 
-#include "swarm_transport/Mission_Schedule.h"
+#include "swarm_transport/Dispatcher_Answer.h"
 #include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/core/kinematics.h"
 #include "swarm_transport/core/mission_message.h"
@@ -54,7 +54,7 @@ class LockstepSession {
                   ros::CallbackQueue* command_queue, sim::LockstepEngine* engine,
                   LockstepHooks hooks);
 
-  // Subscribes the relayed mission topics (and the dispatcher's schedule), advertises the
+  // Subscribes the relayed mission topics (and the dispatcher's answers), advertises the
   // observers' topics.
   void Connect();
   void Shutdown();
@@ -76,7 +76,7 @@ class LockstepSession {
   // Tick `tick` begins: liveness, then the dispatcher's awaited events and orders.
   void BeginTick(std::uint64_t tick);
   // Statist as dispatcher (SPEC 9.4): the statists of the dispatcher's recruiting missions that
-  // stand at tick `tick` (from its schedule; the simulator relays them).
+  // stand at tick `tick` (from its answers; the simulator relays them).
   std::vector<Robot_Position> RecruitStatists(std::uint64_t tick) const;
   // Round of tick `tick` (after the engine's BeginRound): StartRound, then per live robot
   // Round, its delivery, Asked; EndRound once every round is out.
@@ -102,7 +102,7 @@ class LockstepSession {
   void Relay(const core::MissionMessage& message, const std::string& publisher,
              std::uint64_t start_tick);
   void NoteStatus(std::uint16_t mission_id, core::MissionPhase phase);
-  void OnSchedule(const Mission_Schedule::ConstPtr& msg);
+  void OnDispatcherAnswer(const Dispatcher_Answer::ConstPtr& msg);
   bool RelaysConnected(const ros::Publisher& robot_list) const;
   // Robots spawned since the last tick whose process already runs (it publishes their answer
   // topic, idling until listed): waits until they are connected, as at the start.
@@ -126,8 +126,8 @@ class LockstepSession {
   std::set<std::uint16_t> joining_;    // added since the last tick began (after the start)
   std::set<std::uint16_t> connected_;  // became live this tick: their round carries the orders
   MissionTopics relay_topics_;
-  ros::Subscriber schedule_sub_;
-  std::vector<std::pair<std::uint64_t, Robot_Position>> recruit_statists_;  // (first tick, statist)
+  ros::Subscriber answer_sub_;
+  std::vector<core::RecruitStatist> recruiting_;  // the dispatcher's latest answer's
   // The answers' mission messages for observers (robots in lock-step publish no mission topic).
   MissionOutlets observer_topics_;
   WarnThrottle late_warning_;  // wall-clock throttles of repeated warnings

@@ -38,10 +38,9 @@ struct SimulatorParams {
   // tick 0 would (a test or a tool that acts at a stated tick cannot miss it however fast the
   // run goes); ~hold with tick 0 releases it. 0: no hold.
   int hold_at = 0;
-  // ~lockstep_dispatcher: a mission dispatcher answers LOADING / UNLOADING with a stamped
-  // LOADED / UNLOADED (/swarm/loaded_delay_s, unloaded_delay_s >= 0); hold the next tick until
-  // it arrived (at most lockstep_timeout_s), so that it applies at its stamped tick however
-  // loaded the machine is.
+  // ~lockstep_dispatcher: a mission dispatcher runs; ticks wait for its answers
+  // (Dispatcher_Answer) and what they name, so that its LOADED / UNLOADED and orders apply at
+  // their stamped ticks however loaded the machine is.
   bool lockstep_dispatcher = false;
   double integration_step_s = 0.01;  // ~integration_step_s: world sub-step (real time: loop period)
   double markers_rate_hz = 10.0;     // ~markers_rate_hz: markers and tf, wall clock (0: off)
