@@ -15,7 +15,18 @@ constexpr double kUndefinedMeanLength = 1e-9;
 
 }  // namespace
 
-Angle::Angle(double degrees) : degrees_(std::fmod(degrees, kFullTurnDeg)) {
+Angle::Angle(double degrees) {
+  // fmod(degrees, 360) without its call where it is exact arithmetic: the value itself within
+  // one turn, one turn off within two (x - 360 is exact there, Sterbenz), as fmod gives.
+  if (std::fabs(degrees) < kFullTurnDeg) {
+    degrees_ = degrees;
+  } else if (degrees >= kFullTurnDeg && degrees < 2.0 * kFullTurnDeg) {
+    degrees_ = degrees - kFullTurnDeg;
+  } else if (degrees < -kFullTurnDeg && degrees > -2.0 * kFullTurnDeg) {  // -360: fmod says -0
+    degrees_ = degrees + kFullTurnDeg;
+  } else {
+    degrees_ = std::fmod(degrees, kFullTurnDeg);
+  }
   if (degrees_ < 0.0) degrees_ += kFullTurnDeg;
   // A tiny negative input becomes 360 - epsilon, which rounds to exactly 360.
   if (degrees_ >= kFullTurnDeg) degrees_ = 0.0;

@@ -95,22 +95,44 @@ bool FlockGroup::Admits(std::uint16_t id) const {
   return std::binary_search(ids.begin(), ids.end(), id) == only;
 }
 
-std::vector<Neighbour> NeighbourhoodOf(const Perception& in, const FlockingParams& p) {
+namespace {
+
+// NeighbourhoodOf's and DesiredHeading's vectors, kept from call to call (per thread: a host's
+// workers tick robots in parallel), so that a tick allocates none of them.
+struct FlockingScratch {
+  std::vector<Neighbour> neighbourhood;
+  std::vector<const Neighbour*> candidates;
+  std::vector<Vec2> frontier;
+  std::vector<Angle> headings;
+};
+
+FlockingScratch& Scratch() {
+  thread_local FlockingScratch scratch;
+  return scratch;
+}
+
+// NeighbourhoodOf into `neighbourhood` (emptied first), with `candidates` and `frontier` as its
+// working lists.
+void FillNeighbourhood(const Perception& in, const FlockingParams& p,
+                       std::vector<Neighbour>* neighbourhood,
+                       std::vector<const Neighbour*>* candidates_list,
+                       std::vector<Vec2>* frontier_list) {
   Neighbour self;
   self.id = in.self_id;
   self.position = in.self.position;
   self.heading = in.self.heading;
-  std::vector<Neighbour> neighbourhood;
-  neighbourhood.reserve(in.others.size() + 1);
-  neighbourhood.push_back(self);
+  neighbourhood->clear();
+  neighbourhood->reserve(in.others.size() + 1);
+  neighbourhood->push_back(self);
   // Candidates not linked yet; statists join at once.
-  std::vector<const Neighbour*> candidates;
+  std::vector<const Neighbour*>& candidates = *candidates_list;
+  candidates.clear();
   candidates.reserve(in.others.size());
   for (const Neighbour& other : in.others) {
     // Its own echo would count it twice.
     if (IsSelf(in, other)) continue;
     if (other.type == kTypeStatist) {
-      neighbourhood.push_back(other);
+      neighbourhood->push_back(other);
     } else if (in.group.Admits(other.id)) {
       candidates.push_back(&other);
     }
@@ -118,7 +140,8 @@ std::vector<Neighbour> NeighbourhoodOf(const Perception& in, const FlockingParam
   // Breadth first from itself: a disc stops after the first ring. Every robot linked so far is
   // tried once as the source of links to the rest (statists link nobody: they count, but a
   // chain runs through robots).
-  std::vector<Vec2> frontier;
+  std::vector<Vec2>& frontier = *frontier_list;
+  frontier.clear();
   if (p.neighbourhood == Neighbourhood::kChain) frontier.reserve(candidates.size() + 1);
   frontier.push_back(in.self.position);
   for (std::size_t next = 0; next < frontier.size() && !candidates.empty(); ++next) {
@@ -129,11 +152,19 @@ std::vector<Neighbour> NeighbourhoodOf(const Perception& in, const FlockingParam
               Distance(from, n->position) > p.local_range_m);
     });
     for (auto it = linked; it != candidates.end(); ++it) {
-      neighbourhood.push_back(**it);
+      neighbourhood->push_back(**it);
       if (p.neighbourhood == Neighbourhood::kChain) frontier.push_back((*it)->position);
     }
     candidates.erase(linked, candidates.end());
   }
+}
+
+}  // namespace
+
+std::vector<Neighbour> NeighbourhoodOf(const Perception& in, const FlockingParams& p) {
+  std::vector<Neighbour> neighbourhood;
+  FlockingScratch& scratch = Scratch();
+  FillNeighbourhood(in, p, &neighbourhood, &scratch.candidates, &scratch.frontier);
   return neighbourhood;
 }
 
@@ -174,9 +205,12 @@ Angle DesiredHeading(const Perception& in, const FlockingParams& p, Rng& rng, bo
     return Bearing(position, target);
   }
 
-  const std::vector<Neighbour> neighbourhood = NeighbourhoodOf(in, p);
+  FlockingScratch& scratch = Scratch();
+  const std::vector<Neighbour>& neighbourhood = scratch.neighbourhood;
+  FillNeighbourhood(in, p, &scratch.neighbourhood, &scratch.candidates, &scratch.frontier);
   if (neighbourhood_size != nullptr) *neighbourhood_size = NeighbourhoodSize(neighbourhood);
-  std::vector<Angle> headings;
+  std::vector<Angle>& headings = scratch.headings;
+  headings.clear();
   headings.reserve(neighbourhood.size());
   Vec2 sum;
   for (const Neighbour& n : neighbourhood) {

@@ -67,7 +67,8 @@ void LockstepEngine::TakeAnswers(
   }
   for (const auto& entry : *answers) {
     const core::Answer& a = entry.second;
-    relay_.AddAnswer(entry.first, a);
+    // Most answers relay nothing: no sender name to format for them.
+    if (!a.messages.empty() || !a.statuses.empty()) relay_.AddAnswer(entry.first, a);
     for (const core::MissionMessage& m : a.messages) {
       if (const auto* u = std::get_if<core::ObjectUpdate>(&m)) {
         UpdateMissionObject(u->mission_id, u->centre, *world_, missions_);

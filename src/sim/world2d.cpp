@@ -126,16 +126,28 @@ bool World2D::SetCommand(std::uint16_t id, core::Velocity velocity, std::string*
     SetError(error, "robot " + std::to_string(id) + " does not exist");
     return false;
   }
+  return ApplyCommand(&it->second, velocity, error);
+}
+
+bool World2D::SetCommandAt(std::size_t index, core::Velocity velocity, std::string* error) {
+  if (index >= robots_.size()) {
+    SetError(error, "no robot at index " + std::to_string(index));
+    return false;
+  }
+  return ApplyCommand(&robots_.nth(index)->second, velocity, error);
+}
+
+bool World2D::ApplyCommand(Robot* robot, core::Velocity velocity, std::string* error) const {
   if (!std::isfinite(velocity.linear) || !std::isfinite(velocity.angular)) {
     SetError(error, "the velocity must be finite");
     return false;
   }
   // Turn in place at once, then drive straight for the command's duration: the thesis's tick
   // (teleport_relative, then 1 s of driving) and exactly what core::TurnThenDrive predicts.
-  it->second.pose.heading = it->second.pose.heading +
-                            core::Angle::FromRadians(velocity.angular * params_.command_duration_s);
-  it->second.command = core::Velocity{velocity.linear, 0.0};
-  it->second.command_remaining_s = params_.command_duration_s;
+  robot->pose.heading =
+      robot->pose.heading + core::Angle::FromRadians(velocity.angular * params_.command_duration_s);
+  robot->command = core::Velocity{velocity.linear, 0.0};
+  robot->command_remaining_s = params_.command_duration_s;
   return true;
 }
 

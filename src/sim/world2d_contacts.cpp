@@ -21,20 +21,27 @@ using core::SquaredDistance;
 
 void World2D::ResolveContacts() {
   if (!params_.push_apart) return;
+  std::vector<Robot*>& order = push_order_;
+  std::vector<core::Vec2>& points = push_points_;
+  order.clear();
+  points.clear();
+  for (auto& entry : robots_) {
+    order.push_back(&entry.second);
+    points.push_back(entry.second.pose.position);
+  }
   std::vector<std::uint8_t>& touched = push_touched_;
   touched.clear();  // the first pass searches around every robot
   for (int i = 0; i < kPushIterations; ++i) {
     const bool pushed = PushApartOnce(&touched);
     // ClampAll, remembering whom the wall moved: the next pass searches around them too.
-    std::size_t k = 0;
-    for (auto& entry : robots_) {
-      core::Vec2& p = entry.second.pose.position;
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      core::Vec2& p = order[k]->pose.position;
       const core::Vec2 clamped = Clamped(p);
       if (clamped.x != p.x || clamped.y != p.y) {
         p = clamped;
         touched[k] = 1;
       }
-      ++k;
+      if (touched[k]) points[k] = p;  // the others did not move
     }
     if (!pushed) break;
   }
@@ -44,15 +51,32 @@ void World2D::ClampAll() {
   for (auto& entry : robots_) entry.second.pose.position = Clamped(entry.second.pose.position);
 }
 
+void World2D::BuildContactGrid() {
+  push_grid_.Build(push_points_, params_.world_size_m, 2.0 * params_.robot_radius_m);
+  push_moved_.assign(push_points_.size(), 0);
+  push_moved_list_.clear();
+}
+
 bool World2D::PushApartOnce(std::vector<std::uint8_t>* touched) {
-  std::vector<Robot*>& order = push_order_;
-  std::vector<core::Vec2>& points = push_points_;
+  const std::vector<Robot*>& order = push_order_;
+  const std::vector<core::Vec2>& points = push_points_;
   std::vector<std::pair<std::size_t, std::size_t>>& pairs = push_pairs_;
-  order.clear();
-  points.clear();
-  const bool all = touched->empty();
-  if (all) {
+  const double contact = 2.0 * params_.robot_radius_m;
+  const double contact2 = contact * contact;
+  const auto add = [&](std::size_t i, std::size_t j) {
+    if (SquaredDistance(points[i], points[j]) < contact2) {
+      pairs.emplace_back(std::min(i, j), std::max(i, j));
+    }
+  };
+  if (touched->empty()) {
+    // Around every robot, each pair once (from its lower robot).
     pairs.clear();
+    BuildContactGrid();
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      push_grid_.ForNearby(i, [&](std::size_t j) {
+        if (j > i) add(i, j);
+      });
+    }
   } else {
     // The last pass's pairs of two robots that did not move since: still as close (a pair
     // whose squared distance is below the contact's but whose distance, rounded, is not was
@@ -62,25 +86,31 @@ bool World2D::PushApartOnce(std::vector<std::uint8_t>* touched) {
                                  return (*touched)[p.first] != 0 || (*touched)[p.second] != 0;
                                }),
                 pairs.end());
-  }
-  for (auto& entry : robots_) {
-    order.push_back(&entry.second);
-    points.push_back(entry.second.pose.position);
-  }
-  const double contact = 2.0 * params_.robot_radius_m;
-  const double contact2 = contact * contact;
-  {
-    SpatialGrid& grid = push_grid_;
-    grid.Build(points, params_.world_size_m, contact);
-    const auto searched = [&](std::size_t i) { return all || (*touched)[i] != 0; };
+    // Around the robots moved by the last pass, each pair once (from its lower robot when both
+    // moved). The grid holds every robot where it was at its build: the robots moved since are
+    // searched in a grid of their own (rebuilt each pass: a few), the others in the big one
+    // (rebuilt only when many moved).
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      if ((*touched)[k] != 0 && push_moved_[k] == 0) {
+        push_moved_[k] = 1;
+        push_moved_list_.push_back(k);
+      }
+    }
+    if (push_moved_list_.size() > points.size() / 8) BuildContactGrid();
+    push_moved_points_.clear();
+    for (std::size_t k : push_moved_list_) push_moved_points_.push_back(points[k]);
+    push_moved_grid_.Build(push_moved_points_, params_.world_size_m, contact);
     for (std::size_t i = 0; i < points.size(); ++i) {
-      if (!searched(i)) continue;
-      grid.ForNearby(i, [&](std::size_t j) {
-        // Each pair once: from its lower robot when both are searched around.
-        if (j == i || (j < i && searched(j))) return;
-        if (SquaredDistance(points[i], points[j]) < contact2) {
-          pairs.emplace_back(std::min(i, j), std::max(i, j));
-        }
+      if ((*touched)[i] == 0) continue;
+      push_grid_.ForNear(points[i], [&](std::size_t j) {
+        // The robots moved since the build are the other grid's (after a rebuild: none).
+        if (push_moved_[j] != 0 || j == i || (j < i && (*touched)[j] != 0)) return;
+        add(i, j);
+      });
+      push_moved_grid_.ForNear(points[i], [&](std::size_t m) {
+        const std::size_t j = push_moved_list_[m];
+        if (j == i || (j < i && (*touched)[j] != 0)) return;
+        add(i, j);
       });
     }
   }

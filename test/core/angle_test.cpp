@@ -3,7 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <random>
 #include <stdexcept>
+#include <vector>
 
 namespace swarm_transport {
 namespace core {
@@ -21,6 +25,39 @@ TEST(AngleTest, NegativeAndLargeDegreesWrapIntoRange) {
   EXPECT_NEAR(Angle(-720).degrees(), 0.0, kTolerance);
   EXPECT_NEAR(Angle(725).degrees(), 5.0, kTolerance);
   EXPECT_NEAR((Angle(10) - Angle(20)).degrees(), 350.0, kTolerance);
+}
+
+// Angle's wrap as fmod gives it, bit for bit (the sign of a zero too): the constructor skips
+// fmod's call where the result is exact arithmetic, and every run's files depend on each bit.
+double FmodWrapped(double degrees) {
+  double d = std::fmod(degrees, 360.0);
+  if (d < 0.0) d += 360.0;
+  if (d >= 360.0) d = 0.0;
+  return d;
+}
+
+TEST(AngleTest, WrapsBitForBitAsFmod) {
+  std::vector<double> inputs = {0.0,    -0.0,    360.0,   -360.0,   720.0, -720.0,
+                                1080.0, -1080.0, 1e-300,  -1e-300,  1e-15, -1e-15,
+                                359.99, -359.99, 719.999, -719.999, 1e20,  -1e20};
+  for (const double edge : {360.0, -360.0, 720.0, -720.0, 0.0}) {
+    inputs.push_back(std::nextafter(edge, 1e9));
+    inputs.push_back(std::nextafter(edge, -1e9));
+  }
+  std::mt19937_64 gen(7);
+  std::uniform_real_distribution<double> uniform(-1500.0, 1500.0);
+  for (int i = 0; i < 100000; ++i) inputs.push_back(uniform(gen));
+  for (const double x : inputs) {
+    const double got = Angle(x).degrees();
+    const double want = FmodWrapped(x);
+    std::uint64_t got_bits = 0;
+    std::uint64_t want_bits = 0;
+    std::memcpy(&got_bits, &got, sizeof got);
+    std::memcpy(&want_bits, &want, sizeof want);
+    ASSERT_EQ(got_bits, want_bits) << "Angle(" << x << ")";
+  }
+  EXPECT_TRUE(std::isnan(Angle(std::nan("")).degrees()));
+  EXPECT_TRUE(std::isnan(Angle(INFINITY).degrees()));
 }
 
 TEST(AngleTest, TinyNegativeWrapsToZeroNotToFullTurn) {

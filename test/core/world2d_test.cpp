@@ -100,6 +100,32 @@ TEST(World2DTest, CommandExpiresExactlyWithinAStep) {
   EXPECT_DOUBLE_EQ(Get(other, 1).last_velocity.linear, 1.0);  // drove until the very end
 }
 
+TEST(World2DTest, CommandByIndexIsTheCommandById) {
+  WorldParams params;
+  World2D by_id(params);
+  World2D by_index(params);
+  for (World2D* world : {&by_id, &by_index}) {
+    ASSERT_TRUE(world->Spawn(4, MakePose(2.0, 2.0, 10.0), nullptr));
+    ASSERT_TRUE(world->Spawn(9, MakePose(6.0, 3.0, 200.0), nullptr));
+  }
+  ASSERT_TRUE(by_id.SetCommand(9, {0.7, -1.3}, nullptr));
+  ASSERT_TRUE(by_index.SetCommandAt(1, {0.7, -1.3}, nullptr));  // robots() order: 4, 9
+  std::string error;
+  EXPECT_FALSE(by_index.SetCommandAt(2, {0.1, 0.0}, &error));
+  EXPECT_NE(error.find("index 2"), std::string::npos);
+  EXPECT_FALSE(by_index.SetCommandAt(0, {NAN, 0.0}, &error));
+  EXPECT_EQ(error, "the velocity must be finite");
+  by_id.Step(0.5);
+  by_index.Step(0.5);
+  for (std::uint16_t id : {4, 9}) {
+    EXPECT_EQ(Get(by_id, id).pose.position.x, Get(by_index, id).pose.position.x);
+    EXPECT_EQ(Get(by_id, id).pose.position.y, Get(by_index, id).pose.position.y);
+    EXPECT_EQ(Get(by_id, id).pose.heading.degrees(), Get(by_index, id).pose.heading.degrees());
+  }
+  EXPECT_NE(Get(by_index, 9).pose.position.x, 6.0);
+  EXPECT_EQ(Get(by_index, 4).pose.position.x, 2.0);  // the refused command changed nothing
+}
+
 TEST(World2DTest, NewCommandReplacesTheOldOneAndRestartsItsDuration) {
   WorldParams params;
   params.command_duration_s = 0.1;

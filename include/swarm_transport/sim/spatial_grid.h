@@ -34,8 +34,14 @@ class SpatialGrid {
   // point i (j may equal i). Every point within cell_m of point i is among them.
   template <typename F>
   void ForNearby(std::size_t i, F f) const {
-    const int cx = CellOf((*points_)[i].x);
-    const int cy = CellOf((*points_)[i].y);
+    ForNear((*points_)[i], f);
+  }
+  // The same around any position `p`: every point within cell_m of `p` is among them. A point
+  // counts where it was at the Build (a point that moved since may be missed, or found far).
+  template <typename F>
+  void ForNear(core::Vec2 p, F f) const {
+    const int cx = CellOf(p.x);
+    const int cy = CellOf(p.y);
     const int x0 = std::max(0, cx - 1);
     const int x1 = std::min(side_ - 1, cx + 1);
     const int y0 = std::max(0, cy - 1);

@@ -62,6 +62,9 @@ class World2D {
   bool TeleportRelative(std::uint16_t id, double linear_m, double angular_rad, std::string* error);
   // Replaces robot `id`'s command; it is held for command_duration_s of simulated time.
   bool SetCommand(std::uint16_t id, core::Velocity velocity, std::string* error);
+  // The same for the robot at `index` of robots() (no search by id: a batch run sets every
+  // robot's command each tick); fails when there is no such robot.
+  bool SetCommandAt(std::size_t index, core::Velocity velocity, std::string* error);
 
   // Advances every robot by `dt_s` (>= 0) in equal sub-steps of at most integration_step_s;
   // within a sub-step a robot drives the exact arc of its command for as long as the command
@@ -100,13 +103,18 @@ class World2D {
   bool Inside(const core::Pose2& pose, std::string* error) const;
   core::Vec2 Clamped(core::Vec2 p) const;
   void ClampAll();
+  // SetCommand's checks and effect on `robot`.
+  bool ApplyCommand(Robot* robot, core::Velocity velocity, std::string* error) const;
   // One pass over all overlapping pairs; false when there was none. `touched`: on entry the
   // robots (by index) moved by the pass before, to search around (empty: every robot); on exit
   // the robots this pass pushed. A pair that overlaps now has a robot moved by the pass before
   // (two unmoved robots that overlapped would have been pushed) or is one of that pass's pairs
   // left alone at the contact distance: searching around the moved robots and keeping those
   // pairs finds every pair a search around all robots would (bit for bit the same result).
+  // Uses ResolveContacts' robots and their current positions (push_order_, push_points_).
   bool PushApartOnce(std::vector<std::uint8_t>* touched);
+  // The contact grid of every robot where it is now; none moved since.
+  void BuildContactGrid();
 
   WorldParams params_;
   RobotMap robots_;
@@ -115,7 +123,13 @@ class World2D {
   std::vector<core::Vec2> push_points_;
   std::vector<std::pair<std::size_t, std::size_t>> push_pairs_;
   std::vector<std::uint8_t> push_touched_;
-  SpatialGrid push_grid_;
+  SpatialGrid push_grid_;  // every robot, where it was at its build
+  // The robots moved since push_grid_'s build (flags by index, and their list), and a grid of
+  // their current positions (index into the list).
+  std::vector<std::uint8_t> push_moved_;
+  std::vector<std::size_t> push_moved_list_;
+  std::vector<core::Vec2> push_moved_points_;
+  SpatialGrid push_moved_grid_;
 };
 
 // Poses of `n` robots at random positions inside [r, size - r]^2, centres at least

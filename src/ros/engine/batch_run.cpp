@@ -361,9 +361,7 @@ void Run::Tick() {
     for (const core::StatusReport& s : a.statuses) Observe(s, a.tick);
   });
   // All answers apply together, then the world steps one tick.
-  std::size_t i = 0;
-  for (const auto& entry : world_->robots())
-    world_->SetCommand(entry.first, commands_[i++], nullptr);
+  for (std::size_t i = 0; i < commands_.size(); ++i) world_->SetCommandAt(i, commands_[i], nullptr);
   world_->Step(config_.tick_period_s);
   ++tick_;
   for (const auto& phase : phases_) {
