@@ -22,7 +22,8 @@ PlannerRobot AsHeard(Vec2 position, Angle heading) {
 }  // namespace
 
 std::optional<Vec2> MissionAgent::PlanSlot(const Live& live, const Pose2& self,
-                                           const std::vector<Neighbour>& heard) const {
+                                           const std::vector<Neighbour>& heard,
+                                           GatherPlanRecord* record) const {
   std::map<std::uint16_t, PlannerRobot> known;
   known.emplace(self_id_, AsHeard(self.position, self.heading));
   for (const Neighbour& n : heard) {
@@ -48,9 +49,14 @@ std::optional<Vec2> MissionAgent::PlanSlot(const Live& live, const Pose2& self,
   sp.corridor_m = params_.corridor_m;
   const GatherPlanner planner = params_.transport.gather_planner;
   const SelectionPlan plan =
-      planner == GatherPlanner::kSelectionMatrix
-          ? PlanSelection(robots, targets, sp)
+      planner == GatherPlanner::kSelectionMatrix ? PlanSelection(robots, targets, sp)
+      : planner == GatherPlanner::kRowMinimum
+          ? PlanRowMinimum(robots, targets, sp)
           : PlanOptimal(robots, targets, sp, planner == GatherPlanner::kBottleneck);
+  record->robots = robots;
+  record->targets = targets;
+  record->params = sp;
+  record->plan = plan;
   const int slot = plan.target_of[static_cast<std::size_t>(self_index)];
   if (slot < 0) return std::nullopt;
   return slots[static_cast<std::size_t>(slot)];
@@ -317,7 +323,11 @@ MissionPlan MissionAgent::Tick(const Pose2& self, const std::vector<Neighbour>& 
         const std::uint64_t period =
             static_cast<std::uint64_t>(params_.transport.replan_period_ticks);
         if (!live.slot || (tick % period == 0 && !carry.loading)) {
-          live.slot = PlanSlot(live, self, heard);
+          GatherPlanRecord record;
+          record.mission_id = spec.id;
+          record.tick = tick;
+          live.slot = PlanSlot(live, self, heard, &record);
+          if (record.plan.rounds > 0) last_gather_plan_ = std::move(record);
         }
         carry.slot = live.slot;
       }

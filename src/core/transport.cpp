@@ -156,8 +156,9 @@ bool ParseGatherMode(const std::string& name, GatherMode* out) {
 }
 
 bool ParseGatherPlanner(const std::string& name, GatherPlanner* out) {
-  for (const GatherPlanner planner : {GatherPlanner::kNearest, GatherPlanner::kSelectionMatrix,
-                                      GatherPlanner::kOptimal, GatherPlanner::kBottleneck}) {
+  for (const GatherPlanner planner :
+       {GatherPlanner::kNearest, GatherPlanner::kSelectionMatrix, GatherPlanner::kOptimal,
+        GatherPlanner::kBottleneck, GatherPlanner::kRowMinimum}) {
     if (name == GatherPlannerName(planner)) {
       *out = planner;
       return true;
@@ -174,6 +175,8 @@ const char* GatherPlannerName(GatherPlanner planner) {
       return "optimal";
     case GatherPlanner::kBottleneck:
       return "bottleneck";
+    case GatherPlanner::kRowMinimum:
+      return "row_minimum";
     default:
       return "nearest";
   }

@@ -42,7 +42,13 @@ DISPERSION_METRICS = ['coverage_fraction', 'nn_spacing_mean_m', 'nn_spacing_cv']
 # first_leader_waits: the leader waits as the thesis plotted them (fig. 7.9: its file's
 # LeaderDidntMove - 1): transport ticks in which robot 0, the first leader, moved less than
 # 1 mm, from the run's trace.csv (a preset whose table names it is run with --trace).
-OPTIONAL_METRICS = {'transport': ['loading_nn_cv', 'first_leader_waits']}
+# (ext, issue 27; counted by the batch engine, result.json) gathering_interference: moves of
+# mission robots not yet placed (on their slot; without one, inside the object) while gathering
+# that swerved, slowed or stood for a robot in the way; plan_unstable_pct: the share (%) of a
+# planned gathering's plans that hit the round cap; plan_cost_ratio / plan_cost_ratio_max: the
+# median / largest over a run's plans of sum X (its pairs) / sum X (Hungarian, the least).
+OPTIONAL_METRICS = {'transport': ['loading_nn_cv', 'first_leader_waits', 'gathering_interference',
+                                  'plan_unstable_pct', 'plan_cost_ratio', 'plan_cost_ratio_max']}
 TRACED_METRICS = {'first_leader_waits'}
 TOP_KEYS = {'description', 'kind', 'order', 'section', 'figures', 'runs', 'seed_base',
             'base_config', 'config', 'robots', 'placement', 'cluster', 'max_ticks',

@@ -156,6 +156,11 @@ def _mission(kind, run_dir, info):
                                         done_tick is not None else None)
             # Counted by the batch engine only (result.json); launched runs leave it empty.
             metrics['gathering_swerves'] = number(info.get('gathering_swerves'))
+            # Also the batch engine's (issue 27); the plan metrics only with a planner.
+            for name in ('gathering_interference', 'plan_unstable_pct', 'plan_cost_ratio',
+                         'plan_cost_ratio_max'):
+                if name in metrics:
+                    metrics[name] = number(info.get(name))
             if 'first_leader_waits' in metrics:
                 metrics['first_leader_waits'] = first_leader_waits(
                     run_dir, number(row.get('transport_tick')),

@@ -199,12 +199,12 @@ TEST(CarryStepTest, InsideTheObjectASlotRobotSwervesOnlyOntoMovesThatStayInside)
 
 TEST(TransportParamsTest, GatherPlannerNamesAndBadPlannerValues) {
   GatherPlanner g = GatherPlanner::kNearest;
-  for (const char* name : {"nearest", "selection_matrix", "optimal", "bottleneck"}) {
+  for (const char* name : {"nearest", "selection_matrix", "optimal", "bottleneck", "row_minimum"}) {
     ASSERT_TRUE(ParseGatherPlanner(name, &g)) << name;
     EXPECT_STREQ(GatherPlannerName(g), name);
   }
   EXPECT_FALSE(ParseGatherPlanner("closest", &g));
-  EXPECT_EQ(g, GatherPlanner::kBottleneck);  // unchanged by a bad name
+  EXPECT_EQ(g, GatherPlanner::kRowMinimum);  // unchanged by a bad name
   TransportParams p;
   EXPECT_EQ(p.gather_planner, GatherPlanner::kNearest);  // the default keeps the thesis's way
   p.replan_period_ticks = 0;

@@ -121,14 +121,17 @@ TEST(ValidatorsTest, SelectionParams) {
   AddRange<P>(&v, "corridor_m", &P::corridor_m, {-0.01, kNan, kInf});
   AddRange<P>(&v, "meet_tolerance", &P::meet_tolerance, {-0.01, kNan, kInf});
   AddRange<P>(&v, "crossing_wait", &P::crossing_wait, {kNan, kInf, -kInf});
+  AddRange<P>(&v, "settled_clear", &P::settled_clear, {kNan, kInf, -kInf});
   v.push_back({"max_rounds = 0", [](P* p) { p->max_rounds = 0; }, "max_rounds"});
+  v.push_back({"max_rounds = 2", [](P* p) { p->max_rounds = 2; }, "max_rounds"});
   ExpectEachViolationNamed(P(), v);
 
   P p;
   p.corridor_m = 0.0;
   p.meet_tolerance = 0.0;
   p.crossing_wait = -5.0;  // <= 0: the default wait
-  p.max_rounds = 1;
+  p.settled_clear = -1.0;  // < 0: corridor_m / speed_m
+  p.max_rounds = 3;        // the least that the freezing rule needs
   EXPECT_EQ(p.Validate(), "");
 }
 

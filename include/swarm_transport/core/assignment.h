@@ -42,6 +42,21 @@ struct Matching {
 // are removed, until rows or columns run out. Ties go to the lowest row, then column (and when
 // every free cost is infinite, the first free pair).
 Matching GreedyMinimum(const CostMatrix& m);
+// One pair of a selection: a row (robot) and its column (target).
+struct Pick {
+  std::size_t row = 0;
+  std::size_t col = 0;
+  bool operator==(const Pick& o) const { return row == o.row && col == o.col; }
+};
+// GreedyMinimum with pairs given beforehand: the `fixed` pairs first (in their order; one whose
+// row or column is out of range or already taken is skipped), their rows and columns removed,
+// then the global minimum of the rest as GreedyMinimum. `order` (if not null) receives every
+// pair taken, in the order taken (the fixed ones first).
+Matching GreedyMinimumAfter(const CostMatrix& m, const std::vector<Pick>& fixed,
+                            std::vector<Pick>* order);
+// The paper's naive choice [R3, figs. 5-6]: each row its own minimum (ties: the lowest column),
+// with no removal, so that several rows may get the same column.
+Matching RowMinimum(const CostMatrix& m);
 // Least total cost (Hungarian method with potentials, O(n^2 m)).
 Matching Hungarian(const CostMatrix& m);
 // Least largest cost; among those, the least total cost.
@@ -74,7 +89,13 @@ struct SelectionParams {
   // wait: 2 * corridor_m / speed_m, the time the other needs to pass).
   double meet_tolerance = 1.0;
   double crossing_wait = 0.0;
-  int max_rounds = 8;  // selections at most (the first included) until the plan is stable
+  // T2 of a blocker that stands on its own target (it has no turn to make): the time it is
+  // assumed to need to let the robot pass (time units; < 0: corridor_m / speed_m, the time to
+  // cross a corridor's width - 1.1 ticks at 0.11 m and 0.1 m per tick).
+  double settled_clear = -1.0;
+  // Selections at most (the first included), >= 3; PlanSelection's freezing rule makes every
+  // plan stable within them.
+  int max_rounds = 8;
   // Empty when valid, else one sentence naming the first bad field.
   std::string Validate() const;
 };
@@ -89,6 +110,7 @@ struct SelectionPlan {
   double last = 0.0;             // the latest of them
   int rounds = 0;                // selections made
   bool stable = false;           // the last selection repeated the one before
+  std::size_t frozen = 0;        // pairs frozen by PlanSelection's rule when it ended
 };
 
 // X_mn = (S_mn + S_Bn) / V + ANG_mn / VA: S_mn the distance from robot m to target n, ANG_mn
@@ -101,10 +123,12 @@ CostMatrix SelectionMatrix(const std::vector<PlannerRobot>& robots,
 //  - On the path [R3, figs. 9-10]: robot b within corridor_m of robot m's straight path (ahead
 //    of m, before its target). T1 = m's turn time, T2 = b's time to clear the path (its turn
 //    onto its own course - perpendicular to m's path when it has no target - plus corridor_m at
-//    speed V). T1 > T2: b is gone. Else T3 = T1 + the distance along the path to b / V; T3 > T2:
-//    b is gone. Else m waits T4 = T2 - T3. (The paper writes T4 = T3 - T2, which under its own
-//    condition T3 <= T2 is never positive; the wait it describes is its magnitude.) Several
-//    robots on the path: nearest first, each wait delaying m's arrival at the next.
+//    speed V; settled_clear when b stands on its own target). T3 = T1 + the distance along the
+//    path to b / V (+ the waits for the robots before b); T3 > T2: b is gone. Else m waits
+//    T4 = T2 - T3. (The paper also tests T1 > T2 first; T3 includes T1, so that test is
+//    covered and not repeated. It writes T4 = T3 - T2, which under its own condition T3 <= T2
+//    is never positive; the wait it describes is its magnitude.) Several robots on the path:
+//    nearest first, each wait delaying m's arrival at the next.
 //  - Crossings [R3, figs. 11-12]: where two assigned robots' straight paths cross, each one's
 //    time to the crossing (turn + distance / V); when they differ by at most meet_tolerance the
 //    robot whose goal is farther (ties: the higher index) waits crossing_wait.
@@ -112,9 +136,23 @@ void Corrections(const std::vector<PlannerRobot>& robots, const std::vector<Plan
                  const CostMatrix& base, const SelectionParams& p, SelectionPlan* plan);
 
 // The paper's planner: selection by repeated global minimum on X, corrections of the chosen
-// pairs, selection again on the corrected matrix, until the assignment repeats (or max_rounds).
+// pairs (their entries of the matrix become X + their waits), selection again on the corrected
+// matrix, until the assignment repeats. The paper does not say that this ends; the corrections
+// can make two selections alternate. So (issue 27) from the second selection on, every
+// selection that changed the assignment freezes its first F unfrozen pairs, in the order the
+// greedy took them: the next selections take the frozen pairs first and choose only among the
+// remaining rows and columns. F = ceil(min(robots, targets) / (max_rounds - 2)). The unfrozen
+// pairs decrease by F at every changed selection after the first two, so by selection
+// max_rounds - 1 all are frozen and the next one repeats: every plan is stable within
+// max_rounds (the first two selections are the paper's as they are; a plan stable after them
+// is the paper's plan unchanged).
 SelectionPlan PlanSelection(const std::vector<PlannerRobot>& robots,
                             const std::vector<PlannerTarget>& targets, const SelectionParams& p);
+
+// The paper's naive baseline [R3, figs. 5-6]: each robot the target of its own row minimum of X
+// (RowMinimum: no exclusion, several robots may share a target), times with the corrections.
+SelectionPlan PlanRowMinimum(const std::vector<PlannerRobot>& robots,
+                             const std::vector<PlannerTarget>& targets, const SelectionParams& p);
 
 // The optimal assignments on the same matrix X (chosen without corrections): least total time
 // (Hungarian) or least last arrival (bottleneck); times carry the corrections of the chosen

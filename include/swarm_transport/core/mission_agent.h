@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "swarm_transport/core/assignment.h"
 #include "swarm_transport/core/balloon.h"
 #include "swarm_transport/core/flocking.h"
 #include "swarm_transport/core/leader.h"
@@ -122,6 +123,17 @@ struct MissionPlan {
   std::optional<std::uint16_t> active;  // the mission it works on, if any
 };
 
+// A plan of a planned gathering as one robot made it (transport.gather_planner not nearest):
+// what the batch engine's plan metrics read (issue 27).
+struct GatherPlanRecord {
+  std::uint16_t mission_id = 0;
+  std::uint64_t tick = 0;
+  std::vector<PlannerRobot> robots;  // the mission's robots left, as heard
+  std::vector<PlannerTarget> targets;
+  SelectionParams params;
+  SelectionPlan plan;
+};
+
 // The mission side of one robot. Pure: messages in, a plan and an outbox out.
 class MissionAgent {
  public:
@@ -133,6 +145,8 @@ class MissionAgent {
   // The leaders of the leader-only missions under way (in TRANSPORT as far as this robot knows),
   // ascending: their neighbours stack them (SPEC 9.2).
   std::vector<std::uint16_t> LeadingAlone() const;
+  // The last plan of a planned gathering this robot made, if any.
+  const std::optional<GatherPlanRecord>& last_gather_plan() const { return last_gather_plan_; }
   bool OnObjectUpdate(std::uint16_t mission_id, Vec2 centre, std::string* why);
   bool OnObjectDelete(std::uint16_t mission_id, std::string* why);
   // The first leader acts on it at tick `not_before_tick` at the earliest (0: at once).
@@ -220,8 +234,9 @@ class MissionAgent {
   void Drop(std::uint16_t mission_id);
   // Planned gathering: this robot's slot by transport.gather_planner over the mission's robots
   // left (itself, those heard, the others where last heard), as every member computes it.
+  // `record` receives the plan as made (robots, slots, parameters, result; rounds 0: none).
   std::optional<Vec2> PlanSlot(const Live& live, const Pose2& self,
-                               const std::vector<Neighbour>& heard) const;
+                               const std::vector<Neighbour>& heard, GatherPlanRecord* record) const;
   Group Locate(const Live& live, const Pose2& self, const std::vector<Neighbour>& heard) const;
   // A member of a transport mission: moves the object with its robots once transport began.
   void UpdateCentre(Live* live, const Pose2& self, Group* group) const;
@@ -236,6 +251,7 @@ class MissionAgent {
   MissionAgentParams params_;
   std::map<std::uint16_t, Live> live_;
   std::deque<std::uint16_t> queue_;  // this robot's own missions, FIFO [T6.4]
+  std::optional<GatherPlanRecord> last_gather_plan_;
 };
 
 }  // namespace core

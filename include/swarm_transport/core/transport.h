@@ -24,8 +24,10 @@ bool ParseGatherMode(const std::string& name, GatherMode* out);
 // (ext) Where each mission robot goes while gathering [SPEC 9.10, R3]: nearest (no plan: the
 // gathering mode, hold or fill, for everyone) or its own slot under the object, slots spread
 // over the object (SlotsIn) and given out by the paper's selection matrix, by the least total
-// time (Hungarian, "optimal") or by the least last arrival (bottleneck).
-enum class GatherPlanner { kNearest, kSelectionMatrix, kOptimal, kBottleneck };
+// time (Hungarian, "optimal"), by the least last arrival (bottleneck) or by the paper's naive
+// baseline, each robot its own nearest slot in time with no exclusion (row_minimum, issue 27:
+// several robots may share a slot).
+enum class GatherPlanner { kNearest, kSelectionMatrix, kOptimal, kBottleneck, kRowMinimum };
 bool ParseGatherPlanner(const std::string& name, GatherPlanner* out);
 const char* GatherPlannerName(GatherPlanner planner);
 

@@ -209,7 +209,8 @@ bool ConfigFromXmlRpc(XmlRpc::XmlRpcValue& dict, SwarmConfig* config, std::strin
       ReadInt(dict, "mission_min_robots", &c.mission_min_robots, error) &&
       ReadChoice(dict, "gathering", "hold or fill", &c.transport.gathering, error,
                  core::ParseGatherMode) &&
-      ReadChoice(dict, "gather_planner", "nearest, selection_matrix, optimal or bottleneck",
+      ReadChoice(dict, "gather_planner",
+                 "nearest, selection_matrix, optimal, bottleneck or row_minimum",
                  &c.transport.gather_planner, error, core::ParseGatherPlanner) &&
       ReadInt(dict, "replan_period", &c.transport.replan_period_ticks, error) &&
       ReadDouble(dict, "planner_turn_deg_per_tick", &c.transport.planner_turn_deg_per_tick,

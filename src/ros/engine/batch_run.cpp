@@ -19,6 +19,7 @@
 #include "swarm_transport/core/robot_session.h"
 #include "swarm_transport/core/round.h"
 #include "swarm_transport/core/run_metrics.h"
+#include "swarm_transport/core/run_metrics_gathering.h"
 #include "swarm_transport/ros/common/conversions.h"
 #include "swarm_transport/ros/common/names.h"
 #include "swarm_transport/ros/common/params.h"
@@ -160,6 +161,8 @@ class Run {
   // Collisions avoided while gathering: moves of mission robots before their transport (not
   // frozen for loading) that swerved or slowed for a robot in the way (result.json).
   std::uint64_t gathering_swerves_ = 0;
+  // Interference while gathering and the plans of a planned gathering (issue 27).
+  core::GatheringMetrics gathering_;
 };
 
 bool Run::SetUp(const XmlRpc::XmlRpcValue& base_config, std::string* error) {
@@ -313,6 +316,9 @@ void Run::RobotTick(std::size_t i, const core::Round& round) {
        step.brain.move.outcome == core::MoveOutcome::kSlowed)) {
     ++gathering_swerves_;
   }
+  gathering_.AddMove(carry, brain.frozen(), core::Pose2Of(round.pose).position,
+                     step.brain.move.outcome);
+  if (brain.missions().last_gather_plan()) gathering_.AddPlan(*brain.missions().last_gather_plan());
   commands_[i] = core::CommandOf(step.answer);
   answers_.emplace_back(robot.id(), std::move(step.answer));
 }
@@ -399,6 +405,16 @@ void Run::AddResult(double setup_s, double ticking_s, double finish_s, JsonObjec
     o.Add("phases", phases + "]");
     o.Add("end_tick", std::to_string(metrics_->newest_tick()));
     o.Add("gathering_swerves", std::to_string(gathering_swerves_));
+    o.Add("gathering_interference", std::to_string(gathering_.interference()));
+    if (gathering_.plans() > 0) {
+      const std::vector<double>& ratios = gathering_.cost_ratios();
+      o.Add("plans", std::to_string(gathering_.plans()));
+      o.Add("plan_unstable_pct",
+            JsonNumber(100.0 * static_cast<double>(gathering_.unstable_plans()) /
+                       static_cast<double>(gathering_.plans())));
+      o.Add("plan_cost_ratio", JsonNumber(core::Median(ratios)));
+      o.Add("plan_cost_ratio_max", JsonNumber(*std::max_element(ratios.begin(), ratios.end())));
+    }
     JsonObject last;
     if (last_status_) {
       const core::StatusReport& s = last_status_->first;
