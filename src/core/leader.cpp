@@ -89,10 +89,18 @@ LeaderDecision LeaderStep(const Perception& in, const FlockingParams& p, const L
 
   const bool heading_for_goal =
       std::fabs(Angle::SignedDifference(steer, Bearing(position, goal))) <= kAtGoalBearingDeg;
+  // Without its collision test the other robots are not in its way (the border and zones are).
+  Perception alone;
+  if (!lp.check_collisions) {
+    alone.self_id = in.self_id;
+    alone.self = in.self;
+    alone.zones = in.zones;
+  }
+  const Perception& obstacles = lp.check_collisions ? in : alone;
   double speed = p.speed_m_per_tick;
   for (int attempt = 0; attempt <= p.speed_retries; ++attempt) {
     const double distance = heading_for_goal ? std::min(speed, to_goal) : speed;
-    if (IsMoveValid(in, p, steer, distance, duration_s)) {
+    if (IsMoveValid(obstacles, p, steer, distance, duration_s)) {
       decision.move.heading = steer;
       decision.move.distance_m = distance;
       decision.move.outcome = attempt == 0 ? MoveOutcome::kStraight : MoveOutcome::kSlowed;

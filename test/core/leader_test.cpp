@@ -94,6 +94,37 @@ TEST(LeaderStepTest, NeverSwervesWhenBlocked) {
   EXPECT_EQ(memory.blocked_waits, 1u);
 }
 
+TEST(LeaderStepTest, WithoutItsCollisionTestDrivesThroughRobotsButNotZonesOrTheBorder) {
+  // A robot straight ahead, 0.06 m away: every speed on the course collides.
+  Perception in = At(5.0, 5.0, 90.0);
+  in.others = {Robot(2, 5.0, 5.06)};
+  LeaderParams checked = Alone();
+  LeaderParams through = Alone();
+  through.check_collisions = false;
+  Rng rng(1, 0);
+  LeaderMemory memory;
+  LeaderDecision d = LeaderStep(in, Params(), checked, {5.0, 8.0}, Angle(90), rng, kTick, &memory);
+  EXPECT_EQ(d.move.outcome, MoveOutcome::kStand);
+  EXPECT_EQ(memory.blocked_waits, 1u);
+  LeaderMemory free_memory;
+  d = LeaderStep(in, Params(), through, {5.0, 8.0}, Angle(90), rng, kTick, &free_memory);
+  EXPECT_EQ(d.move.outcome, MoveOutcome::kStraight);
+  EXPECT_NEAR(d.move.distance_m, 0.1, kTolerance);
+  EXPECT_EQ(d.move.heading, Angle(90));
+  EXPECT_EQ(free_memory.blocked_waits, 0u);
+  // A danger strip ahead still stops it.
+  in.zones = {Zone{1, Shape::FromRect({5.0, 5.06}, {0.0012, 0.1}), false}};
+  LeaderMemory zone_memory;
+  d = LeaderStep(in, Params(), through, {5.0, 8.0}, Angle(90), rng, kTick, &zone_memory);
+  EXPECT_EQ(d.move.outcome, MoveOutcome::kStand);
+  EXPECT_EQ(zone_memory.blocked_waits, 1u);
+  // So does the arena border.
+  Perception edge = At(5.0, Params().world_size_m - Params().robot_radius_m, 90.0);
+  LeaderMemory edge_memory;
+  d = LeaderStep(edge, Params(), through, {5.0, 20.0}, Angle(90), rng, kTick, &edge_memory);
+  EXPECT_EQ(d.move.outcome, MoveOutcome::kStand);
+}
+
 TEST(LeaderStepTest, TwoLeadersHeadOnStandForGoodUnlessTheySwerveAfterBlockedTicks) {
   // Two leaders touching, each heading for the other's side (as the flood test found): every
   // speed on either course comes closer to the other.

@@ -146,6 +146,19 @@ TEST(ConfigValidation, LeaderWaitEvaluatedAnglesIsReadAsABool) {
   EXPECT_TRUE(config.leader.wait_evaluated_angles);  // unchanged by the refused dict
 }
 
+TEST(ConfigValidation, LeaderCheckCollisionsIsReadAsABool) {
+  SwarmConfig config;
+  EXPECT_TRUE(config.leader.check_collisions);
+  std::string error;
+  XmlRpc::XmlRpcValue off = Dict("leader_check_collisions", XmlRpc::XmlRpcValue(false));
+  ASSERT_TRUE(ConfigFromXmlRpc(off, &config, &error)) << error;
+  EXPECT_FALSE(config.leader.check_collisions);
+  XmlRpc::XmlRpcValue bad = Dict("leader_check_collisions", XmlRpc::XmlRpcValue(1.0));
+  EXPECT_FALSE(ConfigFromXmlRpc(bad, &config, &error));
+  EXPECT_NE(error.find("leader_check_collisions"), std::string::npos) << error;
+  EXPECT_FALSE(config.leader.check_collisions);  // unchanged by the refused dict
+}
+
 TEST(ConfigValidation, IntegersAreAcceptedWhereNumbersAreExpected) {
   XmlRpc::XmlRpcValue d = Dict("free_will_deg", XmlRpc::XmlRpcValue(45));
   SwarmConfig config;

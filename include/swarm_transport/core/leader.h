@@ -25,6 +25,12 @@ struct LeaderParams {
   // course of 45 deg that is a centroid bearing of 135-180 deg (behind on the left); a swarm
   // straight behind it or behind on its right never holds it. Replaces wait_behind's test.
   bool wait_evaluated_angles = false;
+  // Test its own move against the other robots (slow down, then stand when blocked) [T5.3,
+  // T6.3]. false: drive the course at full speed through them, the simulator pushing the
+  // overlapping robots apart afterwards, as the evaluated §7.3 leader code did (RobotSwarms
+  // 68b2ba6 Leader.cpp 93 with robot_system/RobotPilot.h move(): no legality test for the
+  // leader, antiBump after the move). The arena border and zones still hold it.
+  bool check_collisions = true;
   // (ext) After this many blocked ticks in a row the leader swerves like any robot (SPEC 4
   // step 5) until its course is free again; 0: never (the thesis: two leaders heading for each
   // other's side then stand for good).
