@@ -1,8 +1,8 @@
 // The hardware stand-in: kinematic bases with odometry, for robots deployed as on hardware.
 #include <ros/ros.h>
 
-#include "swarm_transport/ros/common/master_watch.h"
 #include "swarm_transport/ros/bases/bases.h"
+#include "swarm_transport/ros/common/master_watch.h"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "bases");

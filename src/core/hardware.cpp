@@ -29,9 +29,7 @@ bool ParsePoseSource(const std::string& name, PoseSource* out) {
   return true;
 }
 
-const char* PoseSourceName(PoseSource source) {
-  return source == PoseSource::kTf ? "tf" : "odom";
-}
+const char* PoseSourceName(PoseSource source) { return source == PoseSource::kTf ? "tf" : "odom"; }
 
 std::string HardwareOptions::Validate() const {
   std::ostringstream os;

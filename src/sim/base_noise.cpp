@@ -19,8 +19,7 @@ std::string BaseNoiseParams::Validate() const {
   if (!NonNegative(position_noise_m) || position_noise_m > 1.0) {
     os << "~position_noise_m must be a deviation in [0, 1] m but is " << position_noise_m;
   } else if (!NonNegative(heading_noise_deg) || heading_noise_deg > 180.0) {
-    os << "~heading_noise_deg must be a deviation in [0, 180] degrees but is "
-       << heading_noise_deg;
+    os << "~heading_noise_deg must be a deviation in [0, 180] degrees but is " << heading_noise_deg;
   } else if (!NonNegative(heading_drift_deg) || heading_drift_deg > 180.0) {
     os << "~heading_drift_deg must be a deviation in [0, 180] degrees per tick but is "
        << heading_drift_deg;
@@ -45,7 +44,8 @@ core::Pose2 BaseNoise::Measure(const core::Pose2& truth) {
     out.position.y += params_.position_noise_m * Gaussian(&rng_);
   }
   if (params_.heading_noise_deg > 0.0) {
-    out.heading = core::Angle(truth.heading.degrees() + params_.heading_noise_deg * Gaussian(&rng_));
+    out.heading =
+        core::Angle(truth.heading.degrees() + params_.heading_noise_deg * Gaussian(&rng_));
   }
   return out;
 }

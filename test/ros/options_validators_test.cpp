@@ -129,13 +129,13 @@ TEST(OptionsValidatorsTest, BasesParams) {
   v.push_back(
       {"a bad /swarm key", [](P* p) { p->swarm.flocking.cohesion = 3.0; }, "/swarm: cohesion"});
   Add<P, int>(&v, "~robots", &P::robots, {-1, 65536});
-  v.push_back({"placement file without a file",
-               [](P* p) { p->placement = core::Placement::kFile; }, "~placement_file"});
+  v.push_back({"placement file without a file", [](P* p) { p->placement = core::Placement::kFile; },
+               "~placement_file"});
   Add<P, double>(&v, "~odom_rate_hz", &P::odom_rate_hz, {0.0, -1.0, 1001.0, kNan, kInf});
   Add<P, double>(&v, "~integration_step_s", &P::integration_step_s, {0.0, 0.2, kNan});
   v.push_back({"no fixed frame", [](P* p) { p->fixed_frame.clear(); }, "~fixed_frame"});
-  v.push_back({"negative noise", [](P* p) { p->noise.position_noise_m = -0.1; },
-               "~position_noise_m"});
+  v.push_back(
+      {"negative noise", [](P* p) { p->noise.position_noise_m = -0.1; }, "~position_noise_m"});
   ExpectEachViolationNamed(P(), v);
 }
 

@@ -22,14 +22,14 @@ const char* PoseSourceName(PoseSource source);
 // A hardware robot's private parameters (~pose_source, ...). Frame names follow REP 105.
 struct HardwareOptions {
   PoseSource pose_source = PoseSource::kOdom;
-  std::string odom_topic = "odom";        // relative: in the robot's namespace
-  std::string fixed_frame = "map";        // tf: the shared frame (the arena's)
-  std::string base_frame = "base_link";   // tf: this robot's base (robot.launch prefixes it)
-  double max_linear_m_s = 1.0;            // |linear| of a command at most this
-  double max_angular_rad_s = 31.415927;   // |angular| at most this (a half turn per 0.1 s tick)
-  double pose_timeout_s = 0.5;            // a pose older than this stops the robot
-  double heard_timeout_s = 0.5;           // another robot's position older than this is not heard
-  double radio_loss = 0.0;                // /swarm/radio_loss: drop probability, [0, 1]
+  std::string odom_topic = "odom";       // relative: in the robot's namespace
+  std::string fixed_frame = "map";       // tf: the shared frame (the arena's)
+  std::string base_frame = "base_link";  // tf: this robot's base (robot.launch prefixes it)
+  double max_linear_m_s = 1.0;           // |linear| of a command at most this
+  double max_angular_rad_s = 31.415927;  // |angular| at most this (a half turn per 0.1 s tick)
+  double pose_timeout_s = 0.5;           // a pose older than this stops the robot
+  double heard_timeout_s = 0.5;          // another robot's position older than this is not heard
+  double radio_loss = 0.0;               // /swarm/radio_loss: drop probability, [0, 1]
   // Empty when valid, else one sentence naming the first bad parameter and its range.
   std::string Validate() const;
 };

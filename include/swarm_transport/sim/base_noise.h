@@ -15,9 +15,9 @@ namespace swarm_transport {
 namespace sim {
 
 struct BaseNoiseParams {
-  double position_noise_m = 0.0;    // σ of the reported x and y (each), m
-  double heading_noise_deg = 0.0;   // σ of the reported heading, degrees
-  double heading_drift_deg = 0.0;   // σ of the base's own heading change per tick, degrees
+  double position_noise_m = 0.0;   // σ of the reported x and y (each), m
+  double heading_noise_deg = 0.0;  // σ of the reported heading, degrees
+  double heading_drift_deg = 0.0;  // σ of the base's own heading change per tick, degrees
   // Empty when valid, else one sentence naming the first bad parameter and its range.
   std::string Validate() const;
   bool Any() const {

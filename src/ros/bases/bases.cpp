@@ -37,8 +37,7 @@ std::string BasesParams::Validate() const {
     os << "~robots must be in [0, 65535] but is " << robots;
   } else if (placement == core::Placement::kFile && placement_file.empty()) {
     os << "~placement_file must name a file with ~placement file";
-  } else if (!std::isfinite(odom_rate_hz) || odom_rate_hz <= 0.0 ||
-             odom_rate_hz > kMaxOdomRateHz) {
+  } else if (!std::isfinite(odom_rate_hz) || odom_rate_hz <= 0.0 || odom_rate_hz > kMaxOdomRateHz) {
     os << "~odom_rate_hz must be in (0, " << kMaxOdomRateHz << "] Hz but is " << odom_rate_hz;
   } else if (!std::isfinite(integration_step_s) || integration_step_s <= 0.0 ||
              integration_step_s > swarm.tick_period_s) {
@@ -152,11 +151,12 @@ bool Bases::Initialize() {
     static_tf_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
     static_tf_->sendTransform(statics);
   }
-  ROS_INFO("bases: %d kinematic bases, odometry at %.1f Hz (noise: %.3f m, %.2f deg; heading "
-           "drift %.2f deg per tick), tick %.3f s, %zu timed event(s)",
-           params_.robots, params_.odom_rate_hz, params_.noise.position_noise_m,
-           params_.noise.heading_noise_deg, params_.noise.heading_drift_deg,
-           params_.swarm.tick_period_s, events_.size());
+  ROS_INFO(
+      "bases: %d kinematic bases, odometry at %.1f Hz (noise: %.3f m, %.2f deg; heading "
+      "drift %.2f deg per tick), tick %.3f s, %zu timed event(s)",
+      params_.robots, params_.odom_rate_hz, params_.noise.position_noise_m,
+      params_.noise.heading_noise_deg, params_.noise.heading_drift_deg, params_.swarm.tick_period_s,
+      events_.size());
   return true;
 }
 
@@ -185,9 +185,8 @@ void Bases::BeginTick(double since_start_s) {
   if (params_.noise.heading_drift_deg > 0.0) {
     for (const auto& entry : world_->robots()) {
       const core::Pose2 pose = entry.second.pose;
-      world_->TeleportAbsolute(entry.first,
-                               {pose.position, noise_.at(entry.first).Drift(pose.heading)},
-                               nullptr);
+      world_->TeleportAbsolute(
+          entry.first, {pose.position, noise_.at(entry.first).Drift(pose.heading)}, nullptr);
     }
   }
   auto all = boost::make_shared<Robot_Positions>();

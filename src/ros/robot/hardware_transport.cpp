@@ -107,22 +107,23 @@ void HardwareTransport::Connect(ros::NodeHandle nh, const TransportOptions& link
               }
             }
           }));
-  mission_topics_.Subscribe(
-      nh, [this](const core::MissionMessage& message, const core::Sender& from) {
-        heard_->Take(message);  // the mission channel of its missions' robots
-        robot_->Hand(message, from);
-      });
+  mission_topics_.Subscribe(nh,
+                            [this](const core::MissionMessage& message, const core::Sender& from) {
+                              heard_->Take(message);  // the mission channel of its missions' robots
+                              robot_->Hand(message, from);
+                            });
   if (link.diagnostics)
     stats_pub_ = nh.advertise<std_msgs::String>(names::kRobotStats, kStatsQueue);
-  ROS_INFO("robot %u: hardware: pose from %s, cmd_vel within %.3f m/s and %.3f rad/s, stands "
-           "on a pose older than %.2f s, hears positions up to %.2f s old (radio range %.3f m, "
-           "%d hop(s), loss %.3f)",
-           id_,
-           options_.pose_source == core::PoseSource::kOdom
-               ? nh.resolveName(options_.odom_topic).c_str()
-               : (options_.base_frame + " in " + options_.fixed_frame + " (tf)").c_str(),
-           options_.max_linear_m_s, options_.max_angular_rad_s, options_.pose_timeout_s,
-           options_.heard_timeout_s, radio.range_m, radio.hops, radio.loss);
+  ROS_INFO(
+      "robot %u: hardware: pose from %s, cmd_vel within %.3f m/s and %.3f rad/s, stands "
+      "on a pose older than %.2f s, hears positions up to %.2f s old (radio range %.3f m, "
+      "%d hop(s), loss %.3f)",
+      id_,
+      options_.pose_source == core::PoseSource::kOdom
+          ? nh.resolveName(options_.odom_topic).c_str()
+          : (options_.base_frame + " in " + options_.fixed_frame + " (tf)").c_str(),
+      options_.max_linear_m_s, options_.max_angular_rad_s, options_.pose_timeout_s,
+      options_.heard_timeout_s, radio.range_m, radio.hops, radio.loss);
 }
 
 void HardwareTransport::Disconnect() {
@@ -164,8 +165,8 @@ void HardwareTransport::LookUpPose() {
 
 void HardwareTransport::SendCommand(const geometry_msgs::Twist& command) {
   if (!cmd_pub_) return;
-  const core::Velocity limited = core::LimitSpeed(ToVelocity(command), options_.max_linear_m_s,
-                                                  options_.max_angular_rad_s);
+  const core::Velocity limited =
+      core::LimitSpeed(ToVelocity(command), options_.max_linear_m_s, options_.max_angular_rad_s);
   cmd_pub_.publish(ToTwist(limited));
 }
 

@@ -288,9 +288,10 @@ void RobotNode::Tick() {
     transport_->SendCommand(ToTwist(command));
   }
   // Its position for those who listen to robots: observers (rostopic, rosbag) in every
-  // deployment and clock, robots of broadcast comm and, on hardware, every robot. The simulator is no observer: it has
-  // every robot's true pose, keeps only virtual copies and statists from /flock/position, and
-  // every publication would be a callback for it to discard - one per robot and tick.
+  // deployment and clock, robots of broadcast comm and, on hardware, every robot. The simulator is
+  // no observer: it has every robot's true pose, keeps only virtual copies and statists from
+  // /flock/position, and every publication would be a callback for it to discard - one per robot
+  // and tick.
   if (observers_ > 0 || heard_ || transport_->AnnouncesPosition()) {
     const core::Pose2 after = core::TurnThenDrive(before, command, config_.tick_period_s);
     // By shared pointer: roscpp hands it to subscribers in this process (the simulator of a

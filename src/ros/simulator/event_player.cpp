@@ -69,9 +69,10 @@ void EventPlayer::ApplyDue(std::uint64_t tick) {
         roster_->relayed().Erase(e.robot, e.sub_id);
         break;
       case TimedEvent::Kind::kOdomStop:
-        ROS_WARN("simulator: tick %llu: an odom_stop is for the hardware stand-in (bases); the "
-                 "simulator has no odometry to stop",
-                 static_cast<unsigned long long>(tick));
+        ROS_WARN(
+            "simulator: tick %llu: an odom_stop is for the hardware stand-in (bases); the "
+            "simulator has no odometry to stop",
+            static_cast<unsigned long long>(tick));
         break;
     }
   }

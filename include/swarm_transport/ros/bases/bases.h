@@ -35,11 +35,11 @@ struct BasesParams {
   std::string placement_file;
   double odom_rate_hz = 50.0;  // ~odom_rate_hz: odometry and tf per wall second, (0, 1000]
   double integration_step_s = 0.01;
-  sim::BaseNoiseParams noise;            // ~position_noise_m, ~heading_noise_deg, ...
-  std::string frame_prefix = "robot_";   // ~frame_prefix: frames <prefix><id>/odom, /base_link
-  std::string fixed_frame = "map";       // ~fixed_frame: the shared frame, = every odom frame
-  bool tf = true;                        // ~tf
-  std::string events_file;               // ~events_file: odom_stop, freeze, continue
+  sim::BaseNoiseParams noise;           // ~position_noise_m, ~heading_noise_deg, ...
+  std::string frame_prefix = "robot_";  // ~frame_prefix: frames <prefix><id>/odom, /base_link
+  std::string fixed_frame = "map";      // ~fixed_frame: the shared frame, = every odom frame
+  bool tf = true;                       // ~tf
+  std::string events_file;              // ~events_file: odom_stop, freeze, continue
   std::string Validate() const;
 };
 bool ReadBasesParams(const ros::NodeHandle& nh, const ros::NodeHandle& p, BasesParams* params,
