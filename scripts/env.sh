@@ -14,7 +14,7 @@ ST_APT_PACKAGES=(
   build-essential cmake ros-core-dev catkin python3-catkin-pkg python3-rospy python3-rostest
   python3-roslaunch python3-rosnode python3-rostopic python3-rosservice python3-yaml
   rosbash libtf2-ros-dev libtf2-geometry-msgs-dev libstd-srvs-dev libvisualization-msgs-dev
-  libgeometry-msgs-dev libros-rosgraph-msgs-dev python3-rosgraph-msgs libeigen3-dev googletest libgtest-dev
+  libgeometry-msgs-dev libnav-msgs-dev python3-nav-msgs libros-rosgraph-msgs-dev python3-rosgraph-msgs libeigen3-dev googletest libgtest-dev
   libyaml-cpp-dev python3-numpy python3-matplotlib libdiagnostic-msgs-dev python3-diagnostic-msgs
   iproute2 python3-rosbag python3-nose
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure

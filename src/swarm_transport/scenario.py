@@ -48,6 +48,7 @@ def write_inputs(s, directory):
             'config': base, 'max_ticks': s['max_ticks'], 'recorder': 'true',
             'record_dir': directory, 'run_name': 'run', 'observers': 1,
             'robot_output': 'log'}
+    args.update(s['world'].get('bases', {}))  # deploy: hardware: the stand-in's bases
     if s['world']['placement'] == 'file':
         path = s['world']['placement_file']
         if not os.path.isabs(path):
@@ -89,6 +90,8 @@ def write_inputs(s, directory):
                     entry.update({'x': e['x'], 'y': e['y']})
             elif e['kind'] == 'object_update':
                 entry.update({'mission': e['mission'], 'x': e['x'], 'y': e['y']})
+            elif e['kind'] == 'odom_stop':
+                entry.update({'robot': e['robot'], 'ticks': e['ticks']})
             else:
                 entry.update({'mission': e['mission'], 'event': e['event']})
             events.append(entry)

@@ -17,13 +17,18 @@ CONFIG_DIR = os.path.abspath(os.path.join(os.path.dirname(__file__), '..', '..',
 # /swarm keys the nodes read that config/swarm.yaml leaves out (their default applies).
 EXTRA_CONFIG_KEYS = {'radio_loss': 0.0}
 
-DEPLOYS = ('process', 'host', 'host_sim')
+DEPLOYS = ('process', 'host', 'host_sim', 'hardware')
 CLOCKS = ('lockstep', 'realtime')
 PLACEMENTS = ('random', 'corner', 'file')
 STATES = ('QUEUED', 'GATHERING', 'LOADING', 'TRANSPORT', 'UNLOADING', 'DONE', 'ABORTED',
           'REJECTED')
 EVENT_KINDS = ('freeze', 'continue', 'kill', 'spawn', 'object_update', 'signal', 'statist',
-               'remove_statist')
+               'remove_statist', 'odom_stop')
+# deploy: hardware - the stand-in's bases (docs/hardware.md): their keys with defaults, and the
+# events they play.
+BASES_KEYS = {'odom_rate_hz': 50.0, 'position_noise_m': 0.0, 'heading_noise_deg': 0.0,
+              'heading_drift_deg': 0.0}
+HARDWARE_EVENTS = ('odom_stop', 'freeze', 'continue')
 SIGNALS = ('LOADED', 'UNLOADED')
 # Expectation kind -> (required keys, optional keys with defaults).
 EXPECTATIONS = {
@@ -64,7 +69,7 @@ EXPECTATIONS = {
 AT_A_TICK = ('robot_near', 'swarm_of')
 TOP_KEYS = {'name', 'description', 'world', 'max_ticks', 'missions', 'events', 'expect'}
 WORLD_KEYS = {'robots', 'seed', 'placement', 'placement_file', 'config', 'base_config',
-              'danger_zones', 'deploy', 'clock'}
+              'danger_zones', 'deploy', 'clock', 'bases'}
 MISSION_KEYS = {'at_tick', 'id', 'robots_from', 'robots_to', 'robot_ids', 'leaders', 'object',
                 'target', 'mode', 'recruit'}
 
@@ -168,6 +173,12 @@ def parse(text, path='<scenario>'):
     event_nodes = r.sequence(top['events'], 'events') if 'events' in top else []
     s['events'] = [_event(r, n, 'events[%d]' % i, robots, s['max_ticks'], ids)
                    for i, n in enumerate(event_nodes)]
+    hardware = s['world']['deploy'] == 'hardware'
+    for i, e in enumerate(s['events']):
+        if (e['kind'] not in HARDWARE_EVENTS) if hardware else e['kind'] == 'odom_stop':
+            r.fail(event_nodes[i], 'events[%d].%s' % (i, e['kind']),
+                   'world.deploy: hardware plays only %s; odom_stop only there'
+                   % ', '.join(HARDWARE_EVENTS))
     _robots_over_time(r, event_nodes, s['events'], robots)
     s['expect'] = [_expectation(r, n, 'expect[%d]' % i, ids, s['max_ticks'])
                    for i, n in enumerate(r.sequence(top['expect'], 'expect'))]
@@ -193,7 +204,14 @@ def _world(r, node):
            'clock': r.choice(w['clock'], 'world.clock', CLOCKS) if 'clock' in w else 'lockstep',
            'base_config': str(r.value(w['base_config'], 'world.base_config'))
            if 'base_config' in w else 'swarm.yaml',
-           'config': {}, 'danger_zones': None, 'placement_file': ''}
+           'config': {}, 'danger_zones': None, 'placement_file': '', 'bases': {}}
+    if 'bases' in w:
+        b = r.mapping(w['bases'], 'world.bases', set(BASES_KEYS))
+        out['bases'] = {k: r.number(v, 'world.bases.' + k, 0.0, 1000.0) for k, v in b.items()}
+    if 'bases' in w and out['deploy'] != 'hardware':
+        r.fail(w['bases'], 'world.bases', 'only with deploy: hardware')
+    if out['deploy'] == 'hardware' and out['clock'] != 'realtime':
+        r.fail(w['deploy'], 'world.deploy', 'hardware runs on the wall clock: needs clock: realtime')
     base = os.path.join(CONFIG_DIR, out['base_config'])
     if not os.path.isfile(base):
         r.fail(w.get('base_config'), 'world.base_config',
@@ -351,6 +369,10 @@ def _event(r, node, where, robots, max_ticks, mission_ids):
                    if 'sub_id' in s else 0)
         if kind == 'statist':
             out.update(x=r.number(s['x'], w + '.x'), y=r.number(s['y'], w + '.y'))
+    elif kind == 'odom_stop':
+        s = r.mapping(v, w, {'robot', 'ticks'}, required=('robot', 'ticks'))
+        out.update(robot=r.number(s['robot'], w + '.robot', 0, 65535, integer=True),
+                   ticks=r.number(s['ticks'], w + '.ticks', 1, 10 ** 7, integer=True))
     elif kind == 'signal':
         s = r.mapping(v, w, {'mission', 'event'}, required=('mission', 'event'))
         out.update(mission=_mission_ref(r, s['mission'], w + '.mission', mission_ids),

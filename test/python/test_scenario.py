@@ -79,7 +79,7 @@ class Format(unittest.TestCase):
         self.expect_error(MINIMAL.replace('state: DONE', 'state: FINISHED'), 12,
                           'expect[0].mission_state.state: must be one of')
         self.expect_error(MINIMAL.replace('  robots: 6', '  robots: 6\n  deploy: cloud'), 3,
-                          'world.deploy: must be one of process, host, host_sim')
+                          'world.deploy: must be one of process, host, host_sim, hardware')
         self.expect_error(MINIMAL.replace('max_ticks: 100\n', ''), 1, "missing 'max_ticks'")
         self.expect_error('world: [1\n', 2, 'not YAML')
         self.expect_error(MINIMAL + '  - swarm_count: {at_tick: 50, min: 3, max: 2}\n', 13,
@@ -134,6 +134,27 @@ class Format(unittest.TestCase):
         self.assertEqual(s['world']['config'], {'free_will_deg': 45, 'radio_loss': 0.1})
         self.assertEqual(s['world']['danger_zones'],
                          [{'shape': 'circle', 'x': 5, 'y': 5, 'radius': 1}])
+
+    def test_the_hardware_stand_in_runs_on_the_wall_clock_with_its_bases_and_events(self):
+        hw = lambda text: MINIMAL.replace('  robots: 6', '  robots: 6\n' + text)  # noqa
+        self.expect_error(hw('  deploy: hardware'), 3,
+                          'world.deploy: hardware runs on the wall clock: needs clock: realtime')
+        self.expect_error(hw('  bases: {position_noise_m: 0.01}'), 3,
+                          'world.bases: only with deploy: hardware')
+        real = hw('  deploy: hardware\n  clock: realtime\n  bases: {heading_drift_deg: 0.5}')
+        self.expect_error(real.replace('drift_deg', 'drift'), 5,
+                          'world.bases.heading_drift: unknown key')
+        self.expect_error(real + 'events:\n  - at_tick: 5\n    kill: 2\n', 17,
+                          'events[0].kill: world.deploy: hardware plays only odom_stop')
+        self.expect_error(MINIMAL + 'events:\n  - at_tick: 5\n    odom_stop: {robot: 2, ticks: 3}'
+                          '\n', 14, 'events[0].odom_stop: world.deploy: hardware plays only')
+        self.expect_error(real + 'events:\n  - at_tick: 5\n    odom_stop: {robot: 2, ticks: 0}'
+                          '\n', 18, 'events[0].odom_stop.ticks: must be an integer in [1')
+        s = fmt.parse(real + 'events:\n  - at_tick: 5\n    odom_stop: {robot: 2, ticks: 20}\n',
+                      'ok.yaml')
+        self.assertEqual(s['world']['bases'], {'heading_drift_deg': 0.5})
+        self.assertEqual(s['events'][0], {'at_tick': 5, 'kind': 'odom_stop', 'robot': 2,
+                                          'ticks': 20})
 
 
 def log_of(positions, statuses=(), objects=None, metrics=None):

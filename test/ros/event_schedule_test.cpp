@@ -34,9 +34,13 @@ TEST(EventScheduleTest, ReadsEveryKind) {
       "  - {tick: 3, kind: object_update, mission: 7, x: 6.5, y: 7}\n"
       "  - {tick: 4, kind: signal, mission: 7, event: UNLOADED}\n"
       "  - {tick: 6, kind: statist, robot: 900, sub_id: 2, x: 8, y: 3}\n"
-      "  - {tick: 8, kind: remove_statist, robot: 900, sub_id: 2}\n",
+      "  - {tick: 8, kind: remove_statist, robot: 900, sub_id: 2}\n"
+      "  - {tick: 10, kind: odom_stop, robot: 3, ticks: 20}\n",
       &error);
-  ASSERT_EQ(events.size(), 8u) << error;
+  ASSERT_EQ(events.size(), 9u) << error;
+  EXPECT_EQ(events[8].kind, TimedEvent::Kind::kOdomStop);
+  EXPECT_EQ(events[8].robot, 3);
+  EXPECT_EQ(events[8].ticks, 20u);
   EXPECT_EQ(events[6].kind, TimedEvent::Kind::kStatist);
   EXPECT_EQ(events[6].sub_id, 2);
   EXPECT_EQ(events[7].kind, TimedEvent::Kind::kRemoveStatist);
@@ -57,6 +61,8 @@ TEST(EventScheduleTest, ABadEntryIsNamed) {
       {"events:\n  - {tick: 1, kind: kill, robot: 1, x: 3}\n", "unknown key 'x'"},
       {"events:\n  - {tick: 1, kind: signal, mission: 7, event: GO}\n", "LOADED or UNLOADED"},
       {"events:\n  - {tick: 1, kind: spawn, robot: 3, x: .nan, y: 1}\n", "finite 'x', 'y'"},
+      {"events:\n  - {tick: 1, kind: odom_stop, robot: 3, ticks: 0}\n", "'ticks', an integer"},
+      {"events:\n  - {tick: 1, kind: odom_stop, robot: 3}\n", "'ticks', an integer"},
       {"things: []\n", "a list under the key 'events'"}};
   for (const auto& c : cases) {
     std::string error;

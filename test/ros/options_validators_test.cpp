@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "../core/validator_fixture.h"
+#include "swarm_transport/ros/bases/bases.h"
 #include "swarm_transport/ros/dispatcher/dispatcher_options.h"
 #include "swarm_transport/ros/recorder/recorder.h"
 #include "swarm_transport/ros/robot/robot_host.h"
@@ -104,10 +105,38 @@ TEST(OptionsValidatorsTest, RobotNodeOptions) {
   baseline.id = 0;
   std::vector<Violation<P>> v;
   Add<P, int>(&v, "~id", &P::id, {-1, 65536});
+  v.push_back({"hardware in lock-step",
+               [](P* p) {
+                 p->hardware = true;
+                 p->clock = core::Clock::kLockstep;
+               },
+               "~hardware needs ~clock realtime"});
+  v.push_back({"hardware with broadcast comm",
+               [](P* p) {
+                 p->hardware = true;
+                 p->comm = core::Comm::kBroadcast;
+               },
+               "~hardware needs ~comm local"});
   ExpectEachViolationNamed(baseline, v);
   EXPECT_NE(P().Validate().find("~id"), std::string::npos) << "~id is required";
   baseline.id = 65535;
   EXPECT_EQ(baseline.Validate(), "");
+}
+
+TEST(OptionsValidatorsTest, BasesParams) {
+  using P = BasesParams;
+  std::vector<Violation<P>> v;
+  v.push_back(
+      {"a bad /swarm key", [](P* p) { p->swarm.flocking.cohesion = 3.0; }, "/swarm: cohesion"});
+  Add<P, int>(&v, "~robots", &P::robots, {-1, 65536});
+  v.push_back({"placement file without a file", [](P* p) { p->placement = core::Placement::kFile; },
+               "~placement_file"});
+  Add<P, double>(&v, "~odom_rate_hz", &P::odom_rate_hz, {0.0, -1.0, 1001.0, kNan, kInf});
+  Add<P, double>(&v, "~integration_step_s", &P::integration_step_s, {0.0, 0.2, kNan});
+  v.push_back({"no fixed frame", [](P* p) { p->fixed_frame.clear(); }, "~fixed_frame"});
+  v.push_back(
+      {"negative noise", [](P* p) { p->noise.position_noise_m = -0.1; }, "~position_noise_m"});
+  ExpectEachViolationNamed(P(), v);
 }
 
 TEST(OptionsValidatorsTest, RobotHostOptions) {

@@ -36,7 +36,8 @@ bool EventFromXmlRpc(XmlRpcValue& e, TimedEvent* event, std::string* error) {
       {"object_update", {TimedEvent::Kind::kObjectUpdate, {"mission", "x", "y"}}},
       {"signal", {TimedEvent::Kind::kSignal, {"mission", "event"}}},
       {"statist", {TimedEvent::Kind::kStatist, {"robot", "sub_id", "x", "y"}}},
-      {"remove_statist", {TimedEvent::Kind::kRemoveStatist, {"robot", "sub_id"}}}};
+      {"remove_statist", {TimedEvent::Kind::kRemoveStatist, {"robot", "sub_id"}}},
+      {"odom_stop", {TimedEvent::Kind::kOdomStop, {"robot", "ticks"}}}};
   if (e.getType() != XmlRpcValue::TypeStruct || !e.hasMember("kind") ||
       e["kind"].getType() != XmlRpcValue::TypeString ||
       kKinds.count(static_cast<std::string>(e["kind"])) == 0) {
@@ -88,6 +89,14 @@ bool EventFromXmlRpc(XmlRpcValue& e, TimedEvent* event, std::string* error) {
             (Number(e, "x", &ev.x) && Number(e, "y", &ev.y)));
       ev.sub_id = static_cast<std::uint8_t>(sub);
       if (!ok) *error = "a statist needs 'robot', 'sub_id' in [0, 255] (and finite 'x', 'y')";
+      break;
+    }
+    case TimedEvent::Kind::kOdomStop: {
+      double ticks = 0.0;
+      ok = Id(e, "robot", &ev.robot) && Number(e, "ticks", &ticks) && ticks >= 1.0 &&
+           std::floor(ticks) == ticks && ticks < 1e9;
+      ev.ticks = ok ? static_cast<std::uint64_t>(ticks) : 0;
+      if (!ok) *error = "an odom_stop needs 'robot' and 'ticks', an integer >= 1";
       break;
     }
     case TimedEvent::Kind::kSignal: {

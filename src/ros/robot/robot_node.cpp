@@ -11,6 +11,7 @@
 #include "swarm_transport/ros/common/conversions.h"
 #include "swarm_transport/ros/common/names.h"
 #include "swarm_transport/ros/common/params.h"
+#include "swarm_transport/ros/robot/hardware_transport.h"
 #include "swarm_transport/ros/robot/own_topics_transport.h"
 #include "swarm_transport/ros/robot/robot_report.h"
 
@@ -28,7 +29,13 @@ constexpr double kRejectLogPeriodS = 10.0;
 
 std::string RobotNodeOptions::Validate() const {
   std::ostringstream os;
-  if (id < 0 || id > 65535) os << "~id must be set to an integer in [0, 65535] but is " << id;
+  if (id < 0 || id > 65535) {
+    os << "~id must be set to an integer in [0, 65535] but is " << id;
+  } else if (hardware && clock != core::Clock::kRealtime) {
+    os << "~hardware needs ~clock realtime (a robot on hardware ticks on the wall clock)";
+  } else if (hardware && comm != core::Comm::kLocal) {
+    os << "~hardware needs ~comm local (its own radio decides whom it hears)";
+  }
   return os.str();
 }
 
@@ -41,11 +48,20 @@ bool RobotNode::Initialize() {
   if (!ReadPrivate(private_nh_, "id", &options.id, &error) ||
       !ReadPrivate(private_nh_, "clock", &options.clock, &error) ||
       !ReadPrivate(private_nh_, "comm", &options.comm, &error) ||
-      !ReadPrivate(private_nh_, "diagnostics", &options.diagnostics, &error)) {
+      !ReadPrivate(private_nh_, "diagnostics", &options.diagnostics, &error) ||
+      !ReadPrivate(private_nh_, "hardware", &options.hardware, &error)) {
     ROS_FATAL("robot: invalid parameters: %s", error.c_str());
     return false;
   }
-  return Initialize(options, std::make_unique<OwnTopicsTransport>(options.clock));
+  if (!options.hardware) {
+    return Initialize(options, std::make_unique<OwnTopicsTransport>(options.clock));
+  }
+  core::HardwareOptions hardware;
+  if (!ReadHardwareOptions(private_nh_, &hardware, &error)) {
+    ROS_FATAL("robot: invalid parameters: %s", error.c_str());
+    return false;
+  }
+  return Initialize(options, std::make_unique<HardwareTransport>(hardware));
 }
 
 bool RobotNode::Initialize(const RobotNodeOptions& options,
@@ -74,7 +90,8 @@ bool RobotNode::Initialize(const RobotNodeOptions& options,
       [this](const ros::SingleSubscriberPublisher& s) {
         CountObserver(s.getSubscriberName(), -1);
       });
-  transport_->Connect(nh_, TransportOptions{id_, options_.clock, options_.diagnostics}, this);
+  transport_->Connect(nh_, TransportOptions{id_, options_.clock, options_.diagnostics, &config_},
+                      this);
   if (options_.comm == core::Comm::kBroadcast) {
     heard_ = std::make_unique<BroadcastHeard>();
     position_sub_ =
@@ -271,10 +288,11 @@ void RobotNode::Tick() {
     transport_->SendCommand(ToTwist(command));
   }
   // Its position for those who listen to robots: observers (rostopic, rosbag) in every
-  // deployment and clock, and robots of broadcast comm. The simulator is no observer: it has
-  // every robot's true pose, keeps only virtual copies and statists from /flock/position, and
-  // every publication would be a callback for it to discard - one per robot and tick.
-  if (observers_ > 0 || heard_) {
+  // deployment and clock, robots of broadcast comm and, on hardware, every robot. The simulator is
+  // no observer: it has every robot's true pose, keeps only virtual copies and statists from
+  // /flock/position, and every publication would be a callback for it to discard - one per robot
+  // and tick.
+  if (observers_ > 0 || heard_ || transport_->AnnouncesPosition()) {
     const core::Pose2 after = core::TurnThenDrive(before, command, config_.tick_period_s);
     // By shared pointer: roscpp hands it to subscribers in this process (the simulator of a
     // robot_host) without serialising it and without waking its poll thread; a message

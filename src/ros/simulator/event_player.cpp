@@ -68,6 +68,12 @@ void EventPlayer::ApplyDue(std::uint64_t tick) {
       case TimedEvent::Kind::kRemoveStatist:
         roster_->relayed().Erase(e.robot, e.sub_id);
         break;
+      case TimedEvent::Kind::kOdomStop:
+        ROS_WARN(
+            "simulator: tick %llu: an odom_stop is for the hardware stand-in (bases); the "
+            "simulator has no odometry to stop",
+            static_cast<unsigned long long>(tick));
+        break;
     }
   }
 }

@@ -23,6 +23,7 @@ struct TimedEvent {
     kSignal,
     kStatist,        // a motionless virtual robot (SPEC 9.3) appears at (x, y): robot, sub_id
     kRemoveStatist,  // ... and goes
+    kOdomStop,       // the hardware stand-in (bases) sends no odometry of `robot` for `ticks`
   };
   std::uint64_t tick = 0;
   Kind kind = Kind::kFreeze;
@@ -35,12 +36,13 @@ struct TimedEvent {
   double y = 0.0;
   double theta_deg = 0.0;   // spawn
   std::uint8_t signal = 0;  // Mission_Event::LOADED / UNLOADED
+  std::uint64_t ticks = 0;  // odom_stop: how long
 };
 
 // Reads `events:` - a list of {tick, kind: freeze | continue | kill | spawn | object_update |
-// signal | statist | remove_statist, and the kind's fields: from, to | robot | robot, x, y,
-// theta_deg | mission, x, y | mission, event: LOADED | UNLOADED | robot, sub_id, x, y | robot,
-// sub_id}. False with `error` naming the entry and the key.
+// signal | statist | remove_statist | odom_stop, and the kind's fields: from, to | robot |
+// robot, x, y, theta_deg | mission, x, y | mission, event: LOADED | UNLOADED | robot, sub_id,
+// x, y | robot, sub_id | robot, ticks}. False with `error` naming the entry and the key.
 bool EventsFromXmlRpc(XmlRpc::XmlRpcValue& file, std::vector<TimedEvent>* events,
                       std::string* error);
 bool ReadEventsFile(const std::string& path, std::vector<TimedEvent>* events, std::string* error);

@@ -39,6 +39,9 @@ struct RobotNodeOptions {
   // ~diagnostics: send tick timing and delivery figures on /flock/robot_stats once per wall
   // second (benchmarks; off by default).
   bool diagnostics = false;
+  // ~hardware: a robot on real hardware (hardware_transport.h: its base's pose and cmd_vel, the
+  // other robots over the network); real time and local comm only.
+  bool hardware = false;
   std::string Validate() const;
 };
 

@@ -2,7 +2,8 @@
 // answers out. A robot (RobotNode: its session and its tick) is the same in every deployment;
 // the transport is what differs - its own topics (a robot process, own_topics_transport.h),
 // its per-robot topics beside a host's shared subscriptions (host_transport.h) or a direct
-// link to the simulator of its process (host_transport.h).
+// link to the simulator of its process (host_transport.h); on real hardware its base's pose, the
+// other robots' positions over the network and its own radio (hardware_transport.h).
 #ifndef SWARM_TRANSPORT_ROS_ROBOT_TRANSPORT_H_
 #define SWARM_TRANSPORT_ROS_ROBOT_TRANSPORT_H_
 
@@ -18,6 +19,7 @@
 #include "swarm_transport/core/mission.h"
 #include "swarm_transport/core/mission_message.h"
 #include "swarm_transport/core/modes.h"
+#include "swarm_transport/core/swarm_config.h"
 
 namespace swarm_transport {
 
@@ -41,6 +43,7 @@ struct TransportOptions {
   std::uint16_t id = 0;
   core::Clock clock = core::Clock::kRealtime;
   bool diagnostics = false;  // it sends a line of figures per wall second (SendStats)
+  const core::SwarmConfig* swarm = nullptr;  // /swarm as the robot uses it (outlives Connect)
 };
 
 class RobotTransport {
@@ -71,6 +74,9 @@ class RobotTransport {
   // act on; a re-spawned id gets a fresh process) and reports its status on /diagnostics. A
   // host removes its robots itself and reports once for all of them.
   virtual bool OwnProcess() const { return false; }
+  // It announces its position on /flock/position every tick whoever listens (the other robots
+  // on hardware hear it there), not only while an observer subscribes.
+  virtual bool AnnouncesPosition() const { return false; }
   // It offers ~describe and ~state (a host of many robots may ask for none).
   virtual bool OffersServices() const { return true; }
 };
