@@ -14,8 +14,8 @@ constexpr std::uint32_t kMissionQueue = 256;
 constexpr std::uint32_t kQueue = 20;
 constexpr std::uint32_t kStatusQueue = 50;
 constexpr std::uint32_t kProgressQueue = 10;
-// A first leader waits at most this long for its subscribers (MissionOutlets::Ready).
-constexpr double kOutletsWaitS = 5.0;
+// A first leader waits at most this long for its subscribers (MissionPublishers::Ready).
+constexpr double kPublishersWaitS = 5.0;
 
 }  // namespace
 
@@ -44,7 +44,7 @@ void MissionTopics::Shutdown() {
   for (ros::Subscriber& sub : subs_) sub.shutdown();
 }
 
-void MissionOutlets::Advertise(ros::NodeHandle nh) {
+void MissionPublishers::Advertise(ros::NodeHandle nh) {
   if (status_pub_) return;
   freeze_pub_ = nh.advertise<Robot_Freeze>(names::kFreeze, kQueue);
   continue_pub_ = nh.advertise<Robot_Continue>(names::kContinue, kQueue);
@@ -57,7 +57,7 @@ void MissionOutlets::Advertise(ros::NodeHandle nh) {
   if (!QueryTopicNodeCounts(&expected_, true)) expected_ = TopicNodeCounts();
 }
 
-bool MissionOutlets::Ready() {
+bool MissionPublishers::Ready() {
   if (!status_pub_ || ready_) return true;
   // At least one subscriber (the simulator's relay) even if the master did not answer.
   const auto connected = [this](const ros::Publisher& pub) {
@@ -66,11 +66,11 @@ bool MissionOutlets::Ready() {
   };
   ready_ = (connected(freeze_pub_) && connected(continue_pub_) && connected(update_pub_) &&
             connected(delete_pub_) && connected(status_pub_)) ||
-           ros::WallTime::now() - since_ > ros::WallDuration(kOutletsWaitS);
+           ros::WallTime::now() - since_ > ros::WallDuration(kPublishersWaitS);
   return ready_;
 }
 
-bool MissionOutlets::Publish(const Tick_Answer& m) {
+bool MissionPublishers::Publish(const Tick_Answer& m) {
   const bool any = !m.object_updates.empty() || !m.freezes.empty() || !m.continues.empty() ||
                    !m.object_deletes.empty() || !m.statuses.empty() || !m.progress.empty();
   if (!any) return true;

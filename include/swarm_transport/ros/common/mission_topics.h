@@ -40,7 +40,7 @@ class MissionTopics {
 
 // A real-time first leader's publishers of the mission topics: only robots that became one
 // advertise them, so the swarm does not become all-to-all.
-class MissionOutlets {
+class MissionPublishers {
  public:
   bool advertised() const { return static_cast<bool>(status_pub_); }
   // Advertises them (once) and asks the master how many nodes subscribe to each.
@@ -50,7 +50,7 @@ class MissionOutlets {
   // node that subscribed when it got the mission is connected, or 5 s of wall time passed.
   bool Ready();
   // Publishes an answer's mission messages (statuses on /flock/mission/status, progress on
-  // .../progress, ...). False when it has some but the outlets are not advertised.
+  // .../progress, ...). False when it has some but the publishers are not advertised.
   bool Publish(const Tick_Answer& answer);
 
  private:
