@@ -245,7 +245,8 @@ void RobotNode::Tick() {
   PublishStatusIfDue();
   // Real time: a robot promoted to first leader (its first leader was lost) connects its
   // mission publishers before it speaks (it takes over the tick after its promotion).
-  if (!lockstep() && !mission_pubs_.advertised() && session_->brain().missions().IsFirstLeaderOfAny()) {
+  if (!lockstep() && !mission_pubs_.advertised() &&
+      session_->brain().missions().IsFirstLeaderOfAny()) {
     mission_pubs_.Advertise(nh_);
   }
   // Lock-step: stamped with the tick's own simulated time (as the batch engine does), not with
