@@ -11,7 +11,7 @@
   is spawned; then it joins;
 - a robot process started for a new id (`roslaunch swarm_transport robot.launch id:=N`) joins
   the running lock-step swarm when the id is spawned beside the others: per tick of
-  /flock/positions it moves in the first or second tick after it first appears there (the
+  /flock/world_poses it moves in the first or second tick after it first appears there (the
   bound is argued in dynamic_swarm.test), it is within local range of a neighbour and hears
   the others, and the next mission naming it ends DONE;
 - a mission naming a spawned robot whose process starts only after the mission was sent
@@ -200,12 +200,12 @@ class DynamicSwarm(unittest.TestCase):
         self.assertEqual(hold(tick=0).code, 0)
         self.assertTrue(st.wait_for(lambda: any(joiner in self.log.at(k)
                                                 for k in self.log.ticks()), self.timeout),
-                        'robot %d never appeared on /flock/positions' % joiner)
+                        'robot %d never appeared on /flock/world_poses' % joiner)
         first = min(k for k in self.log.ticks() if joiner in self.log.at(k))
         bound = g('moves_within_ticks')
         self.assertTrue(self.log.wait_tick(first + g('in_swarm_within_ticks'), self.timeout))
         track = [self.log.at(k).get(joiner) for k in range(first, first + bound + 1)]
-        self.assertNotIn(None, track, 'a tick of /flock/positions is missing (from %d)' % first)
+        self.assertNotIn(None, track, 'a tick of /flock/world_poses is missing (from %d)' % first)
         moved = [k for k in range(1, bound + 1)
                  if st.moved(track[k], track[0]) >= g('tick_move_m')]
         self.assertTrue(moved, 'robot %d first appeared at tick %d and had not moved by tick %d: '

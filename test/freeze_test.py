@@ -59,7 +59,7 @@ class FreezeContinue(unittest.TestCase):
         self.assertTrue(self.log.wait_tick(t0 + ticks, self.timeout))
         # A frame this process missed only shortens the sum (a chord for two moves).
         frames = [f for f in (self.log.at(t) for t in range(t0, t0 + ticks + 1)) if f]
-        self.assertGreaterEqual(len(frames), 2, 'no frames of /flock/positions')
+        self.assertGreaterEqual(len(frames), 2, 'no frames of /flock/world_poses')
         return {rid: sum(st.moved(a[rid], b[rid]) for a, b in zip(frames, frames[1:]))
                 for rid in frames[0]}
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The simulator's ~hold (issue 13): a lock-step run (paced at real time) holds before the
-stated tick - the last /flock/positions is the tick before it, for as long as it holds, and the
+stated tick - the last /flock/world_poses is the tick before it, for as long as it holds, and the
 markers' status line names the held tick - then goes on when released. A tick that is past is
 refused with an ERROR and changes nothing."""
 

@@ -25,7 +25,7 @@ class Pacing(unittest.TestCase):
             with lock:
                 arrivals.setdefault(msg.tick, time.time())
 
-        sub = rospy.Subscriber('/flock/positions', Robot_Positions, on_positions,
+        sub = rospy.Subscriber('/flock/world_poses', Robot_Positions, on_positions,
                                queue_size=1000, tcp_nodelay=True)
         swarm = st.launch_swarm(robots=g('robots'), seed=1, lockstep=True, max_ticks=0,
                                 real_time_factor=g('real_time_factor'))

@@ -3,7 +3,7 @@
 read from README.md itself, in order, as a user types them into one terminal - `source` and
 `export` change the environment of the commands after them, a command ending in `&` runs in the
 background and the next one starts once it is up (the swarm: its simulator publishes
-/flock/positions and the dispatcher offers its submit service; rviz: it subscribes
+/flock/world_poses and the dispatcher offers its submit service; rviz: it subscribes
 /flock/markers and is still running `rviz_up_s` later), every other command must exit 0 within
 `command_s`, and the mission `watch` must end at DONE. The tour must hold every step: a
 swarm, rviz, a mission and its watch, a scenario and an experiment.
@@ -113,7 +113,7 @@ class ReadmeTour(unittest.TestCase):
         if ' swarm.launch' in command:
             def up():
                 pubs, _, services = self.state(env)
-                return (any(t == '/flock/positions' and '/simulator' in n for t, n in pubs)
+                return (any(t == '/flock/world_poses' and '/simulator' in n for t, n in pubs)
                         and any(s == '/mission_dispatcher/submit' for s, _ in services))
             what, limit = 'the swarm (simulator and dispatcher)', self.ready_s
         elif 'rviz' in command:

@@ -31,7 +31,7 @@ class RecorderInterface(unittest.TestCase):
             with lock:
                 stats.append(msg)
         sub = rospy.Subscriber('/flock/stats', Swarm_Stats, on_stats, queue_size=100)
-        frames = rospy.Publisher('/flock/positions', Robot_Positions, queue_size=100)
+        frames = rospy.Publisher('/flock/world_poses', Robot_Positions, queue_size=100)
         orders = rospy.Publisher('/flock/mission/new', New_Mission, queue_size=10, latch=True)
         phases = rospy.Publisher('/flock/mission/status', Mission_Status, queue_size=10)
         timeout = g('timeout_s')

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The simulator's and the dispatcher's service interfaces (issue 10, item 6): status codes for
 good and bad calls, and every bad call followed by a good one that takes effect (the refusal
-changed nothing and stopped nothing). Typed results only: codes, /flock/robots, /flock/positions,
+changed nothing and stopped nothing). Typed results only: codes, /flock/robots, /flock/world_poses,
 /flock/mission/new and /flock/mission/status counts.
 - simulator (real time, 3 robots, no robot processes): /spawn of a used id, outside the arena,
   with a NaN -> ERROR; a good spawn -> OK and listed; /kill of an unknown id -> ERROR, of the
@@ -56,7 +56,7 @@ class ServiceInterface(unittest.TestCase):
                      '/mission_dispatcher/submit'):
             rospy.wait_for_service(name, cls.timeout)
         cls.robots = Latest('/flock/robots', Robot_Positions)
-        cls.positions = Latest('/flock/positions', Robot_Positions)
+        cls.positions = Latest('/flock/world_poses', Robot_Positions)
 
     def ids(self):
         last = self.robots.last()

@@ -1,5 +1,5 @@
 """Shared helpers of the scenario rostests: launch a swarm inside the test's master, follow
-the aggregated /flock/positions stream, wait on conditions with timeouts (never fixed sleeps)."""
+the aggregated /flock/world_poses stream, wait on conditions with timeouts (never fixed sleeps)."""
 
 import math
 import threading
@@ -60,13 +60,13 @@ def stop_process_groups(procs, timeout=15):
 
 
 class PositionLog(object):
-    """Every /flock/positions message by tick (the simulator's ground truth)."""
+    """Every /flock/world_poses message by tick (the simulator's ground truth)."""
 
     def __init__(self):
         self.lock = threading.Lock()
         self.by_tick = {}
         self.last = None
-        self.sub = rospy.Subscriber('/flock/positions', Robot_Positions, self._cb,
+        self.sub = rospy.Subscriber('/flock/world_poses', Robot_Positions, self._cb,
                                     queue_size=10000, tcp_nodelay=True)
 
     def _cb(self, msg):
@@ -167,7 +167,7 @@ def dispatcher_tracks(mission_id):
 
 
 def dispatcher_positions_tick():
-    """The tick of the newest /flock/positions the dispatcher has (the last line of its ~status:
+    """The tick of the newest /flock/world_poses the dispatcher has (the last line of its ~status:
     'positions of tick N'), or None."""
     from std_srvs.srv import Trigger
     try:

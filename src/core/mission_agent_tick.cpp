@@ -278,7 +278,7 @@ MissionPlan MissionAgent::Tick(const Pose2& self, const std::vector<Neighbour>& 
         if (live.anchored) live.reanchor = true;
         if (!first_before && LeadsFirst(live)) {
           // Promoted: it takes over the phase machine from the next tick on (a robot node in
-          // real time connects its mission outlets first).
+          // real time connects its mission publishers first).
           live.promoted = true;
           live.first_since = tick;
         }

@@ -198,7 +198,7 @@ void RunMetrics::Drain() {
 // at thousands of ticks per second, hundreds of frames may come first). A transport's window
 // is TRANSPORT .. UNLOADING. A leader-only mission's runs from its order (the leader leads as
 // soon as it holds it; its first status may come much later, see
-// MissionOutlets::Ready) to its DONE, or to the first tick the leader is within
+// MissionPublishers::Ready) to its DONE, or to the first tick the leader is within
 // goal_tolerance_m of the target - the leader's own arrival test, which also stands for a DONE
 // that was lost.
 std::optional<std::uint64_t> RunMetrics::WindowStart(const MissionRecord& m) {
@@ -317,7 +317,7 @@ void RunMetrics::Feed(std::uint16_t id, MissionRecord* m, const MetricsFrame& fr
   if (!complete && !m->warned_missing) {
     m->warned_missing = true;
     Say(Level::kWarn, "mission " + std::to_string(id) +
-                          ": a robot of the mission is missing from /flock/positions at tick " +
+                          ": a robot of the mission is missing from /flock/world_poses at tick " +
                           std::to_string(frame.tick) + "; such ticks are skipped");
   }
 }

@@ -139,14 +139,14 @@ def main(argv):
             # Lock-step waits for this demo's subscription before its first tick: the mission
             # goes out first, so it is relayed at tick 0 and a seed gives the same run.
             ok = _run_mission(a, ros, state, lambda: rospy.Subscriber(
-                '/flock/positions', Robot_Positions, on_positions, queue_size=50))
+                '/flock/world_poses', Robot_Positions, on_positions, queue_size=50))
             if a.rviz and a.screenshot and not state.get('shot'):
                 st_ros.log('[demo] no screenshot at TRANSPORT + %d: the mission ended first'
                            % a.screenshot_tick)
             rospy.signal_shutdown('demo done')
             _report(a, state, local_range, time.time() - started)
             return 0 if ok else 1
-        rospy.Subscriber('/flock/positions', Robot_Positions, on_positions, queue_size=50)
+        rospy.Subscriber('/flock/world_poses', Robot_Positions, on_positions, queue_size=50)
         limit = a.seconds if a.realtime else max(a.seconds, 60.0 + a.ticks * a.robots * 0.002)
         deadline = time.time() + limit + 60.0
         ok = True

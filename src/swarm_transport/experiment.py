@@ -160,7 +160,7 @@ def prepare_jobs(preset, out, runs, seed_base, only, keep_logs, trace=False,
                    'run_dir': run_dir, 'record_dir': setting_dir, 'run_name': 'run_%d' % k,
                    'placement': view['placement'], 'placement_file': '',
                    'dispatcher': preset['kind'] != 'flocking',
-                   # A mission run's worker follows /flock/positions; so does a traced one.
+                   # A mission run's worker follows /flock/world_poses; so does a traced one.
                    'observers': (0 if preset['kind'] == 'flocking' and not trace else 1) +
                                 extra_observers,
                    'trace': trace, 'deploy': deploy,

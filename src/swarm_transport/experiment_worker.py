@@ -114,7 +114,7 @@ def _run(job, ros, started):
     if trace is not None and job['kind'] == 'flocking':
         # Counted among the observers: the lock-step gate waits for it, so tick 0 is traced.
         from swarm_transport.msg import Robot_Positions
-        rospy.Subscriber('/flock/positions', Robot_Positions, trace.add, queue_size=10000,
+        rospy.Subscriber('/flock/world_poses', Robot_Positions, trace.add, queue_size=10000,
                          tcp_nodelay=True)
     out = {}
     period = job['tick_period_s']
@@ -122,7 +122,7 @@ def _run(job, ros, started):
     if job['kind'] == 'flocking':
         # The end: the recorder's sample of the final tick (presets end on a sample time), or,
         # when the last tick is no sample time, the final /clock plus a grace for the recorder
-        # to take in the final /flock/positions (it writes no row for it anyway).
+        # to take in the final /flock/world_poses (it writes no row for it anyway).
         def finished():
             if state['stats'] is not None and state['stats'].tick >= job['max_ticks']:
                 return True
@@ -184,7 +184,7 @@ class Waiter(object):
 
 def _run_mission(job, ros, state, lock, waiter, trace=None):
     """Submits the mission before tick 0 (the lock-step waits for this process's
-    /flock/positions subscription), follows it to DONE/ABORTED or the tick limit, and waits
+    /flock/world_poses subscription), follows it to DONE/ABORTED or the tick limit, and waits
     for the recorder's missions.csv row."""
     import rospy
     from swarm_transport.msg import Mission_Status, New_Mission, Robot_Positions
@@ -252,7 +252,7 @@ def _run_mission(job, ros, state, lock, waiter, trace=None):
             state['positions_tick'] = p.tick
 
     # Subscribing opens the lock-step gate (observers:=1): tick 0 follows.
-    rospy.Subscriber('/flock/positions', Robot_Positions, on_positions, queue_size=10000,
+    rospy.Subscriber('/flock/world_poses', Robot_Positions, on_positions, queue_size=10000,
                      tcp_nodelay=True)
     limit = job['max_ticks']
     waiter.until(lambda: (phases and phases[-1][0] in FINAL) or pos_state['tick'] >= limit,
@@ -266,7 +266,7 @@ def _run_mission(job, ros, state, lock, waiter, trace=None):
         # connection and can overtake them (a host_sim run's trace once ended before tick 0).
         end_tick = phases[-1][1]
         waiter.until(lambda: pos_state['tick'] >= end_tick,
-                     'no /flock/positions up to the end at tick %d' % end_tick)
+                     'no /flock/world_poses up to the end at tick %d' % end_tick)
     if track is not None and final == 'DONE':
         # The track up to the arrival (the DONE report's tick) for the leader's swarm at 100 %.
         track.arrived(phases[-1][1])
@@ -282,7 +282,7 @@ def _run_mission(job, ros, state, lock, waiter, trace=None):
 
 
 class Trace(object):
-    """Every physical robot's pose at every tick (--trace), from /flock/positions: columns
+    """Every physical robot's pose at every tick (--trace), from /flock/world_poses: columns
     tick,robot_id,x,y,heading_deg; written when the run ends."""
 
     def __init__(self, path):

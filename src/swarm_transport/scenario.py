@@ -110,7 +110,7 @@ class Recorder(object):
         self.lock = threading.Lock()
         self.reset()
         self.subs = [
-            rospy.Subscriber('/flock/positions', Robot_Positions, self._positions,
+            rospy.Subscriber('/flock/world_poses', Robot_Positions, self._positions,
                              queue_size=100000, tcp_nodelay=True),
             rospy.Subscriber('/flock/mission/status', Mission_Status, self._status,
                              queue_size=10000),

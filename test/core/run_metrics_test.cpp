@@ -192,7 +192,7 @@ TEST(RunMetricsTest, TransportMissingARobotIsWarnedOnceAndItsTicksAreSkipped) {
   EXPECT_EQ(Field(rows[0], 4), "ABORTED");
   EXPECT_EQ(Field(rows[0], 11), "6");
   EXPECT_EQ(log.lines, (std::vector<std::string>{
-                           "W mission 7: a robot of the mission is missing from /flock/positions "
+                           "W mission 7: a robot of the mission is missing from /flock/world_poses "
                            "at tick 3; such ticks are skipped",
                            "I mission 7 ABORTED: " + rows[0]}));
   EXPECT_EQ(metrics.missions_aborted(), 1u);

@@ -102,7 +102,7 @@ class StatusSequencer {
   // The QUEUED of an order just taken.
   void Queue(const StatusReport& queued) { queued_.push_back(queued); }
   // Splits a tick's `statuses` in place: the phase reports stay, repeats move to `progress`.
-  // `ready`: the leader's mission outlets are connected.
+  // `ready`: the leader's mission publishers are connected.
   void Sequence(bool ready, std::vector<StatusReport>* statuses,
                 std::vector<StatusReport>* progress);
 

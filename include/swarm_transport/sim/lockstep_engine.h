@@ -57,7 +57,7 @@ class LockstepEngine {
   // (MissionRelay::FillStanding; returns how many it added).
   std::size_t Round(std::size_t index, bool connected, core::Round* out);
   double sim_time() const { return sim_time_; }
-  // The physical robots' true poses of the round, in world order (/flock/positions).
+  // The physical robots' true poses of the round, in world order (/flock/world_poses).
   const std::vector<core::Position>& truth() const { return truth_; }
   std::vector<core::Position> TakeTruth() { return std::move(truth_); }
   // Every round went out: the relay's lists start empty (held orders stay).

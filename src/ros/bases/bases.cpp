@@ -119,7 +119,7 @@ bool Bases::Initialize() {
     return false;
   }
   schedule_ = std::make_unique<EventSchedule>(events_);
-  positions_pub_ = nh_.advertise<Robot_Positions>(names::kPositions, 10, true);
+  positions_pub_ = nh_.advertise<Robot_Positions>(names::kWorldPoses, 10, true);
   robots_pub_ = nh_.advertise<Robot_Positions>(names::kRobots, 1, true);
   freeze_pub_ = nh_.advertise<Robot_Freeze>(names::kFreeze, 10);
   continue_pub_ = nh_.advertise<Robot_Continue>(names::kContinue, 10);

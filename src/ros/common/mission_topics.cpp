@@ -16,8 +16,8 @@ constexpr std::uint32_t kMissionQueue = 256;
 constexpr std::uint32_t kQueue = 20;
 constexpr std::uint32_t kStatusQueue = 50;
 constexpr std::uint32_t kProgressQueue = 10;
-// A first leader waits at most this long for its subscribers (MissionOutlets::Ready).
-constexpr double kOutletsWaitS = 5.0;
+// A first leader waits at most this long for its subscribers (MissionPublishers::Ready).
+constexpr double kPublishersWaitS = 5.0;
 
 }  // namespace
 
@@ -71,7 +71,7 @@ bool MissionTopics::AllConnected(const TopicNodeCounts& graph) const {
   return true;
 }
 
-void MissionOutlets::Advertise(ros::NodeHandle nh, std::uint32_t queue_size) {
+void MissionPublishers::Advertise(ros::NodeHandle nh, std::uint32_t queue_size) {
   if (status_pub_) return;
   const auto queue = [queue_size](std::uint32_t own) { return queue_size > 0 ? queue_size : own; };
   freeze_pub_ = nh.advertise<Robot_Freeze>(names::kFreeze, queue(kQueue));
@@ -85,7 +85,7 @@ void MissionOutlets::Advertise(ros::NodeHandle nh, std::uint32_t queue_size) {
   if (!QueryTopicNodeCounts(&expected_, true)) expected_ = TopicNodeCounts();
 }
 
-bool MissionOutlets::Ready() {
+bool MissionPublishers::Ready() {
   if (!status_pub_ || ready_) return true;
   // At least one subscriber (the simulator's relay) even if the master did not answer.
   const auto connected = [this](const ros::Publisher& pub) {
@@ -94,11 +94,11 @@ bool MissionOutlets::Ready() {
   };
   ready_ = (connected(freeze_pub_) && connected(continue_pub_) && connected(update_pub_) &&
             connected(delete_pub_) && connected(status_pub_)) ||
-           ros::WallTime::now() - since_ > ros::WallDuration(kOutletsWaitS);
+           ros::WallTime::now() - since_ > ros::WallDuration(kPublishersWaitS);
   return ready_;
 }
 
-bool MissionOutlets::Publish(const Tick_Answer& m) {
+bool MissionPublishers::Publish(const Tick_Answer& m) {
   const bool any = !m.object_updates.empty() || !m.freezes.empty() || !m.continues.empty() ||
                    !m.object_deletes.empty() || !m.statuses.empty() || !m.progress.empty();
   if (!any) return true;
@@ -112,7 +112,7 @@ bool MissionOutlets::Publish(const Tick_Answer& m) {
   return true;
 }
 
-void MissionOutlets::Publish(const core::MissionMessage& message) {
+void MissionPublishers::Publish(const core::MissionMessage& message) {
   std::visit(core::Overloaded{
                  [this](const core::ObjectUpdate& m) { update_pub_.publish(ToMsg(m)); },
                  [this](const core::ObjectDelete& m) { delete_pub_.publish(ToMsg(m)); },
@@ -123,7 +123,7 @@ void MissionOutlets::Publish(const core::MissionMessage& message) {
              message);
 }
 
-bool MissionOutlets::AllConnected(const TopicNodeCounts& graph) const {
+bool MissionPublishers::AllConnected(const TopicNodeCounts& graph) const {
   for (const ros::Publisher* pub :
        {&status_pub_, &progress_pub_, &update_pub_, &delete_pub_, &freeze_pub_, &continue_pub_}) {
     if (!graph.AllConnected(*pub)) return false;

@@ -61,7 +61,7 @@ bool MissionDispatcher::Initialize() {
     statist_pub_ = nh_.advertise<Robot_Position>(names::kPosition, 10);
     statist_delete_pub_ = nh_.advertise<Delete_Robot>(names::kRobotDelete, 10);
   }
-  positions_sub_ = nh_.subscribe(names::kPositions, 1, &MissionDispatcher::OnPositions, this);
+  positions_sub_ = nh_.subscribe(names::kWorldPoses, 1, &MissionDispatcher::OnPositions, this);
   new_sub_ = nh_.subscribe(names::kMissionNew, 100, &MissionDispatcher::OnNewMission, this);
   status_sub_ = nh_.subscribe(names::kMissionStatus, 100, &MissionDispatcher::OnStatus, this);
   progress_sub_ = nh_.subscribe(names::kMissionProgress, 100, &MissionDispatcher::OnProgress, this);
@@ -95,7 +95,7 @@ bool MissionDispatcher::Initialize() {
            options_.max_live_missions);
   if (policy_->file_mission_count() > 0) {
     ROS_INFO("%s: submitting the file missions %.2f s after the first %s%s", kNode,
-             options_.start_delay_s, names::kPositions,
+             options_.start_delay_s, names::kWorldPoses,
              lockstep_ ? " (lock-step: stamped with that tick, sent at once)" : "");
   }
   return true;

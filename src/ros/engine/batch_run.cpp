@@ -116,7 +116,7 @@ class Run {
   std::uint64_t tick() const { return tick_; }
 
  private:
-  // The recorder's frame of the world as /flock/positions carries it (`truth`: the physical
+  // The recorder's frame of the world as /flock/world_poses carries it (`truth`: the physical
   // robots' poses in world order), and the runner's trace.
   void TakeFrame(const std::vector<core::Position>& truth);
   // The robot at world index `i` ticks on its round: its answer joins the tick's answers.
@@ -248,7 +248,7 @@ bool Run::SetUp(const XmlRpc::XmlRpcValue& base_config, std::string* error) {
     // The dispatcher's ~submit (a dispatcher without private parameters): validated against
     // the swarm, then published as its order.
     dispatcher_ = std::make_unique<BatchDispatcher>(config_, &tick_, engine_.get());
-    std::vector<Robot_Position> swarm;  // as /flock/positions carries it
+    std::vector<Robot_Position> swarm;  // as /flock/world_poses carries it
     for (const auto& entry : world_->robots()) {
       swarm.push_back(ToRobotPosition(entry.first, entry.second.pose));
     }
@@ -290,7 +290,7 @@ void Run::TakeFrame(const std::vector<core::Position>& truth) {
       files_ok_ = trace_csv_.Append(row) && files_ok_;
     }
   }
-  // As the recorder takes /flock/positions.
+  // As the recorder takes /flock/world_poses.
   std::size_t bad = 0;
   core::MetricsFrame frame =
       core::FrameOf(tick_, static_cast<double>(tick_) * config_.tick_period_s, truth, &bad);

@@ -26,7 +26,7 @@ using core::RunMetrics;
 using XmlRpc::XmlRpcValue;
 
 constexpr char kNode[] = "recorder";
-// /flock/positions comes every tick and a slow recorder must not lose lock-step ticks: the
+// /flock/world_poses comes every tick and a slow recorder must not lose lock-step ticks: the
 // queue holds many ticks (the simulator does not wait for observers once it runs).
 constexpr std::uint32_t kPositionsQueue = 10000;
 constexpr std::uint32_t kMissionQueue = 1000;
@@ -227,7 +227,7 @@ bool Recorder::Initialize() {
   }
   stats_pub_ = nh_.advertise<Swarm_Stats>(names::kStats, kStatsQueue);
   // Small messages every tick: Nagle's algorithm would batch and delay them.
-  positions_sub_ = nh_.subscribe(names::kPositions, kPositionsQueue, &Recorder::OnPositions, this,
+  positions_sub_ = nh_.subscribe(names::kWorldPoses, kPositionsQueue, &Recorder::OnPositions, this,
                                  ros::TransportHints().tcpNoDelay());
   mission_new_sub_ =
       nh_.subscribe(names::kMissionNew, kMissionQueue, &Recorder::OnMissionNew, this);
@@ -281,7 +281,7 @@ void Recorder::Shutdown() {
 void Recorder::OnPositions(const Robot_Positions::ConstPtr& msg) {
   if (!std::isfinite(msg->sim_time)) {
     if (bad_position_warning_.Due()) {
-      ROS_WARN("%s: ignored /flock/positions of tick %llu: sim_time is not finite", kNode,
+      ROS_WARN("%s: ignored /flock/world_poses of tick %llu: sim_time is not finite", kNode,
                static_cast<unsigned long long>(msg->tick));
     }
     return;
@@ -292,7 +292,7 @@ void Recorder::OnPositions(const Robot_Positions::ConstPtr& msg) {
     // The latched message again (a reconnection), or a restarted simulator.
     if (msg->tick < newest && tick_warning_.Due()) {
       ROS_WARN(
-          "%s: /flock/positions went back from tick %llu to %llu; ignored until it passes "
+          "%s: /flock/world_poses went back from tick %llu to %llu; ignored until it passes "
           "tick %llu again",
           kNode, static_cast<unsigned long long>(newest),
           static_cast<unsigned long long>(msg->tick), static_cast<unsigned long long>(newest));
@@ -300,7 +300,7 @@ void Recorder::OnPositions(const Robot_Positions::ConstPtr& msg) {
     return;
   }
   if (has_frames && msg->tick > newest + 1 && tick_warning_.Due()) {
-    ROS_WARN("%s: missed /flock/positions ticks %llu..%llu (queue overflow or late start)", kNode,
+    ROS_WARN("%s: missed /flock/world_poses ticks %llu..%llu (queue overflow or late start)", kNode,
              static_cast<unsigned long long>(newest + 1),
              static_cast<unsigned long long>(msg->tick - 1));
   }

@@ -213,7 +213,7 @@ void RobotNode::Hand(const core::MissionMessage& message, const core::Sender& fr
   const core::RobotSession::Taken taken = session_->Take(message, from, known_robots_);
   // Real time: a new first leader publishes its statuses on topics of its own (lock-step: its
   // answers carry them); published with this tick's messages.
-  if (taken.first_leader && !lockstep()) outlets_.Advertise(nh_);
+  if (taken.first_leader && !lockstep()) mission_pubs_.Advertise(nh_);
   Say(taken);
 }
 
@@ -261,15 +261,16 @@ void RobotNode::Tick() {
   const core::Pose2 before = in.self;
   PublishStatusIfDue();
   // Real time: a robot promoted to first leader (its first leader was lost) connects its
-  // mission outlets before it speaks (it takes over the tick after its promotion).
-  if (!lockstep() && !outlets_.advertised() && session_->brain().missions().IsFirstLeaderOfAny()) {
-    outlets_.Advertise(nh_);
+  // mission publishers before it speaks (it takes over the tick after its promotion).
+  if (!lockstep() && !mission_pubs_.advertised() &&
+      session_->brain().missions().IsFirstLeaderOfAny()) {
+    mission_pubs_.Advertise(nh_);
   }
   // Lock-step: stamped with the tick's own simulated time (as the batch engine does), not with
   // whatever /clock this process has seen by now.
   const ros::Time stamp = lockstep() ? ros::Time(perception_->sim_time) : ros::Time::now();
   core::RobotSession::Step step = session_->Tick(
-      std::move(in), perception_->tick, perception_->sim_time, lockstep() || outlets_.Ready());
+      std::move(in), perception_->tick, perception_->sim_time, lockstep() || mission_pubs_.Ready());
   const Tick_Answer answer = ToTickAnswer(step.answer, stamp);
   const core::Velocity command = step.brain.command;
   for (const Mission_Status& st : answer.statuses) {
@@ -282,7 +283,7 @@ void RobotNode::Tick() {
     transport_->SendAnswer(answer);
   } else {
     // Mission messages go out before the command.
-    if (!outlets_.Publish(answer)) {
+    if (!mission_pubs_.Publish(answer)) {
       ROS_ERROR("robot %u: has mission messages to send but is no first leader", id_);
     }
     transport_->SendCommand(ToTwist(command));

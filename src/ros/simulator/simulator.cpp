@@ -20,7 +20,7 @@ namespace {
 
 constexpr char kClockTopic[] = "/clock";
 // Queue sizes. /flock/position: every robot publishes every tick and only virtual copies /
-// statists matter, so it must hold a whole swarm's tick. /flock/positions: the recorder must
+// statists matter, so it must hold a whole swarm's tick. /flock/world_poses: the recorder must
 // see every lock-step tick.
 constexpr std::uint32_t kPositionQueue = 10000;
 constexpr std::uint32_t kPositionsQueue = 100;
@@ -126,7 +126,7 @@ bool Simulator::Initialize() {
 void Simulator::Connect() {
   const std::uint32_t positions_queue = lockstep_ ? kLockstepPositionsQueue : kPositionsQueue;
   // Latched: a late subscriber (a test after the last lock-step tick) still gets the state.
-  positions_pub_ = nh_.advertise<Robot_Positions>(names::kPositions, positions_queue, true);
+  positions_pub_ = nh_.advertise<Robot_Positions>(names::kWorldPoses, positions_queue, true);
   if (lockstep_) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>(kClockTopic, 10);
   sim::VisualsParams visuals;
   visuals.rate_hz = params_.markers_rate_hz;

@@ -4,7 +4,7 @@
 // <prefix><id>/odom -> <prefix><id>/base_link at its own rate, with Gaussian odometry noise and
 // a heading drift of its own. The robots on top are hardware robots (hardware_transport.h). For
 // the dispatcher, the recorder and the tools it publishes what the simulator would: the bases'
-// true poses on /flock/positions once per tick and the robot list on /flock/robots.
+// true poses on /flock/world_poses once per tick and the robot list on /flock/robots.
 #ifndef SWARM_TRANSPORT_ROS_BASES_BASES_H_
 #define SWARM_TRANSPORT_ROS_BASES_BASES_H_
 
@@ -55,7 +55,7 @@ class Bases {
 
  private:
   void OnCmdVel(std::uint16_t id, const geometry_msgs::Twist& msg);
-  // A tick begins: contacts, events, the heading drift, /flock/positions.
+  // A tick begins: contacts, events, the heading drift, /flock/world_poses.
   void BeginTick(double since_start_s);
   void PublishOdometry();
   std::string Frame(std::uint16_t id, const char* frame) const;

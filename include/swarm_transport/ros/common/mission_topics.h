@@ -51,7 +51,7 @@ class MissionTopics {
 // A real-time first leader's publishers of the mission topics (only robots that became one
 // advertise them, so the swarm does not become all-to-all), and a lock-step simulator's, which
 // publishes its robots' answers on them for observers.
-class MissionOutlets {
+class MissionPublishers {
  public:
   bool advertised() const { return static_cast<bool>(status_pub_); }
   // Advertises them (once) and asks the master how many nodes subscribe to each; `queue_size`
@@ -62,7 +62,7 @@ class MissionOutlets {
   // node that subscribed when it got the mission is connected, or 5 s of wall time passed.
   bool Ready();
   // Publishes an answer's mission messages (statuses on /flock/mission/status, progress on
-  // .../progress, ...). False when it has some but the outlets are not advertised.
+  // .../progress, ...). False when it has some but the publishers are not advertised.
   bool Publish(const Tick_Answer& answer);
   // One mission message on its topic (object update and delete, freeze, continue; the others
   // are the dispatcher's topics and are not published here), one status or progress report.

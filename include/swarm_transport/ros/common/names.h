@@ -11,8 +11,8 @@ namespace names {
 
 // Global topics (SPEC 3).
 constexpr char kPosition[] = "/flock/position";
-constexpr char kPositions[] = "/flock/positions";  // aggregated, from the simulator
-constexpr char kRobots[] = "/flock/robots";        // latched: the robots that exist
+constexpr char kWorldPoses[] = "/flock/world_poses";  // aggregated, from the simulator
+constexpr char kRobots[] = "/flock/robots";           // latched: the robots that exist
 constexpr char kMissionNew[] = "/flock/mission/new";
 constexpr char kMissionStatus[] = "/flock/mission/status";      // each phase once, on entry
 constexpr char kMissionProgress[] = "/flock/mission/progress";  // periodic, within a phase

@@ -29,7 +29,7 @@ struct DispatcherOptions {
   // mission is checked against the robots of its start tick as the spawns and kills make them.
   std::string events_file;
   std::vector<TimedEvent> events;  // ... read from it
-  double start_delay_s = 1.0;      // ~start_delay_s: after the first /flock/positions, >= 0
+  double start_delay_s = 1.0;      // ~start_delay_s: after the first /flock/world_poses, >= 0
   int max_live_missions = 64;      // ~max_live_missions (else /swarm's): more are rejected
   // ~silent_abort_ticks: a running mission whose first leader said nothing (phase or progress
   // report, one every 50 ticks) for this many ticks is ABORTED - its first leader is lost
@@ -81,7 +81,7 @@ std::string DelayText(double s);
 // not finite), or empty.
 std::string StatusProblem(const Mission_Status& status);
 
-// The physical robots of a /flock/positions with their poses, by id: the swarm the policy knows.
+// The physical robots of a /flock/world_poses with their poses, by id: the swarm the policy knows.
 std::map<std::uint16_t, core::PlannerRobot> SwarmOf(const std::vector<Robot_Position>& robots);
 
 }  // namespace swarm_transport

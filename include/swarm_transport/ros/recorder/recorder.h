@@ -61,7 +61,7 @@ class CsvFile {
 // What the recorder makes of the messages it hears - the recorder node on its topics, the batch
 // engine on its own run's - with the same checks. Each returns an empty string when taken, else
 // the warning to give.
-// /flock/positions -> a frame: physical robots with finite positions, ascending ids, the first of
+// /flock/world_poses -> a frame: physical robots with finite positions, ascending ids, the first of
 // duplicate ids; `bad` counts those with non-finite positions.
 core::MetricsFrame RecorderFrame(const Robot_Positions& msg, std::size_t* bad);
 // The same of a message's fields.
@@ -79,7 +79,7 @@ std::string RecordStatus(const core::StatusReport& status, std::uint64_t tick,
 // so that a reader never sees half a file.
 bool WriteRunFile(const std::string& run_dir, const std::string& row, std::string* error);
 
-// Subscribes /flock/positions (every tick), /flock/mission/new and /flock/mission/status;
+// Subscribes /flock/world_poses (every tick), /flock/mission/new and /flock/mission/status;
 // publishes /flock/stats at every sample; writes swarm_count.csv (one row per sample),
 // missions.csv (one row per DONE / ABORTED mission) and run.csv (one summary row, rewritten
 // after every finished mission and at shutdown) to <output_dir>/<run_name>/.

@@ -129,7 +129,7 @@ class LockstepSession {
   ros::Subscriber answer_sub_;
   std::vector<core::RecruitStatist> recruiting_;  // the dispatcher's latest answer's
   // The answers' mission messages for observers (robots in lock-step publish no mission topic).
-  MissionOutlets observer_topics_;
+  MissionPublishers observer_topics_;
   WarnThrottle late_warning_;  // wall-clock throttles of repeated warnings
   WarnThrottle refused_warning_;
   WarnThrottle bad_answer_warning_;

@@ -42,7 +42,7 @@
 namespace swarm_transport {
 
 // The turtlesim-like simulator [SPEC 7]: per-robot cmd_vel, pose, neighbors and teleport
-// services, global spawn/kill/reset, /flock/positions, markers, tf, and in lock-step /clock.
+// services, global spawn/kill/reset, /flock/world_poses, markers, tf, and in lock-step /clock.
 // Single-threaded: every callback runs from Run()'s loop between world steps, so the world
 // needs no lock and a tick's result never depends on thread scheduling.
 // Robots hosted in the simulator's own process can be linked directly (AttachDirect): no
@@ -91,7 +91,7 @@ class Simulator : public RobotOutlet {
   // Idles after the last lock-step tick: services, markers and tf stay up.
   void Idle();
 
-  // One radio round: Neighbors to every receiving robot, then /flock/positions.
+  // One radio round: Neighbors to every receiving robot, then /flock/world_poses.
   void PublishRadio();
   // At the start of a round: a flocking tuning accepted since the last one goes out with this
   // round (and on /flock/tuning); the radio's range and the markers follow its local range.

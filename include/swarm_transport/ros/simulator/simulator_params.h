@@ -27,7 +27,7 @@ struct SimulatorParams {
   core::Clock clock = core::Clock::kRealtime;  // ~clock: realtime | lockstep
   double lockstep_timeout_s = 2.0;  // ~lockstep_timeout_s: wait this long for a tick's answers
   int lockstep_max_ticks = 0;       // ~lockstep_max_ticks: stop ticking after this many (0: never)
-  // ~lockstep_observers: also wait until /flock/positions has this many subscribers (a
+  // ~lockstep_observers: also wait until /flock/world_poses has this many subscribers (a
   // recorder, a test, the demo) so that nobody misses the first ticks.
   int lockstep_observers = 0;
   double lockstep_start_timeout_s = 60.0;  // ~lockstep_start_timeout_s: wait for robots to connect
@@ -50,7 +50,7 @@ struct SimulatorParams {
   double radio_range_m = 1.0;        // ~radio_range_m: default /swarm/local_range_m
   // ~pose_topics: advertise robot_<id>/pose for every robot. Default true, false when robots
   // are linked directly (a robot_host that runs the simulator): a publication per robot costs
-  // roscpp time in every publish of the process, and /flock/positions carries every pose.
+  // roscpp time in every publish of the process, and /flock/world_poses carries every pose.
   bool pose_topics = true;
 
   // Empty when valid, else one sentence naming the first bad parameter and its accepted range.
