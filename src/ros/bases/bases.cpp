@@ -70,7 +70,8 @@ bool ReadBasesParams(const ros::NodeHandle& nh, const ros::NodeHandle& p, BasesP
       !ReadPrivate(p, "frame_prefix", &params->frame_prefix, error) ||
       !ReadPrivate(p, "fixed_frame", &params->fixed_frame, error) ||
       !ReadPrivate(p, "tf", &params->tf, error) ||
-      !ReadPrivate(p, "events_file", &params->events_file, error)) {
+      !ReadPrivate(p, "events_file", &params->events_file, error) ||
+      !ReadPrivate(p, "positions", &params->positions, error)) {
     return false;
   }
   // A placement file with robots unset: every line (PlaceInitialRobots sets the number).
@@ -119,8 +120,10 @@ bool Bases::Initialize() {
     return false;
   }
   schedule_ = std::make_unique<EventSchedule>(events_);
-  positions_pub_ = nh_.advertise<Robot_Positions>(names::kWorldPoses, 10, true);
-  robots_pub_ = nh_.advertise<Robot_Positions>(names::kRobots, 1, true);
+  if (params_.positions) {
+    positions_pub_ = nh_.advertise<Robot_Positions>(names::kWorldPoses, 10, true);
+    robots_pub_ = nh_.advertise<Robot_Positions>(names::kRobots, 1, true);
+  }
   freeze_pub_ = nh_.advertise<Robot_Freeze>(names::kFreeze, 10);
   continue_pub_ = nh_.advertise<Robot_Continue>(names::kContinue, 10);
   Robot_Positions list;
@@ -145,7 +148,7 @@ bool Bases::Initialize() {
     t.transform.rotation.w = 1.0;
     statics.push_back(t);
   }
-  robots_pub_.publish(list);
+  if (params_.positions) robots_pub_.publish(list);
   if (params_.tf) {
     tf_ = std::make_unique<tf2_ros::TransformBroadcaster>();
     static_tf_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
@@ -189,6 +192,7 @@ void Bases::BeginTick(double since_start_s) {
           entry.first, {pose.position, noise_.at(entry.first).Drift(pose.heading)}, nullptr);
     }
   }
+  if (!params_.positions) return;
   auto all = boost::make_shared<Robot_Positions>();
   all->tick = tick_;
   all->sim_time = since_start_s;

@@ -40,6 +40,9 @@ struct BasesParams {
   std::string fixed_frame = "map";      // ~fixed_frame: the shared frame, = every odom frame
   bool tf = true;                       // ~tf
   std::string events_file;              // ~events_file: odom_stop, freeze, continue
+  // ~positions: publish the true poses on /flock/world_poses and the list on /flock/robots
+  // (false: the core machine's positions node does, from the robots' /flock/position).
+  bool positions = true;
   std::string Validate() const;
 };
 bool ReadBasesParams(const ros::NodeHandle& nh, const ros::NodeHandle& p, BasesParams* params,

@@ -1,0 +1,17 @@
+// The core machine of a swarm on real robots: the robots' /flock/position as /flock/world_poses.
+#include <ros/ros.h>
+
+#include "swarm_transport/ros/bases/positions_relay.h"
+#include "swarm_transport/ros/common/master_watch.h"
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "positions");
+  ros::NodeHandle nh;
+  ros::NodeHandle private_nh("~");
+  swarm_transport::MasterWatch watch;
+  swarm_transport::PositionsRelay relay(nh, private_nh);
+  if (!relay.Initialize()) return watch.ExitCode(1);
+  ros::spin();
+  ros::shutdown();
+  return watch.ExitCode(0);
+}
