@@ -11,22 +11,15 @@
 #include <random>
 #include <set>
 
+#include "planner_fixture.h"
+
 namespace swarm_transport {
 namespace core {
 namespace {
 
-// V = 1 m per time unit, VA = 90 degrees per time unit, corridor 0.5 m: round numbers.
-SelectionParams Round() {
-  SelectionParams p;
-  p.speed_m = 1.0;
-  p.turn_deg = 90.0;
-  p.corridor_m = 0.5;
-  p.meet_tolerance = 0.5;
-  return p;
-}
-
-PlannerRobot Robot(double x, double y, double deg) { return {{x, y}, Angle(deg)}; }
-PlannerTarget Target(double x, double y) { return {{x, y}, 0.0}; }
+using planner_fixture::Robot;
+using planner_fixture::Target;
+SelectionParams Round() { return planner_fixture::Round(0.5); }
 
 TEST(SelectionMatrixTest, TimeIsDistanceOverSpeedPlusTurnOverTurnRate) {
   const std::vector<PlannerRobot> robots{Robot(0, 0, 0), Robot(0, 1, 0)};

@@ -9,24 +9,16 @@
 #include <random>
 #include <set>
 
+#include "planner_fixture.h"
 #include "swarm_transport/core/assignment.h"
 
 namespace swarm_transport {
 namespace core {
 namespace {
 
-// V = 1 m per time unit, VA = 90 degrees per time unit, corridor 0.5 m: round numbers.
-SelectionParams Round() {
-  SelectionParams p;
-  p.speed_m = 1.0;
-  p.turn_deg = 90.0;
-  p.corridor_m = 0.5;
-  p.meet_tolerance = 0.1;
-  return p;
-}
-
-PlannerRobot Robot(double x, double y, double deg) { return {{x, y}, Angle(deg)}; }
-PlannerTarget Target(double x, double y) { return {{x, y}, 0.0}; }
+using planner_fixture::Robot;
+using planner_fixture::Target;
+SelectionParams Round() { return planner_fixture::Round(0.1); }
 
 SelectionPlan Corrected(const std::vector<PlannerRobot>& robots,
                         const std::vector<PlannerTarget>& targets, std::vector<int> target_of,

@@ -6,8 +6,6 @@
 #include <cmath>
 #include <sstream>
 
-#include "swarm_transport/Robot_Continue.h"
-#include "swarm_transport/Robot_Freeze.h"
 #include "swarm_transport/Robot_Positions.h"
 #include "swarm_transport/ros/common/conversions.h"
 #include "swarm_transport/ros/common/names.h"
@@ -124,8 +122,7 @@ bool Bases::Initialize() {
     positions_pub_ = nh_.advertise<Robot_Positions>(names::kWorldPoses, 10, true);
     robots_pub_ = nh_.advertise<Robot_Positions>(names::kRobots, 1, true);
   }
-  freeze_pub_ = nh_.advertise<Robot_Freeze>(names::kFreeze, 10);
-  continue_pub_ = nh_.advertise<Robot_Continue>(names::kContinue, 10);
+  mission_pubs_.Advertise(nh_);  // the schedule's freeze and continue
   Robot_Positions list;
   std::vector<geometry_msgs::TransformStamped> statics;
   for (const auto& entry : world_->robots()) {
@@ -180,9 +177,9 @@ void Bases::BeginTick(double since_start_s) {
                static_cast<unsigned long long>(tick_), e.robot,
                static_cast<unsigned long long>(e.ticks));
     } else if (e.kind == TimedEvent::Kind::kFreeze) {
-      freeze_pub_.publish(ToMsg(core::Freeze{e.from, e.to}));
+      mission_pubs_.Publish(core::MissionMessage{core::Freeze{e.from, e.to}});
     } else if (e.kind == TimedEvent::Kind::kContinue) {
-      continue_pub_.publish(ToMsg(core::Continue{e.from, e.to}));
+      mission_pubs_.Publish(core::MissionMessage{core::Continue{e.from, e.to}});
     }
   }
   if (params_.noise.heading_drift_deg > 0.0) {

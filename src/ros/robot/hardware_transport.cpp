@@ -17,8 +17,6 @@ namespace {
 constexpr std::uint32_t kPositionQueue = 1000;
 constexpr std::uint32_t kOdomQueue = 5;
 constexpr std::uint32_t kStatsQueue = 10;
-// Its own ticks: the longest wait between two looks at ros::ok().
-constexpr double kMaxWaitS = 1.0;
 
 double YawOf(double x, double y, double z, double w) {
   return std::atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z));
@@ -177,17 +175,8 @@ void HardwareTransport::SendStats(const std::string& line) {
 }
 
 bool HardwareTransport::Spin(double tick_period_s) {
-  std::string error;
-  const TickClock::duration period =
-      std::chrono::duration_cast<TickClock::duration>(std::chrono::duration<double>(tick_period_s));
-  if (!ticker_.Start(
-          period, [this] { OnTickDue(); }, &error)) {
-    ROS_FATAL("robot %u: cannot tick: %s", id_, error.c_str());
-    return false;
-  }
-  while (ros::ok()) ros::getGlobalCallbackQueue()->callAvailable(ros::WallDuration(kMaxWaitS));
-  ticker_.Stop();
-  return true;
+  return SpinWithOwnTicks(
+      &ticker_, tick_period_s, [this] { OnTickDue(); }, id_);
 }
 
 void HardwareTransport::OnTickDue() {

@@ -15,9 +15,6 @@ constexpr std::uint32_t kNeighborsQueue = 2;
 // Its own loop: rounds kept for its next tick (one per period arrives; more only when it was
 // held up, and then the oldest are stale - its diagnostics count them missed).
 constexpr std::size_t kRoundsKept = 4;
-// Its own ticks: the longest wait between two looks at ros::ok() (ros::shutdown ends a wait at
-// once; ros::spin looks every 0.1 s, a wake-up per tick at 10 Hz).
-constexpr double kMaxWaitS = 1.0;
 constexpr std::uint32_t kStatsQueue = 10;
 
 }  // namespace
@@ -91,19 +88,8 @@ bool OwnTopicsTransport::Spin(double tick_period_s) {
     ros::spin();
     return true;
   }
-  std::string error;
-  const TickClock::duration period =
-      std::chrono::duration_cast<TickClock::duration>(std::chrono::duration<double>(tick_period_s));
-  if (!ticker_.Start(
-          period, [this] { OnTickDue(); }, &error)) {
-    ROS_FATAL("robot %u: cannot tick: %s", id_, error.c_str());
-    return false;
-  }
-  // Its other callbacks (mission topics, the robot list, services, connections) until ROS shuts
-  // down (ros::shutdown wakes the wait).
-  while (ros::ok()) ros::getGlobalCallbackQueue()->callAvailable(ros::WallDuration(kMaxWaitS));
-  ticker_.Stop();
-  return true;
+  return SpinWithOwnTicks(
+      &ticker_, tick_period_s, [this] { OnTickDue(); }, id_);
 }
 
 void OwnTopicsTransport::OnTickDue() {

@@ -1,7 +1,9 @@
 #include "swarm_transport/ros/robot/tick_loop.h"
 
 #include <poll.h>
+#include <ros/callback_queue.h>
 #include <ros/poll_manager.h>
+#include <ros/ros.h>
 #include <sys/timerfd.h>
 #include <unistd.h>
 
@@ -112,6 +114,26 @@ class LockedCallback : public ros::CallbackInterface {
 void LockedCallbackQueue::addCallback(const ros::CallbackInterfacePtr& callback,
                                       uint64_t owner_id) {
   target_->addCallback(boost::make_shared<LockedCallback>(callback, mutex_), owner_id);
+}
+
+namespace {
+// The longest wait between two looks at ros::ok() (ros::shutdown ends a wait at once; ros::spin
+// looks every 0.1 s, a wake-up per tick at 10 Hz).
+constexpr double kMaxWaitS = 1.0;
+}  // namespace
+
+bool SpinWithOwnTicks(PollThreadTicker* ticker, double period_s, std::function<void()> tick,
+                      unsigned id) {
+  std::string error;
+  const TickClock::duration period =
+      std::chrono::duration_cast<TickClock::duration>(std::chrono::duration<double>(period_s));
+  if (!ticker->Start(period, std::move(tick), &error)) {
+    ROS_FATAL("robot %u: cannot tick: %s", id, error.c_str());
+    return false;
+  }
+  while (ros::ok()) ros::getGlobalCallbackQueue()->callAvailable(ros::WallDuration(kMaxWaitS));
+  ticker->Stop();
+  return true;
 }
 
 }  // namespace swarm_transport

@@ -21,6 +21,7 @@
 
 #include "swarm_transport/core/modes.h"
 #include "swarm_transport/ros/common/event_schedule.h"
+#include "swarm_transport/ros/common/mission_topics.h"
 #include "swarm_transport/ros/common/params.h"
 #include "swarm_transport/sim/base_noise.h"
 #include "swarm_transport/sim/world2d.h"
@@ -76,8 +77,7 @@ class Bases {
   std::map<std::uint16_t, ros::Publisher> odom_pubs_;
   ros::Publisher positions_pub_;
   ros::Publisher robots_pub_;
-  ros::Publisher freeze_pub_;
-  ros::Publisher continue_pub_;
+  MissionPublishers mission_pubs_;  // freeze and continue of the event schedule
   std::unique_ptr<tf2_ros::TransformBroadcaster> tf_;
   std::unique_ptr<tf2_ros::StaticTransformBroadcaster> static_tf_;
 };

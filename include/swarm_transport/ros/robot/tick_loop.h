@@ -110,6 +110,13 @@ class PollThreadTicker {
   std::shared_ptr<State> state_;  // shared with the poll set's callback (it may outlive Stop)
 };
 
+// A robot process's loop on its own timeline: `ticker` runs `tick` every `period_s` while this
+// thread spins the global queue (mission topics, the robot list, services, connections) until
+// ROS shuts down (ros::shutdown wakes the wait). False (after one ROS_FATAL naming robot `id`)
+// when the timer cannot be made.
+bool SpinWithOwnTicks(PollThreadTicker* ticker, double period_s, std::function<void()> tick,
+                      unsigned id);
+
 // Runs the callbacks of a robot's node handles on `target` (the thread that spins it), each
 // holding `mutex`: the robot's ticks run in another thread (PollThreadTicker) under the same
 // lock, so its state is never touched by two threads at once.
