@@ -44,9 +44,14 @@ class HungRobot(unittest.TestCase):
             self.assertGreaterEqual(stopped_ticks, rospy.get_param('~min_ticks_while_hung'),
                                     '%d ticks in %.0f s with robot %d stopped'
                                     % (stopped_ticks, window, hung))
-            # It stands while stopped (the last ticks of the window).
+            # It stands while stopped (the last ticks of the window): it drives nothing, so its
+            # heading stays exactly as it was (a neighbour's push-apart moves a robot but never
+            # turns it), and it moves at most as far as pushes take it.
             end = self.log.latest_tick()
             a, b = self.log.at(end - 20), self.log.at(end)
+            turned = abs((b[hung][2] - a[hung][2] + 180.0) % 360.0 - 180.0)
+            self.assertLessEqual(turned, rospy.get_param('~still_deg'),
+                                 'the stopped robot turned %.4f deg' % turned)
             self.assertLessEqual(st.moved(a[hung], b[hung]), rospy.get_param('~still_m'),
                                  'the stopped robot moved')
         finally:
