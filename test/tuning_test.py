@@ -3,7 +3,8 @@
 running lock-step swarm. Every robot takes a change at the same tick - the tick the simulator
 announces on /flock/tuning - and reports it in its ~state; a bad value (free will out of
 [0, 360], a speed beyond the local range) is refused with an ERROR naming the key, and nothing
-changes: not the server's values, not /flock/tuning, not any robot."""
+changes: not the server's values, not /flock/tuning, not any robot. The same server sets the
+simulator's radio loss live (not relayed): at 1 no robot hears another."""
 
 import sys
 import threading
@@ -148,6 +149,28 @@ class Tuning(unittest.TestCase):
             self.assertAlmostEqual(s.local_range_m, wide['local_range_m'])
             self.assertAlmostEqual(s.speed_m_per_tick, wide['speed_m_per_tick'])
             self.assertAlmostEqual(s.free_will_deg, g('free_will_deg'))
+
+        # The simulator's radio loss (not relayed): 1 silences every robot's neighbours, a
+        # probability outside [0, 1] is refused and changes nothing, 0 brings them back.
+        self.assertAlmostEqual(after['radio_loss'], rospy.get_param('/swarm/radio_loss', 0.0))
+        answer = client.update_configuration({'radio_loss': 1.0})
+        self.assertAlmostEqual(answer['radio_loss'], 1.0)
+        self.settle()
+        heard = [s.heard for s in self.states()]
+        self.assertEqual(heard, [0] * g('robots'), 'robots heard others at radio_loss 1')
+        self.refused(client, {'radio_loss': g('bad_radio_loss')}, 'radio_loss',
+                     {'radio_loss': 1.0})
+        self.refused(client, {'radio_loss': 0.0, 'free_will_deg': g('bad_free_will_deg')},
+                     'free_will_deg', {'radio_loss': 1.0, 'free_will_deg': g('free_will_deg')})
+        self.settle()
+        self.assertEqual([s.heard for s in self.states()], [0] * g('robots'),
+                         'a refused change reached the radio')
+        client.update_configuration({'radio_loss': 0.0})
+        self.assertTrue(st.wait_for(lambda: sum(s.heard for s in self.states()) > 0,
+                                    self.timeout),
+                        'no robot hears another after radio_loss went back to 0')
+        with self.lock:
+            self.assertEqual(len(self.tunings), 2, 'the radio loss went out on /flock/tuning')
 
 
 if __name__ == '__main__':

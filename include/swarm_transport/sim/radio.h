@@ -67,6 +67,8 @@ class Radio {
   const std::vector<long>& extra_owner() const { return extra_owner_; }
   // A new range from the next Begin() on (a live tuning of the local range, issue 13).
   void set_range_m(double range_m) { params_.range_m = range_m; }
+  // A new loss probability from the next Hear() on (a live change, dynamic_reconfigure).
+  void set_loss(double loss) { params_.loss = loss; }
 
  private:
   long IndexOf(std::uint16_t id) const;

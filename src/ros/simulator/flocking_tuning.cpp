@@ -1,11 +1,13 @@
 #include "swarm_transport/ros/simulator/flocking_tuning.h"
 
+#include <cmath>
 #include <string>
 
 namespace swarm_transport {
 
-FlockingConfig ToFlockingConfig(const core::FlockingTuning& tuning) {
+FlockingConfig ToFlockingConfig(const core::FlockingTuning& tuning, double radio_loss) {
   FlockingConfig config = FlockingConfig::__getDefault__();
+  config.radio_loss = radio_loss;
   config.free_will_deg = tuning.free_will_deg;
   config.cohesion = tuning.cohesion;
   config.local_range_m = tuning.local_range_m;
@@ -22,8 +24,9 @@ core::FlockingTuning ToFlockingTuning(const FlockingConfig& config) {
   return t;
 }
 
-FlockingTuningServer::FlockingTuningServer(ros::NodeHandle private_nh, sim::TuningRelay* relay)
-    : relay_(relay) {
+FlockingTuningServer::FlockingTuningServer(ros::NodeHandle private_nh, sim::TuningRelay* relay,
+                                           double radio_loss)
+    : relay_(relay), radio_loss_(radio_loss) {
   // The server reads its first values from ~free_will_deg etc. (the .cfg's defaults when
   // unset): /swarm's values are put there first, so that it starts with what the swarm uses.
   const core::FlockingTuning start = relay_->newest();
@@ -31,6 +34,7 @@ FlockingTuningServer::FlockingTuningServer(ros::NodeHandle private_nh, sim::Tuni
   private_nh.setParam("cohesion", start.cohesion);
   private_nh.setParam("local_range_m", start.local_range_m);
   private_nh.setParam("speed_m_per_tick", start.speed_m_per_tick);
+  private_nh.setParam("radio_loss", radio_loss_);
   server_ = std::make_unique<dynamic_reconfigure::Server<FlockingConfig>>(mutex_, private_nh);
   server_->setCallback(
       [this](FlockingConfig& config, std::uint32_t level) { OnReconfigure(config, level); });
@@ -39,22 +43,41 @@ FlockingTuningServer::FlockingTuningServer(ros::NodeHandle private_nh, sim::Tuni
 void FlockingTuningServer::OnReconfigure(FlockingConfig& config, std::uint32_t /*level*/) {
   const core::FlockingTuning wanted = ToFlockingTuning(config);
   const core::FlockingTuning before = relay_->newest();
-  const std::string why = relay_->Propose(wanted);
+  const double loss = config.radio_loss;
+  // One change is taken whole or not at all: the radio's loss is checked before the relay
+  // takes the flocking part.
+  std::string why;
+  if (!std::isfinite(loss) || loss < 0.0 || loss > 1.0) {
+    why = "radio_loss must be a probability in [0, 1] but is " + std::to_string(loss);
+  } else {
+    why = relay_->Propose(wanted);
+  }
   if (!why.empty()) {
     ROS_ERROR(
         "simulator: refused the flocking tuning (dynamic_reconfigure): %s; nothing changed "
-        "(free_will_deg %g, cohesion %g, local_range_m %g, speed_m_per_tick %g)",
+        "(free_will_deg %g, cohesion %g, local_range_m %g, speed_m_per_tick %g, radio_loss %g)",
         why.c_str(), before.free_will_deg, before.cohesion, before.local_range_m,
-        before.speed_m_per_tick);
+        before.speed_m_per_tick, radio_loss_);
     // The server stores, publishes and answers what the callback leaves in `config`.
-    config = ToFlockingConfig(before);
+    config = ToFlockingConfig(before, radio_loss_);
     return;
+  }
+  if (loss != radio_loss_) {
+    radio_loss_ = loss;
+    pending_radio_loss_ = loss;
+    ROS_INFO("simulator: radio loss %g accepted; the radio uses it from the next round", loss);
   }
   if (wanted == before) return;
   ROS_INFO(
       "simulator: flocking tuning accepted: free_will_deg %g, cohesion %g, local_range_m %g, "
       "speed_m_per_tick %g; every robot uses it from the next tick",
       wanted.free_will_deg, wanted.cohesion, wanted.local_range_m, wanted.speed_m_per_tick);
+}
+
+std::optional<double> FlockingTuningServer::TakeRadioLoss() {
+  std::optional<double> taken;
+  taken.swap(pending_radio_loss_);
+  return taken;
 }
 
 }  // namespace swarm_transport

@@ -5,9 +5,9 @@
 
 namespace swarm_transport {
 
-void LiveTuning::Connect(ros::NodeHandle nh, ros::NodeHandle private_nh) {
+void LiveTuning::Connect(ros::NodeHandle nh, ros::NodeHandle private_nh, double radio_loss) {
   pub_ = nh.advertise<Flocking_Tuning>(names::kTuning, 1, true);
-  server_ = std::make_unique<FlockingTuningServer>(private_nh, &relay_);
+  server_ = std::make_unique<FlockingTuningServer>(private_nh, &relay_, radio_loss);
 }
 
 void LiveTuning::Shutdown() {

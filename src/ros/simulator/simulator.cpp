@@ -143,7 +143,7 @@ void Simulator::Connect() {
   hold_->Connect(private_nh_);
   if (events_) events_->Connect(nh_, kMissionQueue);
   if (lockstep_) session_->Connect();
-  tuning_->Connect(nh_, private_nh_);
+  tuning_->Connect(nh_, private_nh_, params_.radio_loss);
 }
 
 void Simulator::Run() {
@@ -292,6 +292,12 @@ void Simulator::PublishClock() {
 }
 
 void Simulator::BeginTuningRound() {
+  if (const std::optional<double> loss = tuning_->TakeRadioLoss()) {
+    params_.radio_loss = *loss;
+    radio_->set_loss(*loss);
+    ROS_INFO("simulator: radio loss %g from tick %llu", *loss,
+             static_cast<unsigned long long>(tick_));
+  }
   const std::optional<core::TuningGeneration> tuned = tuning_->BeginRound(tick_);
   if (!tuned) return;
   const core::FlockingTuning& t = tuned->tuning;

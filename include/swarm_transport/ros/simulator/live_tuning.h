@@ -23,8 +23,9 @@ class LiveTuning {
  public:
   explicit LiveTuning(const core::SwarmConfig& swarm) : relay_(swarm) {}
 
-  // Advertises /flock/tuning and starts the dynamic_reconfigure server on `private_nh`.
-  void Connect(ros::NodeHandle nh, ros::NodeHandle private_nh);
+  // Advertises /flock/tuning and starts the dynamic_reconfigure server on `private_nh`;
+  // `radio_loss` is the loss the simulator's radio starts with.
+  void Connect(ros::NodeHandle nh, ros::NodeHandle private_nh, double radio_loss);
   void Shutdown();
 
   // Round `tick` begins: a tuning accepted since the last round becomes current, goes out on
@@ -33,6 +34,10 @@ class LiveTuning {
   // The current tuning into a robot's round (nothing before the first change).
   void Fill(core::Round* round) const { relay_.Fill(round); }
   std::uint32_t generation() const { return relay_.generation(); }
+  // A radio loss accepted since the last call, once (for the simulator's radio).
+  std::optional<double> TakeRadioLoss() {
+    return server_ ? server_->TakeRadioLoss() : std::nullopt;
+  }
 
  private:
   sim::TuningRelay relay_;
