@@ -1,0 +1,107 @@
+"""The soak's missions (scripts/soak, issue 29): transport missions between four places of the
+arena, submitted through the dispatcher's service, every state they report, and the recorder's
+rows of them."""
+
+import csv
+import os
+import threading
+import time
+
+from swarm_transport import soak_faults as sf
+
+LIVE = (0, 1, 2, 3, 4)  # QUEUED .. UNLOADING
+DONE, ABORTED, REJECTED = 5, 6, 7
+STATE = ['QUEUED', 'GATHERING', 'LOADING', 'TRANSPORT', 'UNLOADING', 'DONE', 'ABORTED',
+         'REJECTED']
+# Where objects start and go: four places in the thesis's 11.09 m arena, far enough apart
+# that a 1 x 1 object and its robots at one do not touch another's.
+SLOTS = ((2.5, 2.5), (8.5, 2.5), (8.5, 8.5), (2.5, 8.5))
+
+
+class Missions(object):
+    """The soak's own missions (ids from 1 up, never reused) and every state they reported."""
+
+    def __init__(self):
+        self.lock = threading.Lock()
+        self.states = {}     # id -> list of (wall, state, reason)
+        self.slots = {}      # id -> (from slot, to slot)
+        self.submitted = {}  # id -> wall time of its submission
+        self.next_id = 1
+
+    def on_status(self, msg):
+        with self.lock:
+            if msg.mission_id in self.states:
+                seen = self.states[msg.mission_id]
+                if not seen or seen[-1][1] != msg.state:
+                    seen.append((time.time(), msg.state, msg.reason))
+
+    def final(self, mid):
+        seen = self.states[mid]
+        return seen[-1][1] if seen else None
+
+    def live(self):
+        with self.lock:
+            return [m for m in self.states if self.final(m) not in (DONE, ABORTED, REJECTED)]
+
+    def count(self, state):
+        with self.lock:
+            return sum(1 for m in self.states if self.final(m) == state)
+
+    def free_slots(self):
+        used = set()
+        for m in self.live():
+            used.update(self.slots[m])
+        return [i for i in range(len(SLOTS)) if i not in used]
+
+    def hung(self, now, hung_s):
+        with self.lock:
+            return [m for m, seen in self.states.items()
+                    if (not seen or seen[-1][1] not in (DONE, ABORTED, REJECTED))
+                    and now - (seen[-1][0] if seen else self.submitted[m]) > hung_s]
+
+
+def submit(missions, a, rng, log):
+    """One more transport mission between two free slots, through the dispatcher's service;
+    False when the dispatcher is not there (it is being restarted)."""
+    import rospy
+    from swarm_transport.msg import New_Mission
+    from swarm_transport.srv import Submit_Mission
+    free = missions.free_slots()
+    if len(free) < 2:
+        return False
+    src, dst = rng.sample(free, 2)
+    m = New_Mission()
+    m.mission_id = missions.next_id
+    m.robot_count = a.mission_robots
+    m.leader_number = 1
+    m.object_position_x, m.object_position_y = SLOTS[src]
+    m.object_size_x = m.object_size_y = 1.0
+    m.target_x, m.target_y = SLOTS[dst]
+    try:
+        rospy.wait_for_service(sf.DISPATCHER + '/submit', 0.5)
+        answer = rospy.ServiceProxy(sf.DISPATCHER + '/submit', Submit_Mission)(m)
+    except Exception:  # noqa: BLE001 - down, or went down during the call
+        return False
+    with missions.lock:
+        missions.next_id += 1
+        missions.states[m.mission_id] = []
+        missions.submitted[m.mission_id] = time.time()
+        missions.slots[m.mission_id] = (src, dst)
+        if answer.code != 0:
+            missions.states[m.mission_id].append((time.time(), REJECTED, answer.message))
+    log('mission %d: %d robots, slot %d -> %d: %s' % (m.mission_id, a.mission_robots, src, dst,
+                                                     answer.message))
+    return True
+
+
+def recorded_rows(run_dir):
+    """{mission_id: rows} of the recorder's missions.csv (every file of the run)."""
+    rows = {}
+    path = os.path.join(run_dir, 'missions.csv')
+    if not os.path.exists(path):
+        return rows
+    with open(path) as f:
+        for row in csv.reader(line for line in f if not line.startswith('#')):
+            if row and row[0].isdigit():
+                rows[int(row[0])] = rows.get(int(row[0]), 0) + 1
+    return rows

@@ -1,0 +1,279 @@
+"""One soak run (scripts/soak, issue 29): the swarm, the dispatcher and the recorder each in its
+own roslaunch (so that each can be killed and started again), the missions source, the faults and
+what each did, and the figures of the RESULT line."""
+
+import os
+import random
+import signal
+import time
+
+from swarm_transport import soak_faults as sf
+from swarm_transport.soak_missions import (ABORTED, DONE, REJECTED, STATE, Missions,
+                                           recorded_rows, submit)
+
+SAMPLE_S = 5.0        # memory, descriptors and crashes are sampled this often
+EFFECT_S = 15.0       # a fault's effect is read this long after it
+STOP_S = 2.0          # SIGSTOP of a robot lasts this long
+RESPAWN_S = 5.0       # a killed robot comes back after this long
+RESTART_S = 3.0       # a killed dispatcher or recorder is started again after this long
+LOSS_S = 10.0         # a burst of radio loss lasts this long
+FLOOD = 500           # invalid orders in a flood
+FLOOD_FIRST_ID = 60000
+
+
+class Run(object):
+
+    def __init__(self, a, ros, log):
+        self.a = a
+        self.ros = ros
+        self.log = log
+        self.rng = random.Random(a.seed)
+        self.missions = Missions()
+        self.watch = sf.Watch(a.warmup_s)
+        self.schedule = sf.Schedule(a.seed, a.robots, a.gap_s[0], a.gap_s[1],
+                                    first_s=a.first_fault_s)
+        self.pending = []    # (at, what, callable)
+        self.faults = []     # dicts: kind, at_s, what, effect
+        self.launches = {}   # role -> Popen of its roslaunch
+        self.starts = {}     # role -> how often it was started
+        self.hung = set()
+        self.record_dir = os.path.join(a.out, 'record')
+        self.run_dir = os.path.join(self.record_dir, 'soak')
+        self.t0 = None
+
+    # --- the nodes ------------------------------------------------------------------------
+
+    def start(self):
+        import rospy
+        from swarm_transport.msg import Mission_Status, New_Mission, Robot_Positions
+        a = self.a
+        self.launches['swarm'] = self.ros.launch('swarm.launch', {
+            'robots': a.robots, 'seed': a.seed, 'deploy': a.deploy, 'dispatcher': 'false',
+            'recorder': 'false', 'robot_output': 'log'}, name='swarm')
+        rospy.init_node('soak', disable_signals=True)
+        rospy.Subscriber('/flock/mission/status', Mission_Status, self.missions.on_status,
+                         queue_size=1000)
+        self.flood_pub = rospy.Publisher('/flock/mission/new', New_Mission, queue_size=FLOOD)
+        rospy.wait_for_message('/flock/world_poses', Robot_Positions, timeout=120)
+        names = self.robot_names()
+        if not sf.wait(lambda: all(sf.node_pid(n) for n in names), 120, 1.0):
+            raise RuntimeError('not every robot registered within 120 s (logs: %s)'
+                               % self.ros.log_dir)
+        # One roslaunch after the other: roslaunches started together on a fresh master race
+        # for its /run_id, and the losers exit.
+        for name, start in ((sf.DISPATCHER, self.start_dispatcher),
+                            (sf.RECORDER, self.start_recorder)):
+            start()
+            if not sf.wait(lambda: sf.node_pid(name), 60, 0.5):
+                raise RuntimeError('%s did not register within 60 s (logs: %s)'
+                                   % (name, self.ros.log_dir))
+        self.log('swarm up: %d robots (%s), logs in %s' % (a.robots, a.deploy, self.ros.log_dir))
+
+    def robot_names(self):
+        if self.a.deploy == 'host':
+            return ['/robot_host']
+        return [sf.robot_node(r, 'process') for r in range(self.a.robots)]
+
+    def start_dispatcher(self):
+        self.launches['dispatcher'] = self.ros.launch(
+            'dispatcher.launch', {'output': 'log'}, name=self.log_name('dispatcher'))
+
+    def start_recorder(self):
+        self.launches['recorder'] = self.ros.launch(
+            'recorder.launch', {'output': 'log', 'output_dir': self.record_dir,
+                                'run_name': 'soak'}, name=self.log_name('recorder'))
+
+    def log_name(self, role):
+        """role_K: the K-th start of that role (each start its own log file)."""
+        self.starts[role] = self.starts.get(role, 0) + 1
+        return '%s_%d' % (role, self.starts[role])
+
+    def stop_launch(self, role):
+        p = self.launches.pop(role, None)
+        if p is None or p.poll() is not None:
+            return
+        try:
+            os.killpg(p.pid, signal.SIGINT)
+            p.wait(timeout=15)
+        except Exception:  # noqa: BLE001 - already gone, or stuck: then SIGKILL
+            try:
+                os.killpg(p.pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+
+    def stop(self):
+        self.ros.stop()
+
+    # --- faults ---------------------------------------------------------------------------
+
+    def later(self, delay_s, what, fn):
+        self.pending.append((time.time() + delay_s, what, fn))
+
+    def inject(self, kind, rid, loss):
+        now = time.time()
+        fault = {'kind': kind, 'at_s': round(now - self.t0, 1), 'what': '', 'effect': ''}
+        self.faults.append(fault)
+        node = sf.robot_node(rid, self.a.deploy)
+        if kind == 'robot_kill':
+            if self.a.deploy == 'host':
+                fault['what'] = 'robot %d removed (/kill) and added again (/spawn)' % rid
+                self.respawn(rid, fault, launch=False)
+            else:
+                pid = self.watch.kill(node)
+                fault['what'] = 'SIGKILL robot %d (pid %s)' % (rid, pid)
+                self.later(RESPAWN_S, 'respawn robot %d' % rid,
+                           lambda: self.respawn(rid, fault, launch=True))
+        elif kind == 'robot_stop':
+            pid = self.watch.kill(node, signal.SIGSTOP)
+            fault['what'] = 'SIGSTOP %s (pid %s) for %.0f s' % (node, pid, STOP_S)
+            if pid is not None:
+                self.later(STOP_S, 'SIGCONT %s' % node, lambda: os.kill(pid, signal.SIGCONT))
+            self.later(EFFECT_S, 'effect', lambda: self.effect_alive(fault, node, pid))
+        elif kind in ('dispatcher_restart', 'recorder_restart'):
+            role = kind.split('_')[0]
+            name = sf.DISPATCHER if role == 'dispatcher' else sf.RECORDER
+            pid = self.watch.kill(name)
+            fault['what'] = 'SIGKILL %s (pid %s), started again after %.0f s' % (
+                name, pid, RESTART_S)
+            self.stop_launch(role)
+            start = self.start_dispatcher if role == 'dispatcher' else self.start_recorder
+            self.later(RESTART_S, 'restart ' + name, start)
+            self.later(RESTART_S + EFFECT_S, 'effect',
+                       lambda: self.effect_restart(fault, name, pid))
+        elif kind == 'radio_loss':
+            self.set_radio_loss(loss)
+            fault['what'] = 'radio_loss %.2f for %.0f s' % (loss, LOSS_S)
+            self.later(LOSS_S, 'radio_loss back', lambda: self.set_radio_loss(0.0))
+            self.later(EFFECT_S, 'effect', lambda: self.effect_missions(fault))
+        elif kind == 'flood':
+            for m in sf.invalid_orders(FLOOD, FLOOD_FIRST_ID):
+                self.flood_pub.publish(m)
+            fault['what'] = '%d invalid orders on /flock/mission/new' % FLOOD
+            self.later(EFFECT_S, 'effect',
+                       lambda: self.effect_alive(fault, sf.DISPATCHER, None))
+        self.log('fault %d %s: %s' % (len(self.faults), kind, fault['what']))
+
+    def respawn(self, rid, fault, launch):
+        import rospy
+        from swarm_transport.srv import Kill, Spawn
+        try:
+            rospy.ServiceProxy('/kill', Kill)(robot_id=rid)
+            x, y = self.rng.uniform(4.5, 6.5), self.rng.uniform(4.5, 6.5)
+            answer = rospy.ServiceProxy('/spawn', Spawn)(robot_id=rid, x=x, y=y, theta=0.0)
+        except Exception as e:  # noqa: BLE001
+            fault['effect'] = 'respawn failed: %s' % e
+            return
+        if launch:
+            role = 'robot_%d' % rid
+            self.stop_launch(role)  # an earlier respawn's launch of this id
+            self.launches[role] = self.ros.launch(
+                'robot.launch', {'id': rid, 'output': 'log'}, name=self.log_name(role))
+        node = sf.robot_node(rid, self.a.deploy)
+        self.later(EFFECT_S, 'effect', lambda: self.effect_alive(
+            fault, node, None, 'spawn: %s' % answer.message))
+
+    def set_radio_loss(self, loss):
+        import dynamic_reconfigure.client
+        try:
+            client = dynamic_reconfigure.client.Client(sf.SIMULATOR, timeout=5.0)
+            client.update_configuration({'radio_loss': loss})
+        except Exception as e:  # noqa: BLE001
+            self.log('radio_loss %.2f not set: %s' % (loss, e))
+
+    def effect_alive(self, fault, node, old_pid, note=''):
+        pid = sf.node_pid(node)
+        state = ('%s answers (pid %s)' % (node, pid)) if pid else ('%s does not answer' % node)
+        fault['effect'] = '; '.join(x for x in (note, state, self.mission_line()) if x)
+        self.log('effect of fault %s: %s' % (fault['kind'], fault['effect']))
+
+    def effect_restart(self, fault, name, old_pid):
+        pid = sf.node_pid(name)
+        back = ('back as pid %s' % pid) if pid and pid != old_pid else 'NOT back'
+        fault['effect'] = '%s %s; %s' % (name, back, self.mission_line())
+        self.log('effect of fault %s: %s' % (fault['kind'], fault['effect']))
+
+    def effect_missions(self, fault):
+        fault['effect'] = self.mission_line()
+        self.log('effect of fault %s: %s' % (fault['kind'], fault['effect']))
+
+    def mission_line(self):
+        m = self.missions
+        live = m.live()
+        with m.lock:
+            phases = ', '.join('%d %s' % (i, STATE[m.final(i)] if m.final(i) is not None
+                                          else 'sent') for i in sorted(live))
+        return 'live missions: %s' % (phases or 'none')
+
+    # --- the run --------------------------------------------------------------------------
+
+    def go(self):
+        a = self.a
+        self.start()
+        self.t0 = time.time()
+        end_faults = self.t0 + a.minutes * 60.0
+        next_fault = self.schedule.draw()
+        next_sample = next_progress = self.t0
+        next_submit = self.t0
+        while True:
+            now = time.time()
+            faulting = now < end_faults
+            if faulting and now - self.t0 >= next_fault[0]:
+                self.inject(*next_fault[1:])
+                next_fault = self.schedule.draw()
+            for item in [p for p in self.pending if p[0] <= now]:
+                self.pending.remove(item)
+                try:
+                    item[2]()
+                except Exception as e:  # noqa: BLE001 - logged, the soak goes on
+                    self.log('%s failed: %s' % (item[1], e))
+            if faulting and now >= next_submit and len(self.missions.live()) < a.live:
+                submit(self.missions, a, self.rng, self.log)
+                next_submit = now + 2.0
+            if now >= next_sample:
+                self.sample(now)
+                next_sample = now + SAMPLE_S
+            if now >= next_progress:
+                self.progress(now)
+                next_progress = now + a.progress_s
+            if not faulting and not self.pending and (
+                    not self.missions.live() or now > end_faults + a.drain_s):
+                break
+            time.sleep(0.2)
+        self.sample(time.time())
+        return self.result()
+
+    def sample(self, now):
+        for name in [sf.SIMULATOR, sf.DISPATCHER, sf.RECORDER] + self.robot_names():
+            self.watch.track(name, now)
+        self.watch.sample(now)
+        self.hung.update(self.missions.hung(now, self.a.hung_s))
+
+    def progress(self, now):
+        m = self.missions
+        self.log('missions %d: done %d, aborted %d, live %d; faults %d; crashes %d; '
+                 'RSS of the nodes %.0f MB' % (
+                     len(m.states), m.count(DONE), m.count(ABORTED), len(m.live()),
+                     len(self.faults), len(self.watch.crashes), self.watch.rss_mb()))
+
+    def result(self):
+        m = self.missions
+        rows = recorded_rows(self.run_dir)
+        with m.lock:
+            ended = [i for i in m.states if m.final(i) in (DONE, ABORTED)]
+        lost = sorted(i for i in ended if i not in rows)
+        duplicate = sum(n - 1 for i, n in rows.items() if n > 1)
+        rss, rss_node, fds, fds_node = self.watch.growth()
+        for t, name, pid in self.watch.crashes:
+            self.log('CRASH %s (pid %d) at %.0f s' % (name, pid, t - (self.t0 or t)))
+        if lost:
+            self.log('missions ended without a row in %s/missions.csv: %s' % (self.run_dir, lost))
+        self.hung.update(m.live())
+        return {
+            'ok': True, 'missions': len(m.states), 'done': m.count(DONE),
+            'aborted': m.count(ABORTED), 'rejected': m.count(REJECTED),
+            'hung': len(self.hung), 'lost_rows': len(lost), 'duplicate_rows': duplicate,
+            'crashes': len(self.watch.crashes), 'rss_growth_pct': round(rss, 1),
+            'rss_growth_node': rss_node, 'fd_growth': fds, 'fd_growth_node': fds_node,
+            'faults': len(self.faults), 'fault_log': self.faults,
+            'minutes': self.a.minutes, 'seed': self.a.seed, 'robots': self.a.robots,
+            'deploy': self.a.deploy}

@@ -1,0 +1,88 @@
+"""The pure parts of scripts/soak (issue 29): its fault schedule, the recorder rows it counts,
+the memory and descriptor growth it reports and the checks of its bounded slice."""
+
+import os
+import tempfile
+import unittest
+
+from swarm_transport import soak, soak_faults, soak_missions
+
+
+def result(**changes):
+    base = {'ok': True, 'hung': 0, 'crashes': 0, 'lost_rows': 0, 'duplicate_rows': 0, 'done': 2,
+            'fault_log': [{'kind': k, 'at_s': 1.0, 'effect': 'live missions: none'}
+                          for k in soak_faults.KINDS]}
+    base.update(changes)
+    return base
+
+
+class Schedule(unittest.TestCase):
+
+    def test_every_kind_once_per_round_and_the_seed_repeats_it(self):
+        a = soak_faults.Schedule(7, 12, 10.0, 20.0, first_s=30.0)
+        b = soak_faults.Schedule(7, 12, 10.0, 20.0, first_s=30.0)
+        first = [a.draw() for _ in range(12)]
+        self.assertEqual(first, [b.draw() for _ in range(12)])
+        n = len(soak_faults.KINDS)
+        for r in range(2):
+            self.assertEqual(sorted(f[1] for f in first[r * n:(r + 1) * n]),
+                             sorted(soak_faults.KINDS))
+        self.assertEqual(first[0][0], 30.0)
+        gaps = [b_[0] - a_[0] for a_, b_ in zip(first, first[1:])]
+        self.assertTrue(all(10.0 <= g <= 20.0 for g in gaps), gaps)
+        self.assertTrue(all(0 <= f[2] < 12 for f in first))
+        self.assertNotEqual(first, [soak_faults.Schedule(8, 12, 10.0, 20.0, 30.0).draw()
+                                    for _ in range(12)])
+
+
+class Rows(unittest.TestCase):
+
+    def test_rows_per_mission_skip_the_header_and_comments(self):
+        with tempfile.TemporaryDirectory() as d:
+            with open(os.path.join(d, 'missions.csv'), 'w') as f:
+                f.write('mission_id,kind\n1,transport\n# a gap: the recorder was down\n'
+                        '2,transport\n1,transport\n')
+            self.assertEqual(soak_missions.recorded_rows(d), {1: 2, 2: 1})
+            self.assertEqual(soak_missions.recorded_rows(os.path.join(d, 'none')), {})
+
+
+class Growth(unittest.TestCase):
+
+    def test_growth_from_the_first_sample_after_the_warm_up(self):
+        w = soak_faults.Watch(warmup_s=10.0)
+        w.incarnations = {
+            1: {'name': '/a', 'start': 0.0, 'end': None,
+                'samples': [(5.0, 50, 3), (10.0, 100, 10), (20.0, 110, 12), (30.0, 120, 11)]},
+            # too young to judge (lived less than twice the warm-up)
+            2: {'name': '/b', 'start': 0.0, 'end': None,
+                'samples': [(10.0, 100, 10), (15.0, 500, 90)]},
+        }
+        rss, rss_node, fds, fds_node = w.growth()
+        self.assertAlmostEqual(rss, 20.0)
+        self.assertEqual((rss_node, fds, fds_node), ('/a', 1, '/a'))
+
+
+class Checks(unittest.TestCase):
+
+    def failures(self, r):
+        return {name: why for name, why in soak.checks(r) if why}
+
+    def test_a_clean_soak_passes(self):
+        self.assertEqual(self.failures(result()), {})
+
+    def test_each_finding_fails_its_check(self):
+        self.assertIn('no_mission_hung', self.failures(result(hung=1)))
+        self.assertIn('no_crash', self.failures(result(crashes=2)))
+        self.assertIn('no_mission_row_lost', self.failures(result(lost_rows=1)))
+        self.assertIn('no_mission_row_twice', self.failures(result(duplicate_rows=1)))
+        self.assertIn('missions_done', self.failures(result(done=0)))
+        self.assertIn('soak_ran', self.failures(result(ok=False, error='no master')))
+        log = result()['fault_log'][:3]
+        self.assertIn('every_fault_kind_injected', self.failures(result(fault_log=log)))
+        log = result()['fault_log']
+        log[2] = dict(log[2], effect='/recorder NOT back; live missions: none')
+        self.assertIn('every_fault_had_its_effect', self.failures(result(fault_log=log)))
+
+
+if __name__ == '__main__':
+    unittest.main()
