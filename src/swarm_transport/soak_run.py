@@ -16,6 +16,7 @@ EFFECT_S = 15.0       # a fault's effect is read this long after it
 STOP_S = 2.0          # SIGSTOP of a robot lasts this long
 RESPAWN_S = 5.0       # a killed robot comes back after this long
 RESTART_S = 3.0       # a killed dispatcher or recorder is started again after this long
+BACK_S = 60.0         # ... and must be registered again within this long
 LOSS_S = 10.0         # a burst of radio loss lasts this long
 FLOOD = 500           # invalid orders in a flood
 FLOOD_FIRST_ID = 60000
@@ -138,8 +139,8 @@ class Run(object):
             self.stop_launch(role)
             start = self.start_dispatcher if role == 'dispatcher' else self.start_recorder
             self.later(RESTART_S, 'restart ' + name, start)
-            self.later(RESTART_S + EFFECT_S, 'effect',
-                       lambda: self.effect_restart(fault, name, pid))
+            self.later(RESTART_S + 1.0, 'effect',
+                       lambda: self.effect_restart(fault, name, pid, time.time() + BACK_S))
         elif kind == 'radio_loss':
             self.set_radio_loss(loss)
             fault['what'] = 'radio_loss %.2f for %.0f s' % (loss, LOSS_S)
@@ -180,16 +181,30 @@ class Run(object):
         except Exception as e:  # noqa: BLE001
             self.log('radio_loss %.2f not set: %s' % (loss, e))
 
-    def effect_alive(self, fault, node, old_pid, note=''):
+    def effect_alive(self, fault, node, old_pid, note='', deadline=None):
+        """Whether `node` answers (polled until it does, at most BACK_S), and the missions."""
+        deadline = deadline or time.time() + BACK_S
         pid = sf.node_pid(node)
+        if not pid and time.time() < deadline:
+            self.later(1.0, 'effect', lambda: self.effect_alive(fault, node, old_pid, note,
+                                                                deadline))
+            return
         state = ('%s answers (pid %s)' % (node, pid)) if pid else ('%s does not answer' % node)
         fault['effect'] = '; '.join(x for x in (note, state, self.mission_line()) if x)
         self.log('effect of fault %s: %s' % (fault['kind'], fault['effect']))
 
-    def effect_restart(self, fault, name, old_pid):
+    def effect_restart(self, fault, name, old_pid, deadline):
+        """Polls until the node is registered again (a roslaunch on a busy machine takes
+        seconds), at most until `deadline`."""
         pid = sf.node_pid(name)
-        back = ('back as pid %s' % pid) if pid and pid != old_pid else 'NOT back'
-        fault['effect'] = '%s %s; %s' % (name, back, self.mission_line())
+        back = pid is not None and pid != old_pid
+        if not back and time.time() < deadline:
+            self.later(1.0, 'effect', lambda: self.effect_restart(fault, name, old_pid, deadline))
+            return
+        killed_at = self.t0 + fault['at_s']
+        what = ('back as pid %s after %.1f s' % (pid, time.time() - killed_at) if back
+                else 'NOT back within %.0f s' % (time.time() - killed_at))
+        fault['effect'] = '%s %s; %s' % (name, what, self.mission_line())
         self.log('effect of fault %s: %s' % (fault['kind'], fault['effect']))
 
     def effect_missions(self, fault):
