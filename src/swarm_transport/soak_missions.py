@@ -1,4 +1,4 @@
-"""The soak's missions (scripts/soak, issue 29): transport missions between four places of the
+"""The soak's missions (scripts/soak, issue 29): transport missions between six places of the
 arena, submitted through the dispatcher's service, every state they report, and the recorder's
 rows of them."""
 
@@ -13,9 +13,10 @@ LIVE = (0, 1, 2, 3, 4)  # QUEUED .. UNLOADING
 DONE, ABORTED, REJECTED = 5, 6, 7
 STATE = ['QUEUED', 'GATHERING', 'LOADING', 'TRANSPORT', 'UNLOADING', 'DONE', 'ABORTED',
          'REJECTED']
-# Where objects start and go: four places in the thesis's 11.09 m arena, far enough apart
-# that a 1 x 1 object and its robots at one do not touch another's.
-SLOTS = ((2.5, 2.5), (8.5, 2.5), (8.5, 8.5), (2.5, 8.5))
+# Where objects start and go: six places in the thesis's 11.09 m arena, at least 3 m apart, so
+# that a 1 x 1 object and its robots at one do not touch another's; a live mission holds two
+# (its start and its target), so three missions can be live at once.
+SLOTS = ((2.5, 2.5), (5.5, 2.0), (8.5, 2.5), (8.5, 8.5), (5.5, 9.0), (2.5, 8.5))
 
 
 class Missions(object):
