@@ -19,6 +19,13 @@ PlannerRobot AsHeard(Vec2 position, Angle heading) {
           Angle(static_cast<float>(heading.degrees()))};
 }
 
+// Whether a mission's robots gather to planned slots: gather_planner not nearest, or the order
+// names its leaders (leader_ids: the dispatcher's pick of a count-only order, whose leaders must
+// take the front; issue 27, item 6).
+bool PlansGathering(const TransportParams& tp, const MissionSpec& spec) {
+  return tp.gather_planner != GatherPlanner::kNearest || !spec.leader_ids.empty();
+}
+
 }  // namespace
 
 std::optional<Vec2> MissionAgent::PlanSlot(const Live& live, const Pose2& self,
@@ -31,12 +38,14 @@ std::optional<Vec2> MissionAgent::PlanSlot(const Live& live, const Pose2& self,
   }
   for (const auto& kv : live.last_seen) known.emplace(kv.first, AsHeard(kv.second, Angle(0.0)));
   std::vector<PlannerRobot> robots;
+  std::vector<std::uint16_t> ids;
   int self_index = -1;
   for (std::uint16_t id : Left(live)) {
     const auto it = known.find(id);
     if (it == known.end()) continue;
     if (id == self_id_) self_index = static_cast<int>(robots.size());
     robots.push_back(it->second);
+    ids.push_back(id);
   }
   if (self_index < 0) return std::nullopt;
   const std::vector<Vec2> slots = SlotsIn(live.spec.ObjectAt(live.centre), robots.size());
@@ -47,13 +56,33 @@ std::optional<Vec2> MissionAgent::PlanSlot(const Live& live, const Pose2& self,
   sp.speed_m = params_.speed_m_per_tick;
   sp.turn_deg = params_.transport.planner_turn_deg_per_tick;
   sp.corridor_m = params_.corridor_m;
-  const GatherPlanner planner = params_.transport.gather_planner;
-  const SelectionPlan plan =
-      planner == GatherPlanner::kSelectionMatrix ? PlanSelection(robots, targets, sp)
-      : planner == GatherPlanner::kRowMinimum
-          ? PlanRowMinimum(robots, targets, sp)
-          : PlanOptimal(robots, targets, sp, planner == GatherPlanner::kBottleneck);
+  // A mission that names its leaders (the dispatcher's count-only pick, issue 27) is planned
+  // even with gather_planner nearest (by the selection matrix, which picked them), its leaders
+  // onto the front slots toward the target.
+  const GatherPlanner planner = params_.transport.gather_planner == GatherPlanner::kNearest
+                                    ? GatherPlanner::kSelectionMatrix
+                                    : params_.transport.gather_planner;
+  const Planner plan_by = [planner](const std::vector<PlannerRobot>& r,
+                                    const std::vector<PlannerTarget>& t, const SelectionParams& p) {
+    return planner == GatherPlanner::kSelectionMatrix ? PlanSelection(r, t, p)
+           : planner == GatherPlanner::kRowMinimum
+               ? PlanRowMinimum(r, t, p)
+               : PlanOptimal(r, t, p, planner == GatherPlanner::kBottleneck);
+  };
+  SelectionPlan plan;
+  if (live.spec.leader_ids.empty()) {
+    plan = plan_by(robots, targets, sp);
+  } else {
+    const std::vector<std::uint16_t> leaders = LeadersNow(live);
+    std::vector<bool> is_leader;
+    for (std::uint16_t id : ids) {
+      is_leader.push_back(std::find(leaders.begin(), leaders.end(), id) != leaders.end());
+    }
+    plan = PlanLeadersInFront(robots, is_leader, targets, live.centre,
+                              live.spec.target - live.centre, sp, plan_by);
+  }
   record->robots = robots;
+  record->ids = ids;
   record->targets = targets;
   record->params = sp;
   record->plan = plan;
@@ -317,7 +346,7 @@ MissionPlan MissionAgent::Tick(const Pose2& self, const std::vector<Neighbour>& 
       carry.target = live.route.empty() ? spec.target : live.route[live.leg];
       carry.goal_tolerance_m = params_.goal_tolerance_m;
       carry.formation_offset = live.place;
-      if (params_.transport.gather_planner != GatherPlanner::kNearest && !carry.transport) {
+      if (PlansGathering(params_.transport, spec) && !carry.transport) {
         // Planned at its first gathering tick, then every replan_period ticks (on the same
         // ticks for every member).
         const std::uint64_t period =

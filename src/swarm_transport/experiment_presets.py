@@ -46,9 +46,20 @@ DISPERSION_METRICS = ['coverage_fraction', 'nn_spacing_mean_m', 'nn_spacing_cv']
 # mission robots not yet placed (on their slot; without one, inside the object) while gathering
 # that swerved, slowed or stood for a robot in the way; plan_unstable_pct: the share (%) of a
 # planned gathering's plans that hit the round cap; plan_cost_ratio / plan_cost_ratio_max: the
-# median / largest over a run's plans of sum X (its pairs) / sum X (Hungarian, the least).
+# median / largest over a run's plans of sum X (its pairs) / sum X (Hungarian, the least);
+# plan_arrival_error_ticks / plan_arrival_error_max: the median / largest over a run's robots of
+# |actual - planned arrival| on their slots (ticks; the first plan of each robot's final slot,
+# core/plan_arrival.h), plan_arrival_late_ticks the signed median (> 0: later than planned),
+# plan_unarrived the robots that never stood on their final slot, plan_slot_changes the plans
+# that gave a robot another slot.
+PLAN_ARRIVAL_METRICS = ['plan_arrival_error_ticks', 'plan_arrival_error_max',
+                        'plan_arrival_late_ticks', 'plan_unarrived', 'plan_slot_changes']
+# leaders_behind (issue 27, item 6): at the transport's start, the non-leaders standing more than
+# a robot radius further toward the target than the rearmost leader (0: the leaders lead from
+# the front).
 OPTIONAL_METRICS = {'transport': ['loading_nn_cv', 'first_leader_waits', 'gathering_interference',
-                                  'plan_unstable_pct', 'plan_cost_ratio', 'plan_cost_ratio_max']}
+                                  'plan_unstable_pct', 'plan_cost_ratio', 'plan_cost_ratio_max',
+                                  'leaders_behind'] + PLAN_ARRIVAL_METRICS}
 TRACED_METRICS = {'first_leader_waits'}
 TOP_KEYS = {'description', 'kind', 'order', 'section', 'figures', 'runs', 'seed_base',
             'base_config', 'config', 'robots', 'placement', 'cluster', 'max_ticks',
@@ -60,7 +71,8 @@ TOP_KEYS = {'description', 'kind', 'order', 'section', 'figures', 'runs', 'seed_
 MEASURED_KEYS = {'source', 'metrics', 'rows'}
 SETTING_KEYS = {'name', 'label', 'x', 'group', 'robots', 'config', 'mission', 'placement',
                 'max_ticks'}
-MISSION_KEYS = {'id', 'object', 'target', 'leaders', 'group', 'leader', 'mode'}
+# group: the robots [0, group); count (ext): the dispatcher picks that many (robot_count).
+MISSION_KEYS = {'id', 'object', 'target', 'leaders', 'group', 'leader', 'mode', 'count'}
 CLUSTER_KEYS = {'origin', 'spacing_m', 'side_m', 'min_distance_m', 'heading_deg'}
 
 
@@ -184,7 +196,9 @@ def validate(preset, name):
             if 'target' not in m:
                 fail('setting %s: the mission needs a target' % s['name'])
             if p['kind'] == 'transport':
-                group = m.get('group', st['robots'])
+                if 'group' in m and 'count' in m:
+                    fail('setting %s: a mission has a group or a count, not both' % s['name'])
+                group = m.get('count', m.get('group', st['robots']))
                 if 'object' not in m or not 1 <= m.get('leaders', 0) <= group <= st['robots']:
                     fail('setting %s: a transport needs an object and 1 <= leaders <= group '
                          '<= robots' % s['name'])

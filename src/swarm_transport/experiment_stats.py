@@ -157,8 +157,8 @@ def _mission(kind, run_dir, info):
             # Counted by the batch engine only (result.json); launched runs leave it empty.
             metrics['gathering_swerves'] = number(info.get('gathering_swerves'))
             # Also the batch engine's (issue 27); the plan metrics only with a planner.
-            for name in ('gathering_interference', 'plan_unstable_pct', 'plan_cost_ratio',
-                         'plan_cost_ratio_max'):
+            for name in ['gathering_interference', 'plan_unstable_pct', 'plan_cost_ratio',
+                         'plan_cost_ratio_max', 'leaders_behind'] + presets.PLAN_ARRIVAL_METRICS:
                 if name in metrics:
                     metrics[name] = number(info.get(name))
             if 'first_leader_waits' in metrics:

@@ -227,7 +227,10 @@ def _run_mission(job, ros, state, lock, waiter, trace=None):
         lead = job['leader_id']
         msg.robot_index_from, msg.robot_index_to, msg.leader_number = lead, lead + 1, 1
     else:
-        msg.robot_index_from, msg.robot_index_to = 0, int(m.get('group', job['robots']))
+        # (ext) count: the dispatcher picks that many robots (robot_count, no range).
+        msg.robot_count = int(m.get('count', 0))
+        msg.robot_index_from = 0
+        msg.robot_index_to = 0 if msg.robot_count else int(m.get('group', job['robots']))
         msg.leader_number = int(m['leaders'])
         (msg.object_position_x, msg.object_position_y,
          msg.object_size_x, msg.object_size_y) = m['object']

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -160,6 +161,21 @@ SelectionPlan PlanRowMinimum(const std::vector<PlannerRobot>& robots,
 SelectionPlan PlanOptimal(const std::vector<PlannerRobot>& robots,
                           const std::vector<PlannerTarget>& targets, const SelectionParams& p,
                           bool bottleneck);
+
+// (ext, issue 27, item 6) A plan whose leaders take the front slots: `is_leader` (per robot)
+// marks the leaders; the front slots are the k slots furthest along `course` (k: the number of
+// leaders; the projection of slot - `centre` onto `course`), widened by every slot as far along
+// as the k-th (to 1e-9 m: a row across the course). `plan` assigns the leaders to the front
+// slots, then the other robots to the slots left (each part is planned on its own: the robots
+// of one part are not blockers in the other's corrections). The result is one plan over all
+// robots and targets (indices as given; rounds the larger, stable when both are). Without a
+// leader, or with fewer targets than robots, it is `plan` of all of them.
+using Planner = std::function<SelectionPlan(
+    const std::vector<PlannerRobot>&, const std::vector<PlannerTarget>&, const SelectionParams&)>;
+SelectionPlan PlanLeadersInFront(const std::vector<PlannerRobot>& robots,
+                                 const std::vector<bool>& is_leader,
+                                 const std::vector<PlannerTarget>& targets, Vec2 centre,
+                                 Vec2 course, const SelectionParams& p, const Planner& plan);
 
 // Slots spread over `object` for `count` robots: the centres of the cells of a grid over its
 // bounding box (cells as square as the box allows, cols x rows >= count) that lie inside it,

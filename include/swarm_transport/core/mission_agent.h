@@ -129,6 +129,7 @@ struct GatherPlanRecord {
   std::uint16_t mission_id = 0;
   std::uint64_t tick = 0;
   std::vector<PlannerRobot> robots;  // the mission's robots left, as heard
+  std::vector<std::uint16_t> ids;    // their ids, in the same order
   std::vector<PlannerTarget> targets;
   SelectionParams params;
   SelectionPlan plan;

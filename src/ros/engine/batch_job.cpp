@@ -90,9 +90,14 @@ bool ReadBatchJob(const std::string& path, BatchJob* job, std::string* error) {
       msg.robot_index_to = static_cast<std::uint16_t>(job->leader_id + 1);
       msg.leader_number = 1;
     } else {
+      // (ext) count: the dispatcher picks that many robots (robot_count, no range); else the
+      // robots [0, group).
+      msg.robot_count = static_cast<std::uint16_t>(m["count"] ? m["count"].as<int>() : 0);
       msg.robot_index_from = 0;
       msg.robot_index_to =
-          static_cast<std::uint16_t>(m["group"] ? m["group"].as<int>() : job->robots);
+          msg.robot_count > 0
+              ? 0
+              : static_cast<std::uint16_t>(m["group"] ? m["group"].as<int>() : job->robots);
       msg.leader_number = static_cast<std::uint16_t>(m["leaders"].as<int>());
       msg.object_position_x = static_cast<float>(m["object"][0].as<double>());
       msg.object_position_y = static_cast<float>(m["object"][1].as<double>());

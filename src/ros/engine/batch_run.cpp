@@ -318,7 +318,10 @@ void Run::RobotTick(std::size_t i, const core::Round& round) {
   }
   gathering_.AddMove(carry, brain.frozen(), core::Pose2Of(round.pose).position,
                      step.brain.move.outcome);
-  if (brain.missions().last_gather_plan()) gathering_.AddPlan(*brain.missions().last_gather_plan());
+  if (brain.missions().last_gather_plan()) {
+    gathering_.AddPlan(robot.id(), *brain.missions().last_gather_plan());
+  }
+  gathering_.AddPosition(robot.id(), round.tick, carry, core::Pose2Of(round.pose).position);
   commands_[i] = core::CommandOf(step.answer);
   answers_.emplace_back(robot.id(), std::move(step.answer));
 }
@@ -415,6 +418,8 @@ void Run::AddResult(double setup_s, double ticking_s, double finish_s, JsonObjec
       o.Add("plan_cost_ratio", JsonNumber(core::Median(ratios)));
       o.Add("plan_cost_ratio_max", JsonNumber(*std::max_element(ratios.begin(), ratios.end())));
     }
+    for (const auto& field : gathering_.ResultFields())
+      o.Add(field.first, JsonNumber(field.second));
     JsonObject last;
     if (last_status_) {
       const core::StatusReport& s = last_status_->first;
