@@ -296,6 +296,26 @@ MissionBook::StatusOutcome DispatcherPolicy::OnStatus(const MissionReport& repor
   return outcome;
 }
 
+MissionBook::StatusOutcome DispatcherPolicy::OnResent(const MissionReport& report,
+                                                      const MissionSpec* order,
+                                                      const std::string& from) {
+  MissionBook::StatusOutcome outcome = book_.Restore(report, order, params_.clock());
+  if (outcome.followed) {
+    Log(false, "mission %u rebuilt from its re-sent %s status (from %s)%s", report.mission_id,
+        PhaseName(report.phase), from.c_str(),
+        book_.Find(report.mission_id) != nullptr && book_.Find(report.mission_id)->has_spec
+            ? " with its order"
+            : " without its order");
+  } else if (outcome.entered) {
+    Log(false, "mission %u is %s (a re-sent status from %s)", report.mission_id,
+        PhaseName(report.phase), from.c_str());
+  }
+  for (const core::Signal& due : outcome.signals) {
+    outlet_->Event(due, "due in the re-sent phase, with the configured delay");
+  }
+  return outcome;
+}
+
 void DispatcherPolicy::SkipStatus(const StatusKey& status) {
   if (params_.lockstep) SendAnswer({}, {}, status);
 }

@@ -182,6 +182,29 @@ MissionBook::StatusOutcome MissionBook::OnStatus(const MissionReport& report, do
   return out;
 }
 
+MissionBook::StatusOutcome MissionBook::Restore(const MissionReport& report,
+                                                const MissionSpec* order, double now_s) {
+  const std::uint16_t id = report.mission_id;
+  if (id != 0 && id != 65535 && id >= next_id_) next_id_ = static_cast<std::uint16_t>(id + 1);
+  auto it = entries_.find(id);
+  if (it != entries_.end() && it->second.Live() && report.phase < it->second.phase) {
+    StatusOutcome out;
+    out.ignored = "an earlier phase than the one followed";
+    return out;
+  }
+  StatusOutcome out = OnStatus(report, now_s);
+  it = entries_.find(id);
+  if (it == entries_.end()) return out;
+  Entry& m = it->second;
+  if (out.followed) m.source = "resent";
+  if (order != nullptr && order->id == id && !m.has_spec && (out.followed || m.Live())) {
+    m.spec = *order;
+    m.has_spec = true;
+    if (report.robots_assigned == 0) m.robots_assigned = Clamp16(order->Assigned().size());
+  }
+  return out;
+}
+
 void MissionBook::OnProgress(const MissionReport& report, double now_s) {
   auto it = entries_.find(report.mission_id);
   if (it == entries_.end() || !it->second.Live()) return;

@@ -339,8 +339,10 @@ void RunMetrics::WriteFinished(bool drain) {
     std::string row = MissionRow(it->first, m);
     Say(Level::kInfo, "mission " + std::to_string(it->first) + " " +
                           core::PhaseName(*m.final_state) + ": " + row);
+    if (m.recovered) rows_.push_back(RecoveredComment(it->first));
     rows_.push_back(std::move(row));
     written_.insert(it->first);
+    rows_of_.insert(it->first);
     (*m.final_state == MissionPhase::kDone ? missions_done_ : missions_aborted_) += 1;
     it = missions_.erase(it);
   }

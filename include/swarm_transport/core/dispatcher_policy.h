@@ -99,6 +99,11 @@ class DispatcherPolicy {
   // A first leader's phase report (its fields checked) from `from`: the LOADED / UNLOADED now
   // due go out (lock-step: and an answer naming the status and them).
   MissionBook::StatusOutcome OnStatus(const MissionReport& report, const std::string& from);
+  // A first leader's latest status re-sent on request after a restart, with the order it
+  // carries (may be null), from `from` (MissionBook::Restore): the LOADED / UNLOADED it makes
+  // due go out. Not answered in lock-step: a re-sent status is not relayed.
+  MissionBook::StatusOutcome OnResent(const MissionReport& report, const MissionSpec* order,
+                                      const std::string& from);
   // Lock-step: a status taken but not booked (a bad or foreign one) is answered all the same.
   void SkipStatus(const StatusKey& status);
   void OnProgress(const MissionReport& report) { book_.OnProgress(report, params_.clock()); }

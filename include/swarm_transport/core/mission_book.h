@@ -105,6 +105,14 @@ class MissionBook {
   // as a tick (SignalTick). Ignored: a finished mission's late news, a REJECTED from elsewhere,
   // a new mission beyond the live limit.
   StatusOutcome OnStatus(const MissionReport& report, double now_s);
+  // A first leader's latest status of a mission, re-sent on request after the dispatcher
+  // (re)started (docs/reliability.md), with the order the robot still carries (`order`, may be
+  // null). A mission not tracked is followed from it as OnStatus does (source "resent", the
+  // LOADED / UNLOADED its phase makes due included) and gets the order; a tracked one without
+  // an order gets it; a status of an earlier phase than the book's changes nothing. Every id
+  // re-sent moves the next automatic id above it: new orders do not take the id of a mission
+  // that ran before the restart.
+  StatusOutcome Restore(const MissionReport& report, const MissionSpec* order, double now_s);
   // A report within a phase: robots inside, distance to go (and its first leader is alive).
   void OnProgress(const MissionReport& report, double now_s);
   // A user's LOADED / UNLOADED for a live mission (takes effect at once). Empty when it is to

@@ -89,6 +89,20 @@ class RunMetrics {
   // The run is over: every mission gets the frames it has, finished ones are written.
   void Drain();
 
+  // A restarted recorder (docs/reliability.md, run_metrics_resume.cpp). `id`'s row was written
+  // by an earlier recorder of this run: a re-sent status of it is not written again.
+  void MarkRowWritten(std::uint16_t id) { rows_of_.insert(id); }
+  // Counts of the earlier recorders of this run, added to run.csv's.
+  void Carry(std::size_t samples, double swarm_count_sum, std::size_t done, std::size_t aborted);
+  // A first leader's latest status of a mission (phase <= kRejected, finite object) re-sent on
+  // request, with the order it carries (may be null). A mission with a row in this run's
+  // missions.csv changes nothing (no row twice); one not followed is followed from it as
+  // recovered (its row follows a comment line saying so: the phases before the status have
+  // no ticks): a mission that ended while no recorder ran gets its row at once, a running one
+  // when it ends. Empty when taken, else why not.
+  std::string AddResent(const MissionSpec* order, std::uint16_t mission_id, MissionPhase phase,
+                        std::uint64_t tick, Vec2 object);
+
   // missions.csv rows (no newline) of the missions finished since the last call, in the order
   // they were written.
   std::vector<std::string> TakeMissionRows();
@@ -121,6 +135,7 @@ class RunMetrics {
     std::optional<LeaderTracker> leader;
     bool warned_missing = false;
     bool warned_history = false;
+    bool recovered = false;  // first known from a re-sent status (AddResent)
   };
 
   std::optional<SwarmSample> SampleIfDue(const MetricsFrame& frame);
@@ -130,6 +145,8 @@ class RunMetrics {
   void Feed(std::uint16_t id, MissionRecord* m, const MetricsFrame& frame);
   void WriteFinished(bool drain);
   std::string MissionRow(std::uint16_t id, const MissionRecord& m) const;
+  // The comment line before a recovered mission's row.
+  static std::string RecoveredComment(std::uint16_t id);
   void Say(Level level, const std::string& text) const;
 
   RunMetricsParams params_;
@@ -137,7 +154,9 @@ class RunMetrics {
   std::deque<MetricsFrame> history_;  // newest at the back
   std::map<std::uint16_t, MissionRecord> missions_;
   std::set<std::uint16_t> written_;  // ids of rows written; late news of them is ignored
-  std::vector<std::string> rows_;    // written, not taken yet
+  // Ids of every row of this run's missions.csv, an earlier recorder's included (AddResent).
+  std::set<std::uint16_t> rows_of_;
+  std::vector<std::string> rows_;  // written, not taken yet
   std::optional<double> first_sample_time_s_;
   double next_sample_time_s_ = 0.0;
   std::size_t samples_ = 0;

@@ -1,14 +1,17 @@
 #include "swarm_transport/ros/dispatcher/mission_dispatcher.h"
 
 #include <cmath>
+#include <optional>
 
 #include "swarm_transport/Delete_Object.h"
 #include "swarm_transport/Delete_Robot.h"
 #include "swarm_transport/Dispatcher_Answer.h"
 #include "swarm_transport/Mission_Event.h"
+#include "swarm_transport/Mission_Resend_Request.h"
 #include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/ros/common/conversions.h"
 #include "swarm_transport/ros/common/graph.h"
+#include "swarm_transport/ros/common/mission_resend.h"
 #include "swarm_transport/ros/common/names.h"
 
 namespace swarm_transport {
@@ -23,6 +26,11 @@ constexpr double kListenerWaitS = 1.0;
 constexpr std::uint32_t kOrderQueue = 256;
 constexpr double kSilentWallGraceS = 1.0;
 constexpr double kListenerPollS = 0.005;
+// A restart: how long (wall) it takes re-sent statuses before anything else, and how often it
+// asks again meanwhile (a first leader whose connection came late answers the next request).
+constexpr double kRebuildWaitS = 1.5;
+constexpr double kRequestPeriodS = 0.5;
+constexpr std::uint32_t kResentQueue = 1000;
 
 const char* EventName(core::MissionEventKind kind) {
   return kind == core::MissionEventKind::kLoaded ? "LOADED" : "UNLOADED";
@@ -89,6 +97,18 @@ bool MissionDispatcher::Initialize() {
                         });
   }
 
+  if (WasStartedBefore(private_nh_)) {
+    if (lockstep_) {
+      ROS_WARN(
+          "%s: restarted in lock-step: its table starts empty and follows each live mission from "
+          "its next status only (a dispatcher restart is supported in real time: "
+          "docs/reliability.md)",
+          kNode);
+    } else {
+      RebuildFromRobots();
+    }
+  }
+
   ROS_INFO("%s: up (arena %.3f m, LOADED %s, UNLOADED %s, %zu file mission(s), at most %d live)",
            kNode, config_.flocking.world_size_m, DelayText(options_.loaded_delay_s).c_str(),
            DelayText(options_.unloaded_delay_s).c_str(), policy_->file_mission_count(),
@@ -101,7 +121,61 @@ bool MissionDispatcher::Initialize() {
   return true;
 }
 
+void MissionDispatcher::RebuildFromRobots() {
+  ros::NodeHandle resent_nh(nh_);
+  resent_nh.setCallbackQueue(&resent_queue_);
+  resent_sub_ =
+      resent_nh.subscribe(names::kMissionResent, kResentQueue, &MissionDispatcher::OnResent, this);
+  request_pub_ = nh_.advertise<Mission_Resend_Request>(names::kMissionResendRequest, 1, true);
+  Mission_Resend_Request request;
+  request.requester = ros::this_node::getName();
+  const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(kRebuildWaitS);
+  ros::WallTime next_request = ros::WallTime::now();
+  while (ros::ok() && ros::WallTime::now() < until) {
+    if (ros::WallTime::now() >= next_request) {
+      ++request.request;
+      request_pub_.publish(request);
+      next_request += ros::WallDuration(kRequestPeriodS);
+    }
+    resent_queue_.callAvailable(ros::WallDuration(kListenerPollS));
+  }
+  ROS_INFO(
+      "%s: restarted: %d live mission(s) rebuilt from the first leaders' re-sent statuses (%zu "
+      "known); orders, submissions and statuses held meanwhile are taken now",
+      kNode, policy_->book().LiveCount(), policy_->book().entries().size());
+  // Later answers (a restarted recorder's request) are taken in the spin thread too.
+  resent_timer_ = nh_.createWallTimer(ros::WallDuration(0.1), [this](const ros::WallTimerEvent&) {
+    resent_queue_.callAvailable();
+  });
+}
+
+void MissionDispatcher::OnResent(const ros::MessageEvent<Mission_Resent const>& event) {
+  const Mission_Resent& msg = *event.getMessage();
+  const std::string problem = StatusProblem(msg.status);
+  std::optional<core::MissionSpec> order;
+  if (msg.has_order && msg.order.mission_id == msg.status.mission_id) {
+    order = ToMissionSpec(msg.order);
+  }
+  // Only a robot of the mission may re-send its status (its order names them).
+  const core::MissionBook::Entry* entry = policy_->book().Find(msg.status.mission_id);
+  const core::MissionSpec* spec = entry != nullptr && entry->has_spec ? &entry->spec
+                                  : order                             ? &*order
+                                                                      : nullptr;
+  if (!problem.empty() || !core::MayReport(spec, SenderOf(event.getPublisherName()))) {
+    if (foreign_report_warning_.Due()) {
+      ROS_WARN("%s: ignored a re-sent status of mission %u from %s: %s%s", kNode,
+               msg.status.mission_id, event.getPublisherName().c_str(),
+               problem.empty() ? "only the mission's robots may send it" : problem.c_str(),
+               foreign_report_warning_.AndMore("such reports").c_str());
+    }
+    return;
+  }
+  policy_->OnResent(ToMissionReport(msg.status), order ? &*order : nullptr,
+                    event.getPublisherName());
+}
+
 void MissionDispatcher::Shutdown() {
+  resent_timer_.stop();
   for (ros::Timer& timer : start_timers_) timer.stop();
   watchdog_timer_.stop();
   status_timer_.stop();

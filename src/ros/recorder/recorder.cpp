@@ -16,6 +16,7 @@
 #include "swarm_transport/Swarm_Stats.h"
 #include "swarm_transport/ros/common/conversions.h"
 #include "swarm_transport/ros/common/diagnostics.h"
+#include "swarm_transport/ros/common/mission_resend.h"
 #include "swarm_transport/ros/common/names.h"
 
 namespace swarm_transport {
@@ -139,6 +140,17 @@ bool CsvFile::Open(const std::string& path, const std::string& header, std::stri
   return true;
 }
 
+bool CsvFile::OpenToAppend(const std::string& path, std::string* error) {
+  Close();
+  flush_each_row_ = true;
+  file_ = std::fopen(path.c_str(), "a");
+  if (file_ == nullptr) {
+    *error = "cannot append to " + path + ": " + std::strerror(errno);
+    return false;
+  }
+  return true;
+}
+
 bool CsvFile::Append(const std::string& row) {
   if (file_ == nullptr) return false;
   const bool ok = std::fputs(row.c_str(), file_) >= 0 && std::fputc('\n', file_) != EOF;
@@ -199,6 +211,9 @@ bool Recorder::OpenFiles(std::string* error) {
     return false;
   }
   run_dir_ = dir.string();
+  // Started before on this master for this run directory, which has files: a restart.
+  restarted_ = WasStartedBefore(private_nh_, run_dir_) && fs::exists(dir / "missions.csv", ec);
+  if (restarted_) return OpenFilesAgain(error);
   if (!swarm_csv_.Open(run_dir_ + "/swarm_count.csv", RunMetrics::kSwarmHeader, error) ||
       !missions_csv_.Open(run_dir_ + "/missions.csv", RunMetrics::kMissionsHeader, error)) {
     return false;
@@ -233,6 +248,7 @@ bool Recorder::Initialize() {
       nh_.subscribe(names::kMissionNew, kMissionQueue, &Recorder::OnMissionNew, this);
   status_sub_ = nh_.subscribe(names::kMissionStatus, kMissionQueue, &Recorder::OnStatus, this,
                               ros::TransportHints().tcpNoDelay());
+  if (restarted_) RequestResends();
   ROS_INFO(
       "%s: local range %.3f m, sample every %.3f s of sim time, seed %lld, %s", kNode,
       params_.swarm.flocking.local_range_m, params_.sample_period_s,
@@ -265,6 +281,8 @@ void Recorder::Shutdown() {
   positions_sub_.shutdown();
   mission_new_sub_.shutdown();
   status_sub_.shutdown();
+  resent_sub_.shutdown();
+  request_timer_.stop();
   stats_pub_.shutdown();
   if (!metrics_) return;  // never initialized
   metrics_->Drain();
@@ -311,6 +329,7 @@ void Recorder::OnPositions(const Robot_Positions::ConstPtr& msg) {
     ROS_WARN("%s: ignored %zu robots with non-finite positions at tick %llu", kNode, bad,
              static_cast<unsigned long long>(msg->tick));
   }
+  if (gap_open_) EndGap(msg->tick);
   std::optional<core::SwarmSample> sample;
   metrics_->AddFrame(std::move(frame), &sample);
   if (sample) Publish(*sample);

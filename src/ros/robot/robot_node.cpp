@@ -286,6 +286,12 @@ void RobotNode::Tick() {
     if (!mission_pubs_.Publish(answer)) {
       ROS_ERROR("robot %u: has mission messages to send but is no first leader", id_);
     }
+    // A first leader re-sends its missions' latest statuses when a restarted dispatcher or
+    // recorder asks (docs/reliability.md).
+    if (mission_pubs_.advertised()) resender_.Start(nh_);
+    for (const Mission_Status& st : answer.statuses) {
+      resender_.Remember(st, session_->brain().missions().Find(st.mission_id));
+    }
     transport_->SendCommand(ToTwist(command));
   }
   // Its position for those who listen to robots: observers (rostopic, rosbag) in every

@@ -17,6 +17,9 @@ constexpr char kMissionNew[] = "/flock/mission/new";
 constexpr char kMissionStatus[] = "/flock/mission/status";      // each phase once, on entry
 constexpr char kMissionProgress[] = "/flock/mission/progress";  // periodic, within a phase
 constexpr char kMissionEvent[] = "/flock/mission/event";
+// A restarted dispatcher's or recorder's request (latched) and the first leaders' answers.
+constexpr char kMissionResendRequest[] = "/flock/mission/resend_request";
+constexpr char kMissionResent[] = "/flock/mission/resent";
 constexpr char kDispatcherAnswer[] = "/flock/dispatcher/answer";  // latched, lock-step
 constexpr char kFreeze[] = "/flock/freeze";
 constexpr char kContinue[] = "/flock/continue";

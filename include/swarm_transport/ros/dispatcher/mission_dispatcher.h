@@ -3,6 +3,7 @@
 #ifndef SWARM_TRANSPORT_ROS_MISSION_DISPATCHER_H_
 #define SWARM_TRANSPORT_ROS_MISSION_DISPATCHER_H_
 
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
 #include <xmlrpcpp/XmlRpcValue.h>
@@ -12,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "swarm_transport/Mission_Resent.h"
 #include "swarm_transport/Mission_Signal.h"
 #include "swarm_transport/Mission_Status.h"
 #include "swarm_transport/New_Mission.h"
@@ -35,6 +37,9 @@ namespace swarm_transport {
 // Mission_Event LOADED / UNLOADED after the configured delays (ros::Time: simulated under
 // /use_sim_time) or on request through ~signal. ~status answers a text table. All callbacks
 // run in the one ros::spin thread.
+// Restarted on the same master in real time, it first rebuilds its table from the first
+// leaders' re-sent statuses (RebuildFromRobots) and only then takes orders, submissions and
+// statuses, held in their queues meanwhile (docs/reliability.md).
 // Its policy (what it accepts, picks, recruits, schedules and sends) is the pure
 // core::DispatcherPolicy; this node moves bytes between ROS and it.
 class MissionDispatcher : private core::DispatcherOutlet {
@@ -65,6 +70,12 @@ class MissionDispatcher : private core::DispatcherOutlet {
   bool FromSelf(const std::string& publisher) const {
     return publisher == ros::this_node::getName();
   }
+
+  // A restart (real time): asks the first leaders to re-send their missions' latest statuses
+  // and takes the answers for kRebuildWaitS of wall time before anything else; later answers
+  // (to a restarted recorder's request) are taken as they come.
+  void RebuildFromRobots();
+  void OnResent(const ros::MessageEvent<Mission_Resent const>& event);
 
   void OnPositions(const Robot_Positions::ConstPtr& msg);
   void OnNewMission(const ros::MessageEvent<New_Mission const>& event);
@@ -98,6 +109,10 @@ class MissionDispatcher : private core::DispatcherOutlet {
   ros::ServiceServer submit_srv_;
   ros::ServiceServer signal_srv_;
   ros::ServiceServer status_srv_;
+  ros::CallbackQueue resent_queue_;  // a restart's re-sent statuses, taken first
+  ros::Subscriber resent_sub_;
+  ros::Publisher request_pub_;
+  ros::WallTimer resent_timer_;
   std::vector<ros::Timer> start_timers_;
   ros::Timer watchdog_timer_;
   ros::WallTimer status_timer_;          // its diagnostic status, once a wall second

@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "swarm_transport/Mission_Resent.h"
 #include "swarm_transport/Mission_Status.h"
 #include "swarm_transport/New_Mission.h"
 #include "swarm_transport/Robot_Positions.h"
@@ -47,6 +48,8 @@ class CsvFile {
   // Truncates `path` and writes `header`. False with `error` when it cannot.
   bool Open(const std::string& path, const std::string& header, std::string* error,
             bool flush_each_row = true);
+  // Opens `path` to append rows after what it holds (a restarted recorder's), flushing each.
+  bool OpenToAppend(const std::string& path, std::string* error);
   bool is_open() const { return file_ != nullptr; }
   // Appends one line (without its newline) and flushes; false on a write error.
   bool Append(const std::string& row);
@@ -106,6 +109,15 @@ class Recorder {
   bool LoadParams(std::string* error);
   bool OpenFiles(std::string* error);
 
+  // A restart on the same master (recorder_resume.cpp): appends to the run's files after a gap
+  // comment, takes over the earlier recorder's rows and counts, and asks the first leaders to
+  // re-send their missions' latest statuses.
+  bool OpenFilesAgain(std::string* error);
+  void RequestResends();
+  void OnResent(const Mission_Resent::ConstPtr& msg);
+  // Marks the gap's end (the first frame after a restart) in both files.
+  void EndGap(std::uint64_t tick);
+
   void OnPositions(const Robot_Positions::ConstPtr& msg);
   void OnMissionNew(const New_Mission::ConstPtr& msg);
   void OnStatus(const Mission_Status::ConstPtr& msg);
@@ -132,6 +144,12 @@ class Recorder {
   ros::Subscriber positions_sub_;
   ros::Subscriber mission_new_sub_;
   ros::Subscriber status_sub_;
+  bool restarted_ = false;  // ran before on this master: appends (OpenFilesAgain)
+  bool gap_open_ = false;   // restarted and no frame yet
+  ros::Subscriber resent_sub_;
+  ros::Publisher request_pub_;
+  ros::WallTimer request_timer_;
+  std::uint32_t requests_ = 0;
 
   std::optional<core::RunMetrics> metrics_;  // made once the parameters are loaded
   // At most one warning of a kind per kWarnPeriodS of wall time (recorder.cpp).

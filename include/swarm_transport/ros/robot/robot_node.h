@@ -19,6 +19,7 @@
 #include "swarm_transport/core/modes.h"
 #include "swarm_transport/core/robot_session.h"
 #include "swarm_transport/ros/common/diagnostics.h"
+#include "swarm_transport/ros/common/mission_resend.h"
 #include "swarm_transport/ros/common/mission_topics.h"
 #include "swarm_transport/ros/common/params.h"
 #include "swarm_transport/ros/common/wall_throttle.h"
@@ -101,6 +102,7 @@ class RobotNode : public RobotInbox {
   std::unique_ptr<RobotTransport> transport_;
   std::optional<core::RobotSession> session_;  // its behaviour and state (set by Initialize)
   MissionPublishers mission_pubs_;             // real time, once it is a first leader
+  MissionResender resender_;                   // ... and its statuses re-sent on request
   ros::Publisher position_pub_;
   // Nodes other than the simulator and this process subscribed to its /flock/position (it
   // publishes its own position each tick only while there are some).
