@@ -18,7 +18,7 @@ import rospkg
 import rospy
 import rostest
 
-import swarm_testing as st
+from netns_hosts import NetHosts, Unavailable
 
 NAMES = ['QUEUED', 'GATHERING', 'LOADING', 'TRANSPORT', 'UNLOADING', 'DONE']
 
@@ -27,69 +27,17 @@ def g(key):
     return rospy.get_param('~' + key)
 
 
-def ip(*args):
-    subprocess.run(('ip',) + args, check=True, capture_output=True, text=True)
-
-
 class AcrossHosts(unittest.TestCase):
 
     def setUp(self):
-        tag = 'st%d' % (os.getpid() % 100000)
-        self.ns = {'core': tag + 'c', 'a': tag + 'a', 'b': tag + 'b'}
-        self.addr = {'core': '10.77.0.1', 'a': '10.77.0.2', 'b': '10.77.0.3'}
-        self.procs = []
-        self.tmp = tempfile.mkdtemp(prefix='across_hosts_')
-        self.addCleanup(shutil.rmtree, self.tmp, True)
+        tmp = tempfile.mkdtemp(prefix='across_hosts_')
+        self.addCleanup(shutil.rmtree, tmp, True)
         try:
-            ip('netns', 'add', self.ns['core'])
-        except (OSError, subprocess.CalledProcessError) as e:
-            self.skipTest('network namespaces are not available here (%s)'
-                          % getattr(e, 'stderr', e))
-        self.addCleanup(self.teardown_net)
-        core = self.ns['core']
-        ip('-n', core, 'link', 'set', 'lo', 'up')
-        ip('-n', core, 'link', 'add', 'br0', 'type', 'bridge')
-        ip('-n', core, 'addr', 'add', self.addr['core'] + '/24', 'dev', 'br0')
-        ip('-n', core, 'link', 'set', 'br0', 'up')
-        for host in ('a', 'b'):
-            ns = self.ns[host]
-            ip('netns', 'add', ns)
-            ip('-n', ns, 'link', 'set', 'lo', 'up')
-            outer, inner = tag + 'v' + host, tag + 'p' + host
-            ip('link', 'add', outer, 'type', 'veth', 'peer', 'name', inner)
-            ip('link', 'set', outer, 'netns', core)
-            ip('link', 'set', inner, 'netns', ns)
-            ip('-n', core, 'link', 'set', outer, 'master', 'br0')
-            ip('-n', core, 'link', 'set', outer, 'up')
-            ip('-n', ns, 'addr', 'add', self.addr[host] + '/24', 'dev', inner)
-            ip('-n', ns, 'link', 'set', inner, 'up')
-
-    def teardown_net(self):
-        st.stop_process_groups([proc for proc, _ in self.procs])
-        for ns in self.ns.values():
-            subprocess.run(['ip', 'netns', 'del', ns], capture_output=True)
-
-    def env(self, host):
-        env = dict(os.environ)
-        env.pop('ROS_HOSTNAME', None)  # it would win over ROS_IP
-        env['ROS_IP'] = self.addr[host]
-        env['ROS_MASTER_URI'] = 'http://%s:%d' % (self.addr['core'], g('port'))
-        env['ROS_HOME'] = os.path.join(self.tmp, host)
-        return env
-
-    def start(self, host, *cmd):
-        log = open(os.path.join(self.tmp, '%s-%d.log' % (host, len(self.procs))), 'w')
-        proc = subprocess.Popen(('ip', 'netns', 'exec', self.ns[host]) + cmd, env=self.env(host),
-                                stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
-        self.procs.append((proc, log.name))
-        return proc
-
-    def logs(self):
-        out = []
-        for _, name in self.procs:
-            with open(name) as f:
-                out.append('--- %s\n%s' % (name, f.read()[-3000:]))
-        return '\n'.join(out)
+            self.net = NetHosts('st%d' % (os.getpid() % 100000), tmp, g('port'))
+        except Unavailable as e:
+            self.skipTest(str(e))
+        self.addCleanup(self.net.close)
+        self.addr, self.start, self.logs = self.net.addr, self.net.start, self.net.logs
 
     def test_the_thesis_mission_across_three_hosts(self):
         pkg = rospkg.RosPack().get_path('swarm_transport')
@@ -103,10 +51,10 @@ class AcrossHosts(unittest.TestCase):
         self.start('b', 'roslaunch', '--wait', 'swarm_transport', 'robot_host.launch',
                    'from:=%d' % split, 'to:=%d' % robots, 'clock:=lockstep', 'name:=b')
         watch = subprocess.run(
-            ['ip', 'netns', 'exec', self.ns['core'], sys.executable,
-             os.path.join(pkg, 'test', 'across_hosts_watch.py'), str(g('mission_id')),
-             str(g('timeout_s'))],
-            env=self.env('core'), capture_output=True, text=True, timeout=g('timeout_s') + 60)
+            self.net.command('core', sys.executable,
+                             os.path.join(pkg, 'test', 'across_hosts_watch.py'),
+                             str(g('mission_id')), str(g('timeout_s'))),
+            env=self.net.env('core'), capture_output=True, text=True, timeout=g('timeout_s') + 60)
         lines = watch.stdout.splitlines()
         states = [l.split()[1] for l in lines if l.startswith('STATUS ')]
         self.assertEqual(watch.returncode, 0, 'mission not DONE: %s\n%s\n%s'

@@ -96,5 +96,18 @@ void HeardRound::Assemble(std::uint64_t tick, double now_s, const core::Pose2& s
   out->tuning.reset();
 }
 
+std::pair<std::size_t, std::size_t> HeardRound::Delivered(const core::Round& round, double now_s,
+                                                          double within_s) const {
+  std::size_t expected = 0;
+  std::size_t delivered = 0;
+  for (const core::Position& p : round.robots) {
+    if (p.type != core::Position::kPhysical) continue;
+    ++expected;
+    const auto it = heard_.find({p.robot_id, 0});
+    if (it != heard_.end() && now_s - it->second.at_s <= within_s) ++delivered;
+  }
+  return {expected, delivered};
+}
+
 }  // namespace sim
 }  // namespace swarm_transport

@@ -21,7 +21,8 @@ The robots publish these figures themselves (~diagnostics: true), once per secon
 /flock/robot_stats; --comm broadcast switches them to the thesis's all-to-all wiring.
 Each run uses its own master in a child process; all processes are stopped by pid. Figures
 only, no pass/fail. The last line is one `RESULT key=value ...` line. --deploy batch runs the
-lock-step swarm in the experiments' batch engine instead, without ROS (bench_batch.py)."""
+lock-step swarm in the experiments' batch engine instead, without ROS (bench_batch.py);
+--deploy hardware robots as on real robots over the stand-in's bases (docs/hardware.md)."""
 
 import argparse
 import csv
@@ -36,7 +37,8 @@ import tempfile
 import time
 
 from swarm_transport import bench_batch, st_ros
-from swarm_transport.bench_proc import COLUMNS, fmt, machine_cpu, status_kb, table, tree
+from swarm_transport.bench_proc import (COLUMNS, fmt, machine_cpu, ratio, status_kb, table,
+                                        tree)
 
 PYTHON = '/usr/bin/python3'
 STATS_TOPIC = '/flock/robot_stats'
@@ -60,8 +62,11 @@ def parse_args(argv):
     p.add_argument('--robots', type=int, default=25, help='robots (default 25)')
     p.add_argument('--clock', default='realtime', choices=('realtime', 'lockstep', 'both'))
     p.add_argument('--deploy', default='process',
-                   choices=('process', 'host', 'host_sim', 'batch'),
-                   help='process: a process per robot; host: all robots in one robot_host '
+                   choices=('process', 'hardware', 'host', 'host_sim', 'batch'),
+                   help='process: a process per robot; hardware: a process per robot as on '
+                        'real robots (robot.launch hardware:=true) over the stand-in\'s bases '
+                        'node, no simulator (real time, local comm only); host: all robots in '
+                        'one robot_host '
                         'process (both via swarm.launch); host_sim: robots and simulator in '
                         'one robot_host process (~deploy host_sim); batch: lock-step in the '
                         'experiments\' batch engine, no ROS (bench_batch.py)')
@@ -112,6 +117,9 @@ def parse_args(argv):
         p.error('--seconds must be > 0, --warmup >= 0, --threads in [1, 64]')
     if a.ticks < 1:
         p.error('--ticks must be >= 1')
+    if a.deploy == 'hardware' and (a.clock != 'realtime' or a.comm != 'local'):
+        p.error('--deploy hardware needs --clock realtime and --comm local (a robot on '
+                'hardware ticks on the wall clock and is its own radio)')
     if a.arena is None:
         a.arena = 'density' if a.deploy == 'batch' else 'room'
     if a.startup_timeout <= 0:
@@ -274,7 +282,7 @@ def measure(a, ros, launch_pid, stats, t0, result):
         if comm in ROBOT_COMMS:
             rss.append(status_kb(pid, 'VmRSS') or 0)
             pss.append(status_kb(pid, 'Pss', 'smaps_rollup') or 0)
-        if comm == 'simulator' or (comm == 'robot_host' and a.deploy == 'host_sim'):
+        if comm in ('simulator', 'bases') or (comm == 'robot_host' and a.deploy == 'host_sim'):
             result['sim_rss_mb'] = (status_kb(pid, 'VmRSS') or 0) / 1024.0
     time.sleep(a.seconds / 2.0)
     w1 = time.time()
@@ -292,7 +300,7 @@ def measure(a, ros, launch_pid, stats, t0, result):
     result['cpu_by_process_pct'] = {k: round(100.0 * v / hz / (w1 - w0) / ncpu, 2)
                                     for k, v in sorted(by_comm.items())}
     robot_procs = max(1, len(rss))
-    per = robot_procs if a.deploy == 'process' else a.robots
+    per = robot_procs if a.deploy in ('process', 'hardware') else a.robots
     result['robot_processes'] = len(rss)
     result['rss_mb_per_robot'] = sum(rss) / 1024.0 / per
     result['pss_mb_per_robot'] = sum(pss) / 1024.0 / per
@@ -428,21 +436,15 @@ def result_line(a, rows):
         for key in ('tick_hz', 'late_pct', 'delivered_pct', 'cpu_pct', 'swarm_cpu_pct',
                     'rss_mb_per_robot'):
             out['bc_' + key] = bc.get(key)
-        out['ratio_swarm_cpu'] = _ratio(bc.get('swarm_cpu_pct'), primary.get('swarm_cpu_pct'))
+        out['ratio_swarm_cpu'] = ratio(bc.get('swarm_cpu_pct'), primary.get('swarm_cpu_pct'))
         bc_lockstep = pick('lockstep', 'broadcast')
         if lockstep and bc_lockstep:
             out['bc_lockstep_ticks_per_s'] = bc_lockstep.get('lockstep_ticks_per_s')
-            out['ratio_lockstep_speed'] = _ratio(lockstep.get('lockstep_ticks_per_s'),
+            out['ratio_lockstep_speed'] = ratio(lockstep.get('lockstep_ticks_per_s'),
                                                  bc_lockstep.get('lockstep_ticks_per_s'))
     out['runs_ok'] = sum(1 for r in rows if r.get('ok'))
     out['runs'] = len(rows)
     return 'RESULT ' + ' '.join('%s=%s' % (k, fmt(v)) for k, v in out.items())
-
-
-def _ratio(num, den):
-    if num is None or den is None or not den or math.isnan(num) or math.isnan(den):
-        return None
-    return num / den
 
 
 def main(argv):
@@ -475,8 +477,8 @@ def main(argv):
                   and r.get('ok')]
             if lo and bc:
                 print('  %s broadcast / local: swarm CPU x%s, tick rate x%s, delivered %s%% vs '
-                      '%s%%' % (clock, fmt(_ratio(bc[0]['swarm_cpu_pct'], lo[0]['swarm_cpu_pct'])),
-                                fmt(_ratio(bc[0]['tick_hz'], lo[0]['tick_hz'])),
+                      '%s%%' % (clock, fmt(ratio(bc[0]['swarm_cpu_pct'], lo[0]['swarm_cpu_pct'])),
+                                fmt(ratio(bc[0]['tick_hz'], lo[0]['tick_hz'])),
                                 fmt(bc[0]['delivered_pct']), fmt(lo[0]['delivered_pct'])))
     if a.csv:
         keys = ['clock', 'comm', 'deploy', 'robots', 'threads', 'seconds'] + [

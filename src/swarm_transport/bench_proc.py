@@ -83,6 +83,13 @@ def fmt(value, spec='%.2f'):
     return str(value)
 
 
+def ratio(num, den):
+    """num / den, or None when either is missing, NaN or den is 0."""
+    if num is None or den is None or not den or math.isnan(num) or math.isnan(den):
+        return None
+    return num / den
+
+
 def table(rows, columns=COLUMNS, headers=HEADERS):
     """The rows as a fixed-width table: `columns` (key, printf spec), `headers` key -> title."""
     lines = [' '.join(_pad(headers.get(key, key), spec) for key, spec in columns)]

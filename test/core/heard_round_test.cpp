@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "swarm_transport/core/mission.h"
@@ -50,6 +51,9 @@ TEST(HeardRoundTest, HearsTheFreshRobotsInRangeAsAnnounced) {
   EXPECT_FLOAT_EQ(round.robots[0].x, 1.8f);
   EXPECT_TRUE(round.relayed.empty());
   EXPECT_EQ(heard.known(), (std::set<std::uint16_t>{0, 1, 2}));
+  // Delivered: robot 1's latest position arrived 0.1 s before the round.
+  EXPECT_EQ(heard.Delivered(round, 10.2, 0.11), std::make_pair(std::size_t{1}, std::size_t{1}));
+  EXPECT_EQ(heard.Delivered(round, 10.2, 0.05), std::make_pair(std::size_t{1}, std::size_t{0}));
   // Robot 1 falls silent: after the timeout it is heard no more.
   heard.Assemble(8, 10.61, kSelf, {}, &round);
   EXPECT_TRUE(round.robots.empty());

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <map>
 #include <set>
+#include <utility>
 #include <vector>
 
 #include "swarm_transport/core/kinematics.h"
@@ -56,6 +57,11 @@ class HeardRound {
   // it; the round carries every position as announced.
   void Assemble(std::uint64_t tick, double now_s, const core::Pose2& self,
                 const core::Velocity& velocity, core::Round* out);
+  // Of the robots (physical) in `round` as Assemble gave it at `now_s`: how many there are, and
+  // those whose latest position arrived within the last `within_s` (by arrival: a position that
+  // waited in a network queue looks as fresh as one sent just now).
+  std::pair<std::size_t, std::size_t> Delivered(const core::Round& round, double now_s,
+                                                double within_s) const;
 
  private:
   struct Heard {

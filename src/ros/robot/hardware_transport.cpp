@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "swarm_transport/core/tick_stats.h"
 #include "swarm_transport/ros/common/conversions.h"
 #include "swarm_transport/ros/common/names.h"
 #include "swarm_transport/ros/common/params.h"
@@ -110,6 +111,8 @@ void HardwareTransport::Connect(ros::NodeHandle nh, const TransportOptions& link
                               heard_->Take(message);  // the mission channel of its missions' robots
                               robot_->Hand(message, from);
                             });
+  diagnostics_ = link.diagnostics;
+  tick_period_s_ = swarm.tick_period_s;
   if (link.diagnostics)
     stats_pub_ = nh.advertise<std_msgs::String>(names::kRobotStats, kStatsQueue);
   ROS_INFO(
@@ -206,6 +209,13 @@ void HardwareTransport::OnTickDue() {
     robot_->HearRobots(list);
   }
   heard_->Assemble(++tick_, now_s, pose_, velocity_, &round_);
+  if (diagnostics_) {
+    // Delivered: a robot's latest position arrived within the late-tick margin of one period
+    // (each sends one per tick), as the bench counts it for the simulator's radio.
+    const std::pair<std::size_t, std::size_t> d =
+        heard_->Delivered(round_, now_s, core::kLateTickFactor * tick_period_s_);
+    robot_->CountDelivered(d.first, d.second);
+  }
   robot_->TakeRound(boost::make_shared<Neighbors>(ToNeighbors(round_)), now_s);
   robot_->TimerTick();
 }

@@ -104,8 +104,8 @@ bool RobotNode::Initialize(const RobotNodeOptions& options,
                                       ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
   }
   if (options_.diagnostics) {
-    stats_ =
-        std::make_unique<RobotStats>(id_, options_.clock, options_.comm, config_.tick_period_s);
+    stats_ = std::make_unique<RobotStats>(id_, options_.clock, options_.comm, config_.tick_period_s,
+                                          options_.hardware);
   }
   if (transport_->OffersServices()) {
     describe_srv_ = private_nh_.advertiseService("describe", &RobotNode::OnDescribe, this);
@@ -182,6 +182,10 @@ void RobotNode::TakeRound(const Neighbors::ConstPtr& msg, double arrival_s) {
 
 void RobotNode::TimerTick() {
   if (perception_) Tick();
+}
+
+void RobotNode::CountDelivered(std::size_t expected, std::size_t delivered) {
+  if (stats_) stats_->CountDelivered(expected, delivered);
 }
 
 void RobotNode::HearRobots(const Robot_Positions& msg) {

@@ -63,16 +63,18 @@ std::pair<std::size_t, std::size_t> BroadcastHeard::Delivered(const Neighbors& r
   return {expected, delivered};
 }
 
-RobotStats::RobotStats(std::uint16_t id, core::Clock clock, core::Comm comm, double period_s)
+RobotStats::RobotStats(std::uint16_t id, core::Clock clock, core::Comm comm, double period_s,
+                       bool own_radio)
     : id_(id),
       clock_(clock),
       comm_(comm),
       period_s_(period_s),
+      own_radio_(own_radio),
       stats_(period_s, clock == core::Clock::kRealtime) {}
 
 void RobotStats::OnRound(const Neighbors& round, double arrival_s) {
   const double latency = stats_.OnRound(round.tick, round.sim_time, arrival_s);
-  if (comm_ != core::Comm::kLocal) return;
+  if (comm_ != core::Comm::kLocal || own_radio_) return;
   // Local comm: the round carries the in-range robots' updates, delivered within one tick
   // when it arrived within one period of being sampled; a round that never arrived lost as
   // many as this one carries.

@@ -70,6 +70,8 @@ class HardwareTransport : public RobotTransport {
   core::Velocity velocity_;
   bool roster_changed_ = true;
   std::uint64_t tick_ = 0;
+  bool diagnostics_ = false;  // it counts each round's delivery for the robot's figures
+  double tick_period_s_ = 0.1;
   core::Round round_;
   std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;

@@ -76,6 +76,7 @@ class RobotNode : public RobotInbox {
   void Hand(const core::MissionMessage& message, const core::Sender& from) override;
   void HearRobots(const Robot_Positions& list) override;
   void TimerTick() override;
+  void CountDelivered(std::size_t expected, std::size_t delivered) override;
 
   std::uint64_t ticks() const { return ticks_; }
   double tick_period_s() const { return config_.tick_period_s; }

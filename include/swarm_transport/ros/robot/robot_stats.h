@@ -44,9 +44,17 @@ class BroadcastHeard {
 // ~diagnostics of one robot.
 class RobotStats {
  public:
-  RobotStats(std::uint16_t id, core::Clock clock, core::Comm comm, double period_s);
-  // A round's arrival at wall time `arrival_s` (and, local comm, its updates' delivery).
+  // `own_radio`: the robot assembles its rounds itself (hardware); its transport counts their
+  // delivery (CountDelivered), a round's arrival says nothing of it.
+  RobotStats(std::uint16_t id, core::Clock clock, core::Comm comm, double period_s,
+             bool own_radio = false);
+  // A round's arrival at wall time `arrival_s` (and, local comm of the simulator's radio, its
+  // updates' delivery).
   void OnRound(const Neighbors& round, double arrival_s);
+  // Own radio: of a round's robots, how many there were and how many arrived in time.
+  void CountDelivered(std::size_t expected, std::size_t delivered) {
+    stats_.CountUpdates(expected, delivered);
+  }
   // A tick on `round` (broadcast comm: `heard`, else null); the line of figures when one is due
   // (the first tick's at once: its wall time is the robot's start-up figure), else empty.
   std::string OnTick(const Neighbors& round, const BroadcastHeard* heard);
@@ -56,6 +64,7 @@ class RobotStats {
   const core::Clock clock_;
   const core::Comm comm_;
   const double period_s_;
+  const bool own_radio_;
   core::TickStats stats_;
   double published_s_ = 0.0;  // 0: none yet
 };

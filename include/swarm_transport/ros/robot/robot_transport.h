@@ -10,6 +10,7 @@
 #include <geometry_msgs/Twist.h>
 #include <ros/ros.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -36,6 +37,9 @@ class RobotInbox {
   virtual void HearRobots(const Robot_Positions& list) = 0;
   // Real time: one tick on the latest round, due on the robot's own timeline.
   virtual void TimerTick() = 0;
+  // A transport that is its own radio (hardware), before the round it hands next: of the robots
+  // in that round, how many there are and how many were delivered in time (~diagnostics).
+  virtual void CountDelivered(std::size_t /*expected*/, std::size_t /*delivered*/) {}
 };
 
 // The robot's parameters a transport needs to connect.
