@@ -146,6 +146,20 @@ TEST(ConfigValidation, LeaderWaitEvaluatedAnglesIsReadAsABool) {
   EXPECT_TRUE(config.leader.wait_evaluated_angles);  // unchanged by the refused dict
 }
 
+TEST(ConfigValidation, LeaderCentroidWithSelfIsReadAsABool) {
+  SwarmConfig config;
+  EXPECT_FALSE(config.leader.centroid_with_self);
+  std::string error;
+  ASSERT_TRUE(ConfigFromXmlRpc(Dict("leader_centroid_with_self", XmlRpc::XmlRpcValue(true)),
+                               &config, &error))
+      << error;
+  EXPECT_TRUE(config.leader.centroid_with_self);
+  EXPECT_FALSE(ConfigFromXmlRpc(
+      Dict("leader_centroid_with_self", XmlRpc::XmlRpcValue(std::string("yes"))), &config, &error));
+  EXPECT_NE(error.find("leader_centroid_with_self"), std::string::npos) << error;
+  EXPECT_TRUE(config.leader.centroid_with_self);  // unchanged by the refused dict
+}
+
 TEST(ConfigValidation, LeaderCheckCollisionsIsReadAsABool) {
   SwarmConfig config;
   EXPECT_TRUE(config.leader.check_collisions);
