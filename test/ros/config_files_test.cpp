@@ -150,12 +150,12 @@ TEST(ConfigValidation, LeaderCentroidWithSelfIsReadAsABool) {
   SwarmConfig config;
   EXPECT_FALSE(config.leader.centroid_with_self);
   std::string error;
-  ASSERT_TRUE(ConfigFromXmlRpc(Dict("leader_centroid_with_self", XmlRpc::XmlRpcValue(true)),
-                               &config, &error))
-      << error;
+  XmlRpc::XmlRpcValue on = Dict("leader_centroid_with_self", XmlRpc::XmlRpcValue(true));
+  ASSERT_TRUE(ConfigFromXmlRpc(on, &config, &error)) << error;
   EXPECT_TRUE(config.leader.centroid_with_self);
-  EXPECT_FALSE(ConfigFromXmlRpc(
-      Dict("leader_centroid_with_self", XmlRpc::XmlRpcValue(std::string("yes"))), &config, &error));
+  XmlRpc::XmlRpcValue bad =
+      Dict("leader_centroid_with_self", XmlRpc::XmlRpcValue(std::string("yes")));
+  EXPECT_FALSE(ConfigFromXmlRpc(bad, &config, &error));
   EXPECT_NE(error.find("leader_centroid_with_self"), std::string::npos) << error;
   EXPECT_TRUE(config.leader.centroid_with_self);  // unchanged by the refused dict
 }
