@@ -73,7 +73,8 @@ LeaderDecision LeaderStep(const Perception& in, const FlockingParams& p, const L
       // The swarm left its range entirely: waiting would not bring it back [T7.3].
       memory->gave_up = true;
     } else {
-      const Vec2 centroid = sum * (1.0 / swarm_size);
+      const Vec2 centroid = lp.centroid_with_self ? (sum + position) * (1.0 / (swarm_size + 1))
+                                                  : sum * (1.0 / swarm_size);
       const bool far = Distance(position, centroid) > lp.wait_fraction * p.local_range_m;
       const Angle to_centroid = Bearing(position, centroid);
       const bool behind =

@@ -22,7 +22,13 @@ PLACEMENTS = ('random', 'corner', 'cluster')
 # 'high_at_last': clearly higher at the last setting than at every other (an extra line beside
 # a direction, for a source that says "only at the last value do they stay high").
 TRENDS = ('increasing', 'decreasing', 'flat', 'mixed', 'high_at_last')
-EXPECT_KEYS = {'metric', 'trend', 'settings', 'groups', 'source', 'because'}
+EXPECT_KEYS = {'metric', 'trend', 'settings', 'groups', 'source', 'because', 'across', 'labels',
+               'per_passive_robot'}
+# An expectation's series runs along the settings of each group (across: settings, the default)
+# or, across: groups, along the groups for each setting label (labels: which ones, default all):
+# "success falls with group size at 5 % cohesion". per_passive_robot (leader presets): each
+# value divided by the setting's passive robots (robots - 1), a count made a share of the group.
+ACROSS = ('settings', 'groups')
 # The metrics of each kind, in the order of the tables (SPEC 8; docs/experiments.md).
 METRICS = {
     'flocking': ['final_swarm_count', 'mean_swarm_count', 'swarm_count_slope_per_h',
@@ -211,6 +217,7 @@ def validate(preset, name):
         for key in ('source', 'because'):
             if key in e and not (isinstance(e[key], str) and e[key].strip()):
                 fail('expect: %s must be a text' % key)
+        _check_across(p, e, fail)
     measured = p.get('thesis_measured')
     if measured is not None:
         if not isinstance(measured, dict) or set(measured) - MEASURED_KEYS or \
@@ -235,6 +242,26 @@ def validate(preset, name):
             fail('cluster %s must be a number %s but is %r'
                  % (key, '> 0' if key == 'side_m' else 'in [0, 360]', value))
     return p
+
+
+def _check_across(p, e, fail):
+    """An expectation's across / labels / per_passive_robot keys (see ACROSS)."""
+    across = e.get('across', 'settings')
+    if across not in ACROSS:
+        fail('expect: across must be one of %s' % (ACROSS,))
+    if 'labels' in e:
+        known = [str(s['label']) for s in p['settings']]
+        if across != 'groups':
+            fail('expect: labels only with across: groups')
+        if (not isinstance(e['labels'], list) or not e['labels'] or
+                any(str(x) not in known for x in e['labels'])):
+            fail('expect: labels must be a non-empty list of setting labels (%s)'
+                 % ', '.join(sorted(set(known))))
+    if across == 'groups' and len({str(s.get('group', '')) for s in p['settings']}) < 2:
+        fail('expect: across: groups needs settings in at least 2 groups')
+    if 'per_passive_robot' in e and (not isinstance(e['per_passive_robot'], bool) or
+                                     p['kind'] != 'leader'):
+        fail('expect: per_passive_robot is true or false, for a leader preset only')
 
 
 def setting_view(preset, setting):

@@ -97,28 +97,54 @@ def classify(ys):
     return ('increasing' if rho >= 0.5 else 'decreasing' if rho <= -0.5 else 'mixed'), rho, spread
 
 
+def _value(e, v, summary):
+    """The trimmed mean of e's metric in setting v (per passive robot if e says so), or None."""
+    t = summary.get((v['name'], e['metric']), {}).get('trimmed_mean')
+    if t is None or not e.get('per_passive_robot'):
+        return t
+    return t / (v['robots'] - 1) if v['robots'] > 1 else None
+
+
+def _series(preset, e, summary):
+    """[(title, [(point label, value)])]: one series per group along its settings, or with
+    across: groups one per setting label along the groups (presets.ACROSS)."""
+    views = [v for v in views_with_data(preset, summary)
+             if (not e.get('settings') or v['name'] in e['settings']) and
+             (not e.get('groups') or v['group'] in [str(g) for g in e['groups']])]
+    out = []
+    if e.get('across', 'settings') == 'groups':
+        labels = [str(x) for x in e['labels']] if e.get('labels') else []
+        for v in views:
+            if not e.get('labels') and v['label'] not in labels:
+                labels.append(v['label'])
+        x = preset.get('x_label') or 'setting'
+        over = preset.get('group_label') or 'group'
+        for label in labels:
+            pts = [(v['group'], _value(e, v, summary)) for v in views if v['label'] == label]
+            out.append(('%s %s, over %s' % (x, label, over),
+                        [(g, t) for g, t in pts if t is not None]))
+        return out
+    for v in views:
+        if not out or out[-1][0] != v['group']:
+            out.append((v['group'], []))
+        t = _value(e, v, summary)
+        if t is not None:
+            out[-1][1].append((v['label'], t))
+    return out
+
+
 def trend_results(preset, summary):
-    """One dict per expected trend and group: 'text' (the line of the page) and 'verdict'
+    """One dict per expected trend and series: 'text' (the line of the page) and 'verdict'
     ('agrees' / 'differs'). An expectation may name the source of what it expects (`source`:
     'thesis text', 'thesis (text + fig. 7.9)', 'raw file f5599e6', ...: it opens the line; without
     one the line says 'thesis') and may say why ours differs (`because`, shown only when it
-    does)."""
+    does). Its series run along each group's settings, or across the groups (_series)."""
     out = []
-    views = views_with_data(preset, summary)
     for e in preset.get('expect', []):
         metric = e['metric']
-        groups = []
-        for v in views:
-            if e.get('settings') and v['name'] not in e['settings']:
-                continue
-            if e.get('groups') and v['group'] not in [str(g) for g in e['groups']]:
-                continue
-            if not groups or groups[-1][0] != v['group']:
-                groups.append((v['group'], []))
-            t = summary.get((v['name'], metric), {}).get('trimmed_mean')
-            if t is not None:
-                groups[-1][1].append((v, t))
-        for group, pts in groups:
+        share = bool(e.get('per_passive_robot'))
+        title = TITLES.get(metric, metric) + (' (% of the group)' if share else '')
+        for group, pts in _series(preset, e, summary):
             if len(pts) < 2:
                 continue
             ys = [t for _, t in pts]
@@ -126,12 +152,13 @@ def trend_results(preset, summary):
             if e['trend'] == 'high_at_last' and high_at_last(ys):
                 got = 'high_at_last'
             verdict = 'agrees' if got == e['trend'] else 'differs'
-            seq = ' → '.join('%s %s' % (v['label'], _num(_scale(metric, t))) for v, t in pts)
+            seq = ' → '.join('%s %s' % (label, _num(100.0 * t if share else _scale(metric, t)))
+                             for label, t in pts)
             # A named source opens the line; without one it is the thesis('s text).
             source = ' '.join(str(e.get('source', '')).split())
             text = ('%s%s%s: %s — measured %s (ρ = %+.2f, spread %.0f %%), %s %s: %s'
                     % ('%s — ' % source if source else '', '%s, ' % group if group else '',
-                       TITLES.get(metric, metric), seq, got.replace('_', ' '), rho,
+                       title, seq, got.replace('_', ' '), rho,
                        100 * spread, 'expected' if source else 'thesis',
                        e['trend'].replace('_', ' '), verdict))
             if verdict == 'differs' and e.get('because'):

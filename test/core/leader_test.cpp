@@ -189,6 +189,28 @@ TEST(LeaderStepTest, WaitsWhileTheSwarmCentroidIsBeyondHalfTheRange) {
   EXPECT_FALSE(memory.gave_up);
 }
 
+TEST(LeaderStepTest, WithCentroidWithSelfTheLeaderCountsInTheCentroidItWaitsFor) {
+  // Two robots 0.7 behind: their centroid is beyond half the range (0.5), but with the leader
+  // counted once beside them (the evaluated code's findFlock) it is 0.7 * 2 / 3 = 0.47 away.
+  Perception in = At(5.0, 5.0, 0.0);
+  in.others = {Robot(2, 4.3, 5.0), Robot(3, 4.3, 5.0)};
+  LeaderParams with_self;
+  with_self.centroid_with_self = true;
+  Rng rng(1, 0);
+  LeaderMemory memory;
+  LeaderDecision d = LeaderStep(in, Params(), with_self, {8.0, 5.0}, Angle(0), rng, kTick, &memory);
+  EXPECT_EQ(memory.swarm_waits, 0u);
+  EXPECT_EQ(d.move.outcome, MoveOutcome::kStraight);
+  LeaderMemory plain;
+  d = LeaderStep(in, Params(), LeaderParams(), {8.0, 5.0}, Angle(0), rng, kTick, &plain);
+  EXPECT_EQ(plain.swarm_waits, 1u);
+  // 0.8 behind: 0.53 with the leader counted, so it waits as well.
+  in.others = {Robot(2, 4.2, 5.0), Robot(3, 4.2, 5.0)};
+  d = LeaderStep(in, Params(), with_self, {8.0, 5.0}, Angle(0), rng, kTick, &memory);
+  EXPECT_EQ(memory.swarm_waits, 1u);
+  EXPECT_EQ(d.move.outcome, MoveOutcome::kStand);
+}
+
 TEST(LeaderStepTest, WithWaitBehindWaitsOnlyForASwarmBehindIt) {
   // The thesis's leader code meant to wait only while its swarm's centroid was more than 90 deg off
   // its course: a swarm ahead or beside it is led, not waited for.

@@ -124,6 +124,63 @@ class Presets(unittest.TestCase):
             with self.assertRaises(presets.PresetError):
                 presets.validate(q, 'bad')
 
+    def test_a_verdict_across_groups_on_made_up_series(self):
+        """across: groups judges one series per setting label along the groups, optionally as
+        a share of each group's passive robots (invented numbers)."""
+        from swarm_transport import experiment_verdicts as verdicts
+        p = {'description': 'x', 'kind': 'leader', 'runs': 2, 'base_config': 'thesis_leader.yaml',
+             'max_ticks': 30, 'mission': {'target': [8.0, 8.0]}, 'x_label': 'cohesion',
+             'group_label': 'passive robots', 'settings': [
+                 {'name': '%s_%s' % (g, c), 'group': '%d passive' % g, 'label': '%d %%' % c,
+                  'robots': g + 1} for g in (5, 10, 20) for c in (0, 10)]}
+        p['expect'] = [
+            {'metric': 'path_fraction_attached', 'trend': 'decreasing', 'across': 'groups',
+             'labels': ['10 %'], 'source': 'thesis text'},
+            {'metric': 'leader_swarm_at_arrival', 'trend': 'decreasing', 'across': 'groups',
+             'per_passive_robot': True}]
+        p = presets.validate(p, 'good')
+        path = {0: [0.5, 0.4, 0.6], 10: [0.9, 0.7, 0.2]}
+        # Counts that rise with the group while the share falls: 4/5, 6/10, 8/20.
+        arrived = {0: [1.0, 1.0, 1.0], 10: [4.0, 6.0, 8.0]}
+        summary = {}
+        for i, g in enumerate((5, 10, 20)):
+            for c in (0, 10):
+                summary[('%d_%d' % (g, c), 'path_fraction_attached')] = {
+                    'trimmed_mean': path[c][i]}
+                summary[('%d_%d' % (g, c), 'leader_swarm_at_arrival')] = {
+                    'trimmed_mean': arrived[c][i]}
+        rs = verdicts.trend_results(p, summary)
+        self.assertEqual(len(rs), 3)  # one label for the path, both for the arrivals
+        self.assertEqual(rs[0]['text'],
+                         'thesis text — cohesion 10 %, over passive robots, path with whole '
+                         'swarm (%): 5 passive 90.0 → 10 passive 70.0 → 20 passive 20.0 — '
+                         'measured decreasing (ρ = -1.00, spread 117 %), expected decreasing: '
+                         'agrees')
+        self.assertEqual(rs[1]['verdict'], 'agrees')   # 20, 10, 5 % of the group at 0 %
+        self.assertIn('leader swarm at arrival (% of the group): 5 passive 20.0', rs[1]['text'])
+        self.assertEqual(rs[2]['verdict'], 'agrees')   # 80, 60, 40 %: the counts rose
+        summary[('20_10', 'leader_swarm_at_arrival')] = {'trimmed_mean': 19.0}   # 95 %
+        self.assertEqual(verdicts.trend_results(p, summary)[2]['verdict'], 'differs')
+        for bad, words in (({'across': 'robots'}, 'across must be one of'),
+                           ({'labels': ['10 %']}, 'labels only with across: groups'),
+                           ({'across': 'groups', 'labels': ['7 %']}, 'setting labels'),
+                           ({'per_passive_robot': 'yes'}, 'per_passive_robot')):
+            q = copy.deepcopy(p)
+            del q['name']
+            q['expect'] = [dict({'metric': 'leader_waits', 'trend': 'flat'}, **bad)]
+            with self.assertRaises(presets.PresetError) as cm:
+                presets.validate(q, 'bad')
+            self.assertIn(words, str(cm.exception))
+        q = copy.deepcopy(GOOD)   # a flocking preset: no groups, no passive robots
+        q['expect'] = [{'metric': 'final_swarm_count', 'trend': 'flat', 'across': 'groups'}]
+        with self.assertRaises(presets.PresetError) as cm:
+            presets.validate(q, 'bad')
+        self.assertIn('at least 2 groups', str(cm.exception))
+        q['expect'] = [{'metric': 'final_swarm_count', 'trend': 'flat',
+                        'per_passive_robot': True}]
+        with self.assertRaises(presets.PresetError):
+            presets.validate(q, 'bad')
+
     def test_the_thesis_measured_table_is_checked_and_rendered(self):
         from swarm_transport import experiment_report as report
         p = copy.deepcopy(GOOD)

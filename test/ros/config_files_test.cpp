@@ -146,6 +146,20 @@ TEST(ConfigValidation, LeaderWaitEvaluatedAnglesIsReadAsABool) {
   EXPECT_TRUE(config.leader.wait_evaluated_angles);  // unchanged by the refused dict
 }
 
+TEST(ConfigValidation, LeaderCentroidWithSelfIsReadAsABool) {
+  SwarmConfig config;
+  EXPECT_FALSE(config.leader.centroid_with_self);
+  std::string error;
+  XmlRpc::XmlRpcValue on = Dict("leader_centroid_with_self", XmlRpc::XmlRpcValue(true));
+  ASSERT_TRUE(ConfigFromXmlRpc(on, &config, &error)) << error;
+  EXPECT_TRUE(config.leader.centroid_with_self);
+  XmlRpc::XmlRpcValue bad =
+      Dict("leader_centroid_with_self", XmlRpc::XmlRpcValue(std::string("yes")));
+  EXPECT_FALSE(ConfigFromXmlRpc(bad, &config, &error));
+  EXPECT_NE(error.find("leader_centroid_with_self"), std::string::npos) << error;
+  EXPECT_TRUE(config.leader.centroid_with_self);  // unchanged by the refused dict
+}
+
 TEST(ConfigValidation, LeaderCheckCollisionsIsReadAsABool) {
   SwarmConfig config;
   EXPECT_TRUE(config.leader.check_collisions);

@@ -25,6 +25,12 @@ struct LeaderParams {
   // course of 45 deg that is a centroid bearing of 135-180 deg (behind on the left); a swarm
   // straight behind it or behind on its right never holds it. Replaces wait_behind's test.
   bool wait_evaluated_angles = false;
+  // The centroid it waits for counts the leader itself once beside its swarm, as the evaluated
+  // §7.3 leader code did (RobotSwarms 68b2ba6, robot/nodes/Leader.cpp 74-75: flockCentre over
+  // findFlock of its own pose, flock/Statistics.h 58-65, which keeps its own entry): the wait
+  // starts when the swarm's own centroid is (n + 1) / n times wait_fraction * range away (n
+  // robots in its swarm). false: the swarm's robots only.
+  bool centroid_with_self = false;
   // Test its own move against the other robots (slow down, then stand when blocked) [T5.3,
   // T6.3]. false: drive the course at full speed through them, the simulator pushing the
   // overlapping robots apart afterwards, as the evaluated §7.3 leader code did (RobotSwarms
