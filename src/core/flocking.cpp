@@ -106,9 +106,12 @@ struct FlockingScratch {
   std::vector<Angle> headings;
 };
 
-FlockingScratch& Scratch() {
+// Not inlined: a caller gets the thread's scratch once and passes it on. Inlined, the compiler
+// specialised FillNeighbourhood for the thread-local lists and looked their address up (a call
+// into the dynamic loader, the library being shared) at every use: 16 calls per robot tick.
+__attribute__((noinline)) FlockingScratch* Scratch() {
   thread_local FlockingScratch scratch;
-  return scratch;
+  return &scratch;
 }
 
 // NeighbourhoodOf into `neighbourhood` (emptied first), with `candidates` and `frontier` as its
@@ -163,8 +166,8 @@ void FillNeighbourhood(const Perception& in, const FlockingParams& p,
 
 std::vector<Neighbour> NeighbourhoodOf(const Perception& in, const FlockingParams& p) {
   std::vector<Neighbour> neighbourhood;
-  FlockingScratch& scratch = Scratch();
-  FillNeighbourhood(in, p, &neighbourhood, &scratch.candidates, &scratch.frontier);
+  FlockingScratch* const scratch = Scratch();
+  FillNeighbourhood(in, p, &neighbourhood, &scratch->candidates, &scratch->frontier);
   return neighbourhood;
 }
 
@@ -205,11 +208,11 @@ Angle DesiredHeading(const Perception& in, const FlockingParams& p, Rng& rng, bo
     return Bearing(position, target);
   }
 
-  FlockingScratch& scratch = Scratch();
-  const std::vector<Neighbour>& neighbourhood = scratch.neighbourhood;
-  FillNeighbourhood(in, p, &scratch.neighbourhood, &scratch.candidates, &scratch.frontier);
+  FlockingScratch* const scratch = Scratch();
+  const std::vector<Neighbour>& neighbourhood = scratch->neighbourhood;
+  FillNeighbourhood(in, p, &scratch->neighbourhood, &scratch->candidates, &scratch->frontier);
   if (neighbourhood_size != nullptr) *neighbourhood_size = NeighbourhoodSize(neighbourhood);
-  std::vector<Angle>& headings = scratch.headings;
+  std::vector<Angle>& headings = scratch->headings;
   headings.clear();
   headings.reserve(neighbourhood.size());
   Vec2 sum;

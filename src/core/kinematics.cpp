@@ -1,27 +1,10 @@
 #include "swarm_transport/core/kinematics.h"
 
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 #include <stdexcept>
 
 namespace swarm_transport {
 namespace core {
-namespace {
-
-// Below this turn rate the arc formula divides by ~0: treat the motion as a straight line.
-constexpr double kStraightAngularRadPerS = 1e-12;
-
-// The very same double (every bit: -0 is not 0).
-bool SameBits(double a, double b) {
-  std::uint64_t x = 0;
-  std::uint64_t y = 0;
-  std::memcpy(&x, &a, sizeof x);
-  std::memcpy(&y, &b, sizeof y);
-  return x == y;
-}
-
-}  // namespace
 
 Pose2 Integrate(const Pose2& pose, Velocity velocity, double duration_s) {
   const double theta = pose.heading.radians();
@@ -40,7 +23,8 @@ Pose2 Integrate(const Pose2& pose, Velocity velocity, double duration_s) {
   return result;
 }
 
-Pose2 Integrate(const Pose2& pose, Velocity velocity, double duration_s, HeadingTrig* trig) {
+Pose2 IntegrateRefreshing(const Pose2& pose, Velocity velocity, double duration_s,
+                          HeadingTrig* trig) {
   if (!(std::fabs(velocity.angular) < kStraightAngularRadPerS)) {
     return Integrate(pose, velocity, duration_s);
   }

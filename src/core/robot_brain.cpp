@@ -155,11 +155,12 @@ std::string RobotBrain::OnTuning(const FlockingTuning& tuning) {
 BrainTick RobotBrain::Tick(Perception in, std::uint64_t tick, bool publish) {
   BrainTick out;
   in.self_id = id_;
-  const MissionPlan plan = agent_.Tick(in.self, in.others, tick, publish ? &out.outbox : nullptr);
+  // The plan lives in last_plan_ (moved there, not copied: a tick's lists are its own).
+  last_plan_ = agent_.Tick(in.self, in.others, tick, publish ? &out.outbox : nullptr);
+  const MissionPlan& plan = last_plan_;
   in.zones = params_.danger_zones;
   in.zones.insert(in.zones.end(), plan.zones.begin(), plan.zones.end());
   in.group = plan.group;
-  last_plan_ = plan;
 
   const double dt = params_.tick_period_s;
   const bool balloon =

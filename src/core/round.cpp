@@ -94,9 +94,10 @@ void FillAnswer(const MissionOutbox& outbox, std::vector<StatusReport> progress,
   for (const auto& run : outbox.freeze) out.push_back(Freeze{run.first, run.second});
   for (const auto& run : outbox.resume) out.push_back(Continue{run.first, run.second});
   if (outbox.delete_object) out.push_back(ObjectDelete{*outbox.delete_object});
-  answer->statuses.reserve(outbox.statuses.size());
+  // Most answers report nothing: no call to reserve for them.
+  if (!outbox.statuses.empty()) answer->statuses.reserve(outbox.statuses.size());
   for (const StatusReport& r : outbox.statuses) answer->statuses.push_back(StatusAsSent(r));
-  answer->progress.reserve(progress.size());
+  if (!progress.empty()) answer->progress.reserve(progress.size());
   for (StatusReport& r : progress) answer->progress.push_back(StatusAsSent(std::move(r)));
 }
 

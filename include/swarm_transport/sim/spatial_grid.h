@@ -19,11 +19,12 @@ namespace sim {
 // rows by cell. When the arena has at most a few cells per point (the radio's range at any
 // density a flock spreads to) the cells are a dense table, so that the 3x3 cells around a
 // point are three contiguous runs; else (a robot's contact distance in a large arena) the cells
-// are hashed into about twice as many buckets as points, and a bucket may also hold points of
-// other cells (the callers' distance checks drop them). Memory and set-up are O(points) either
-// way. Until 2026-11-25 the cells were at least arena / sqrt(N) wide, so that a flock crowded
-// into a few cells made every search scan the whole crowd (at 2,000 robots the push-apart
-// search was 18 % of a real-time host_sim process).
+// are hashed into about twice as many buckets as points, a row's cells into consecutive
+// buckets from a hashed start (so that the 3x3 cells are three runs there too), and a bucket
+// may also hold points of other cells (the callers' distance checks drop them). Memory and set-up
+// are O(points) either way. Until 2026-11-25 the cells were at least arena / sqrt(N) wide, so that
+// a flock crowded into a few cells made every search scan the whole crowd (at 2,000 robots the
+// push-apart search was 18 % of a real-time host_sim process).
 class SpatialGrid {
  public:
   // Sorts `points` (kept by reference until the next Build) into cells of `cell_m`; the
@@ -56,13 +57,38 @@ class SpatialGrid {
       }
       return;
     }
+    // A row's cells are consecutive buckets: three runs of the table unless two rows' runs
+    // share a bucket or one wraps round the table's end (then bucket by bucket, each once).
+    const std::uint32_t width = static_cast<std::uint32_t>(x1 - x0 + 1);
+    std::uint32_t first[3];
+    int rows = 0;
+    bool runs = true;
+    for (int y = y0; y <= y1; ++y) {
+      const std::uint32_t b = Bucket(x0, y);
+      if (b + width - 1 > mask_) runs = false;
+      for (int r = 0; r < rows; ++r) {
+        if (b < first[r] + width && first[r] < b + width) runs = false;
+      }
+      first[rows++] = b;
+    }
+    if (runs) {
+      for (int r = 0; r < rows; ++r) {
+        const std::uint32_t end = start_[first[r] + width];
+        for (std::uint32_t k = start_[first[r]]; k < end; ++k) {
+          f(static_cast<std::size_t>(order_[k]));
+        }
+      }
+      return;
+    }
     std::uint32_t seen[9];
     int n_seen = 0;
     for (int y = y0; y <= y1; ++y) {
       for (int x = x0; x <= x1; ++x) {
         const std::uint32_t b = Bucket(x, y);
         // Two of the nine cells in one bucket: its points once.
-        if (std::find(seen, seen + n_seen, b) != seen + n_seen) continue;
+        bool again = false;
+        for (int k = 0; k < n_seen; ++k) again = again || seen[k] == b;
+        if (again) continue;
         seen[n_seen++] = b;
         for (std::uint32_t k = start_[b]; k < start_[b + 1]; ++k) {
           f(static_cast<std::size_t>(order_[k]));
@@ -76,11 +102,11 @@ class SpatialGrid {
     const int c = static_cast<int>(std::floor(v / cell_m_));
     return std::min(side_ - 1, std::max(0, c));
   }
+  // A row's cells in consecutive buckets from a hashed start.
   std::uint32_t Bucket(int x, int y) const {
     const std::uint64_t h =
-        (static_cast<std::uint64_t>(static_cast<std::uint32_t>(x)) * 0x9E3779B97F4A7C15ULL) ^
-        (static_cast<std::uint64_t>(static_cast<std::uint32_t>(y)) * 0xC2B2AE3D27D4EB4FULL);
-    return static_cast<std::uint32_t>((h ^ (h >> 29)) & mask_);
+        static_cast<std::uint64_t>(static_cast<std::uint32_t>(y)) * 0xC2B2AE3D27D4EB4FULL;
+    return static_cast<std::uint32_t>(((h ^ (h >> 29)) + static_cast<std::uint32_t>(x)) & mask_);
   }
   // The cell (dense) or bucket (hashed) of a point.
   std::uint32_t Slot(core::Vec2 p) const;
