@@ -22,17 +22,24 @@ def robot_node(rid, deploy):
     return '/robot_host' if deploy == 'host' else '/robot_%d/robot' % rid
 
 
-def node_pid(name):
+def node_pid(name, timeout_s=3.0):
     """The pid of node `name` (its XML-RPC getPid), or None when it is not registered or does
-    not answer."""
+    not answer within `timeout_s` (a stopped process accepts the connection and never answers:
+    without the timeout the soak would wait for the robot it stopped itself)."""
     import xmlrpc.client
     import rosgraph
     import rosnode
+
+    class Transport(xmlrpc.client.Transport):
+        def make_connection(self, host):
+            conn = super().make_connection(host)
+            conn.timeout = timeout_s
+            return conn
     try:
         api = rosnode.get_api_uri(rosgraph.Master('/soak'), name, skip_cache=True)
         if not api:
             return None
-        proxy = xmlrpc.client.ServerProxy(api)
+        proxy = xmlrpc.client.ServerProxy(api, transport=Transport())
         code, _, pid = proxy.getPid('/soak')
         return pid if code == 1 else None
     except Exception:  # noqa: BLE001 - a node that is gone answers in many ways
@@ -88,9 +95,12 @@ class Watch(object):
         self.incarnations = {}  # pid -> dict(name, start, samples [(t, rss_kb, fds)], end)
         self.current = {}       # node name -> pid
         self.killed = set()     # pids the soak killed on purpose
+        self.stopped = set()    # pids the soak stopped (SIGSTOP) and not yet continued
         self.crashes = []       # (t, name, pid)
 
     def track(self, name, now):
+        if self.current.get(name) in self.stopped:
+            return self.current[name]  # a stopped node does not answer: nothing to ask
         pid = node_pid(name)
         if pid is None or pid in self.incarnations:
             if pid is not None:
@@ -108,8 +118,15 @@ class Watch(object):
             return None
         if sig == signal.SIGKILL:
             self.killed.add(pid)
+        elif sig == signal.SIGSTOP:
+            self.stopped.add(pid)
         os.kill(pid, sig)
         return pid
+
+    def resume(self, pid):
+        """SIGCONT to a process the soak stopped."""
+        self.stopped.discard(pid)
+        os.kill(pid, signal.SIGCONT)
 
     def sample(self, now):
         seen = set()

@@ -128,7 +128,7 @@ class Run(object):
             pid = self.watch.kill(node, signal.SIGSTOP)
             fault['what'] = 'SIGSTOP %s (pid %s) for %.0f s' % (node, pid, STOP_S)
             if pid is not None:
-                self.later(STOP_S, 'SIGCONT %s' % node, lambda: os.kill(pid, signal.SIGCONT))
+                self.later(STOP_S, 'SIGCONT %s' % node, lambda: self.watch.resume(pid))
             self.later(EFFECT_S, 'effect', lambda: self.effect_alive(fault, node, pid))
         elif kind in ('dispatcher_restart', 'recorder_restart'):
             role = kind.split('_')[0]
