@@ -10,6 +10,7 @@ import signal
 import time
 
 from swarm_transport.bench_proc import status_kb
+from swarm_transport.st_ros import process_alive
 
 KINDS = ('robot_kill', 'robot_stop', 'dispatcher_restart', 'recorder_restart', 'radio_loss',
          'flood')
@@ -44,17 +45,6 @@ def node_pid(name, timeout_s=3.0):
         return pid if code == 1 else None
     except Exception:  # noqa: BLE001 - a node that is gone answers in many ways
         return None
-
-
-def alive(pid):
-    try:
-        with open('/proc/%d/status' % pid) as f:
-            for line in f:
-                if line.startswith('State:'):
-                    return 'Z' not in line.split()[1]
-    except OSError:
-        return False
-    return True
 
 
 def fd_count(pid):
@@ -134,7 +124,7 @@ class Watch(object):
             if inc['end'] is not None or pid in seen:
                 continue
             seen.add(pid)
-            if not alive(pid):
+            if not process_alive(pid):
                 inc['end'] = now
                 if pid not in self.killed:
                     self.crashes.append((now, inc['name'], pid))
