@@ -27,14 +27,27 @@ class Missions(object):
         self.states = {}     # id -> list of (wall, state, reason)
         self.slots = {}      # id -> (from slot, to slot)
         self.submitted = {}  # id -> wall time of its submission
+        self.progress = {}   # id -> (wall of its last progress, least distance, most inside)
         self.next_id = 1
 
     def on_status(self, msg):
+        """A Mission_Status (/flock/mission/status or /flock/mission/progress): a new state, or
+        the object 5 cm nearer its target, or more robots inside, is progress."""
         with self.lock:
-            if msg.mission_id in self.states:
-                seen = self.states[msg.mission_id]
-                if not seen or seen[-1][1] != msg.state:
-                    seen.append((time.time(), msg.state, msg.reason))
+            if msg.mission_id not in self.states:
+                return
+            now = time.time()
+            seen = self.states[msg.mission_id]
+            moved = False
+            if not seen or seen[-1][1] != msg.state:
+                seen.append((now, msg.state, msg.reason))
+                moved = True
+            last = self.progress.get(msg.mission_id, (now, float('inf'), -1))
+            if msg.distance_to_target < last[1] - 0.05 or msg.robots_inside > last[2]:
+                moved = True
+            if moved:
+                self.progress[msg.mission_id] = (now, min(last[1], msg.distance_to_target),
+                                                 max(last[2], msg.robots_inside))
 
     def final(self, mid):
         seen = self.states[mid]
@@ -55,10 +68,12 @@ class Missions(object):
         return [i for i in range(len(SLOTS)) if i not in used]
 
     def hung(self, now, hung_s):
+        """Live missions without progress (a new state, the object nearer its target, more
+        robots inside) for longer than `hung_s`."""
         with self.lock:
-            return [m for m, seen in self.states.items()
-                    if (not seen or seen[-1][1] not in (DONE, ABORTED, REJECTED))
-                    and now - (seen[-1][0] if seen else self.submitted[m]) > hung_s]
+            return [m for m in self.states
+                    if self.final(m) not in (DONE, ABORTED, REJECTED)
+                    and now - self.progress.get(m, (self.submitted[m],))[0] > hung_s]
 
 
 def submit(missions, a, rng, log):

@@ -52,8 +52,8 @@ class Run(object):
             'robots': a.robots, 'seed': a.seed, 'deploy': a.deploy, 'dispatcher': 'false',
             'recorder': 'false', 'robot_output': 'log'}, name='swarm')
         rospy.init_node('soak', disable_signals=True)
-        rospy.Subscriber('/flock/mission/status', Mission_Status, self.missions.on_status,
-                         queue_size=1000)
+        for topic in ('/flock/mission/status', '/flock/mission/progress'):
+            rospy.Subscriber(topic, Mission_Status, self.missions.on_status, queue_size=1000)
         self.flood_pub = rospy.Publisher('/flock/mission/new', New_Mission, queue_size=FLOOD)
         rospy.wait_for_message('/flock/world_poses', Robot_Positions, timeout=120)
         names = self.robot_names()
@@ -282,10 +282,11 @@ class Run(object):
             self.log('CRASH %s (pid %d) at %.0f s' % (name, pid, t - (self.t0 or t)))
         if lost:
             self.log('missions ended without a row in %s/missions.csv: %s' % (self.run_dir, lost))
-        self.hung.update(m.live())
+        self.hung.update(m.hung(time.time(), self.a.hung_s))
         return {
             'ok': True, 'missions': len(m.states), 'done': m.count(DONE),
             'aborted': m.count(ABORTED), 'rejected': m.count(REJECTED),
+            'unfinished': len(m.live()),
             'hung': len(self.hung), 'lost_rows': len(lost), 'duplicate_rows': duplicate,
             'crashes': len(self.watch.crashes), 'rss_growth_pct': round(rss, 1),
             'rss_growth_node': rss_node, 'fd_growth': fds, 'fd_growth_node': fds_node,

@@ -62,6 +62,32 @@ class Growth(unittest.TestCase):
         self.assertEqual((rss_node, fds, fds_node), ('/a', 1, '/a'))
 
 
+class Status(object):
+    def __init__(self, mid, state, distance, inside=0):
+        self.mission_id, self.state, self.reason = mid, state, ''
+        self.distance_to_target, self.robots_inside = distance, inside
+
+
+class Hung(unittest.TestCase):
+
+    def test_a_mission_is_hung_only_without_progress(self):
+        m = soak_missions.Missions()
+        for mid in (1, 2, 3):
+            m.states[mid] = []
+            m.submitted[mid] = 0.0
+        m.on_status(Status(1, 3, 5.0))   # TRANSPORT, then nearer and nearer
+        m.on_status(Status(2, 3, 5.0))   # TRANSPORT, then stuck
+        m.on_status(Status(3, 5, 0.1))   # DONE
+        t0 = m.progress[1][0]
+        m.progress[1] = (t0 - 100.0,) + m.progress[1][1:]
+        m.progress[2] = (t0 - 100.0,) + m.progress[2][1:]
+        m.on_status(Status(1, 3, 4.9))   # 10 cm nearer: progress
+        m.on_status(Status(2, 3, 4.98))  # 2 cm: not progress
+        self.assertEqual(m.hung(t0, 60.0), [2])
+        self.assertEqual(m.hung(t0, 120.0), [])
+        self.assertEqual(sorted(m.live()), [1, 2])
+
+
 class Checks(unittest.TestCase):
 
     def failures(self, r):
@@ -72,6 +98,9 @@ class Checks(unittest.TestCase):
 
     def test_each_finding_fails_its_check(self):
         self.assertIn('no_mission_hung', self.failures(result(hung=1)))
+        self.assertNotIn('no_mission_hung', {n: w for n, w in soak.checks(result(hung=2), 2)
+                                             if w})
+        self.assertIn('no_mission_hung', {n: w for n, w in soak.checks(result(hung=3), 2) if w})
         self.assertIn('no_crash', self.failures(result(crashes=2)))
         self.assertIn('no_mission_row_lost', self.failures(result(lost_rows=1)))
         self.assertIn('no_mission_row_twice', self.failures(result(duplicate_rows=1)))
