@@ -5,7 +5,7 @@ handled: SIGKILL of a robot and its respawn (/kill, /spawn, robot.launch), SIGST
 simulator's radio_loss, dynamic_reconfigure, for 10 s) and a flood of 500 invalid orders.
 
 It prints progress every --progress-s and ends with one line
-  RESULT missions= done= aborted= hung= lost_rows= duplicate_rows= crashes= rss_growth_pct=
+  RESULT missions= done= aborted= unfinished= hung= lost_rows= duplicate_rows= crashes= rss_growth_pct=
          fd_growth= faults=
 and writes soak.log (every fault and its effect), result.json and the recorder's files under
 --out. Figures only: the exit status is 0 when the run itself worked (docs/reliability.md)."""
