@@ -20,8 +20,8 @@ namespace {
 using core::MissionPhase;
 
 constexpr char kNode[] = "mission_dispatcher";
-// Before publishing a new order, wait at most this long (wall) for every node the master lists
-// as a subscriber of the order and status topics to be connected.
+// Before publishing a new order or an event, wait at most this long (wall) for every node the
+// master lists as a subscriber of its topic to be connected.
 constexpr double kListenerWaitS = 1.0;
 constexpr std::uint32_t kOrderQueue = 256;
 constexpr double kSilentWallGraceS = 1.0;
@@ -200,7 +200,7 @@ void MissionDispatcher::PublishStatus(const core::MissionSpec& spec, MissionPhas
 }
 
 void MissionDispatcher::Order(const core::MissionSpec& spec, std::uint64_t start_tick) {
-  AwaitListeners();
+  AwaitListeners(new_pub_);
   New_Mission order = ToNewMission(spec);
   order.start_tick = start_tick;
   new_pub_.publish(order);
@@ -219,6 +219,10 @@ void MissionDispatcher::Aborted(const core::MissionSpec& spec, const std::string
 }
 
 void MissionDispatcher::Event(const core::Signal& signal, const char* why) {
+  // Not latched: a restarted dispatcher sends the owed LOADED/UNLOADED of its rebuilt missions
+  // within a second of advertising the topic, before the robots' connections are made (the
+  // soak lost it at every restart, and the mission stood in UNLOADING for good).
+  AwaitListeners(event_pub_);
   event_pub_.publish(ToMsg(signal));
   ROS_INFO("%s: sent %s for mission %u (%s; from tick %llu)", kNode, EventName(signal.kind),
            signal.mission_id, why, static_cast<unsigned long long>(signal.not_before_tick));
@@ -314,7 +318,7 @@ void MissionDispatcher::OnProgress(const ros::MessageEvent<Mission_Status const>
   policy_->OnProgress(ToMissionReport(*msg));
 }
 
-void MissionDispatcher::AwaitListeners() {
+void MissionDispatcher::AwaitListeners(const ros::Publisher& pub) {
   // A node that subscribed but is not connected yet (start-up, a loaded machine) would get
   // the latched order late: a lock-step run would not repeat. Connections are made by roscpp's
   // own thread, so waiting here (briefly, in a service call) lets them complete.
@@ -322,12 +326,10 @@ void MissionDispatcher::AwaitListeners() {
   while (ros::ok()) {
     TopicNodeCounts graph;
     if (!QueryTopicNodeCounts(&graph)) return;
-    if (graph.AllConnected(new_pub_)) return;
+    if (graph.AllConnected(pub)) return;
     if (ros::WallTime::now() >= until) {
-      ROS_WARN(
-          "%s: not every subscriber of the mission topics is connected after %.1f s; "
-          "publishing anyway",
-          kNode, kListenerWaitS);
+      ROS_WARN("%s: not every subscriber of %s is connected after %.1f s; publishing anyway", kNode,
+               pub.getTopic().c_str(), kListenerWaitS);
       return;
     }
     ros::WallDuration(kListenerPollS).sleep();

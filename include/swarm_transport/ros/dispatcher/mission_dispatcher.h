@@ -64,9 +64,9 @@ class MissionDispatcher : private core::DispatcherOutlet {
 
   void PublishStatus(const core::MissionSpec& spec, core::MissionPhase phase,
                      const std::string& reason, std::uint64_t tick = 0);
-  // Before a new order: waits (at most kListenerWaitS) until every registered subscriber of
-  // the order topic is connected.
-  void AwaitListeners();
+  // Before a new order or an event: waits (at most kListenerWaitS) until every registered
+  // subscriber of pub's topic is connected.
+  void AwaitListeners(const ros::Publisher& pub);
   bool FromSelf(const std::string& publisher) const {
     return publisher == ros::this_node::getName();
   }
