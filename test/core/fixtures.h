@@ -1,12 +1,14 @@
-// Scenes the core's tests share: quiet flocking parameters, the thesis's transport mission and
-// a neighbour at a pose.
+// Scenes the core's tests share: quiet flocking parameters, the thesis's transport mission, a
+// neighbour at a pose, and the dispatcher's book's robots and status reports.
 #ifndef SWARM_TRANSPORT_TEST_CORE_FIXTURES_H_
 #define SWARM_TRANSPORT_TEST_CORE_FIXTURES_H_
 
 #include <cstdint>
+#include <set>
 
 #include "swarm_transport/core/flocking.h"
 #include "swarm_transport/core/mission.h"
+#include "swarm_transport/core/mission_book.h"
 
 namespace swarm_transport {
 namespace core {
@@ -39,6 +41,22 @@ inline MissionSpec Thesis(std::uint16_t id = 7) {
   m.object_size = {2.0, 2.0};
   m.target = {3.0, 3.0};
   return m;
+}
+
+// Robot ids [0, n): a swarm the dispatcher's book admits orders for.
+inline std::set<std::uint16_t> Robots(int n) {
+  std::set<std::uint16_t> ids;
+  for (int i = 0; i < n; ++i) ids.insert(static_cast<std::uint16_t>(i));
+  return ids;
+}
+
+// A first leader's status report of mission `id`: `phase` at `tick`.
+inline MissionReport Report(std::uint16_t id, MissionPhase phase, std::uint64_t tick) {
+  MissionReport r;
+  r.mission_id = id;
+  r.phase = phase;
+  r.tick = tick;
+  return r;
 }
 
 // A physical robot `id` at (x, y) heading `heading_deg`.

@@ -13,13 +13,9 @@ namespace swarm_transport {
 namespace core {
 namespace {
 
+using fixtures::Report;
+using fixtures::Robots;
 using fixtures::Thesis;
-
-std::set<std::uint16_t> Robots(int n) {
-  std::set<std::uint16_t> ids;
-  for (int i = 0; i < n; ++i) ids.insert(static_cast<std::uint16_t>(i));
-  return ids;
-}
 
 MissionBookParams Params() {
   MissionBookParams p;
@@ -28,14 +24,6 @@ MissionBookParams Params() {
   p.unloaded_delay_s = -1.0;  // only on a signal
   p.max_live_missions = 2;
   return p;
-}
-
-MissionReport Report(std::uint16_t id, MissionPhase phase, std::uint64_t tick) {
-  MissionReport r;
-  r.mission_id = id;
-  r.phase = phase;
-  r.tick = tick;
-  return r;
 }
 
 TEST(MissionBookTest, AcceptsRejectsAndChoosesIds) {
