@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
 #include "swarm_transport/core/problem.h"
 
@@ -100,21 +99,10 @@ namespace {
 
 // NeighbourhoodOf's and DesiredHeading's vectors, kept from call to call (per thread: a host's
 // workers tick robots in parallel), so that a tick allocates none of them.
-// The cos and sin of a heading, remembered per robot id: in one tick every robot that hears a
-// robot takes the same heading (its Position's float angle), so most lookups find it. An entry
-// is used only when its radians are bit for bit the heading's, so the values are always
-// std::cos's and std::sin's of exactly that argument.
-struct HeadingTrigMemo {
-  std::uint64_t radians_bits = 0;  // +0.0, whose cos and sin are exactly these
-  double cos = 1.0;
-  double sin = 0.0;
-};
-
 struct FlockingScratch {
   std::vector<Neighbour> neighbourhood;
   std::vector<const Neighbour*> candidates;
   std::vector<Vec2> frontier;
-  std::vector<HeadingTrigMemo> trig;  // by robot id, sized on first use
 };
 
 // Not inlined: a caller gets the thread's scratch once and passes it on. Inlined, the compiler
@@ -223,10 +211,7 @@ Angle DesiredHeading(const Perception& in, const FlockingParams& p, Rng& rng, bo
   const std::vector<Neighbour>& neighbourhood = scratch->neighbourhood;
   FillNeighbourhood(in, p, &scratch->neighbourhood, &scratch->candidates, &scratch->frontier);
   if (neighbourhood_size != nullptr) *neighbourhood_size = NeighbourhoodSize(neighbourhood);
-  // CircularMean of the headings (the same sums in the same order), with each robot's cos and
-  // sin from the thread's memo.
-  std::vector<HeadingTrigMemo>& trig = scratch->trig;
-  if (trig.empty()) trig.resize(std::size_t{1} << 16);
+  // CircularMean of the headings: the same sums in the same order, without their list.
   double sum_x = 0.0;
   double sum_y = 0.0;
   Vec2 sum;
@@ -235,16 +220,8 @@ Angle DesiredHeading(const Perception& in, const FlockingParams& p, Rng& rng, bo
     // Statists stand still: they have a place but no heading to align with.
     if (n.type == kTypeStatist) continue;
     const double radians = n.heading.radians();
-    std::uint64_t bits = 0;
-    std::memcpy(&bits, &radians, sizeof bits);
-    HeadingTrigMemo& memo = trig[n.id];
-    if (memo.radians_bits != bits) {
-      memo.radians_bits = bits;
-      memo.cos = std::cos(radians);
-      memo.sin = std::sin(radians);
-    }
-    sum_x += memo.cos;
-    sum_y += memo.sin;
+    sum_x += std::cos(radians);
+    sum_y += std::sin(radians);
   }
   bool aligned = false;
   const Angle mean = CircularMeanOfSums(sum_x, sum_y, &aligned);
