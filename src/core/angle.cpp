@@ -65,7 +65,23 @@ Angle CircularMean(const std::vector<Angle>& angles, bool* defined,
     sum_x += weight * std::cos(radians);
     sum_y += weight * std::sin(radians);
   }
-  const bool is_defined = std::hypot(sum_x, sum_y) >= kUndefinedMeanLength;
+  return CircularMeanOfSums(sum_x, sum_y, defined);
+}
+
+Angle CircularMeanOfSums(double sum_x, double sum_y, bool* defined) {
+  // hypot(sum_x, sum_y) >= kUndefinedMeanLength, decided without hypot where the squared length
+  // is clearly on one side (its rounding error is far below the 1e-9 margin, hypot within an
+  // ulp; an underflowed square is below either way); NaN and the narrow band call hypot.
+  const double squared = sum_x * sum_x + sum_y * sum_y;
+  const double limit = kUndefinedMeanLength * kUndefinedMeanLength;
+  bool is_defined = false;
+  if (squared > limit * (1.0 + 1e-9)) {
+    is_defined = true;
+  } else if (squared < limit * (1.0 - 1e-9)) {
+    is_defined = false;
+  } else {
+    is_defined = std::hypot(sum_x, sum_y) >= kUndefinedMeanLength;
+  }
   if (defined != nullptr) *defined = is_defined;
   if (!is_defined) return Angle(0.0);
   return Angle::FromRadians(std::atan2(sum_y, sum_x));

@@ -103,7 +103,6 @@ struct FlockingScratch {
   std::vector<Neighbour> neighbourhood;
   std::vector<const Neighbour*> candidates;
   std::vector<Vec2> frontier;
-  std::vector<Angle> headings;
 };
 
 // Not inlined: a caller gets the thread's scratch once and passes it on. Inlined, the compiler
@@ -212,22 +211,28 @@ Angle DesiredHeading(const Perception& in, const FlockingParams& p, Rng& rng, bo
   const std::vector<Neighbour>& neighbourhood = scratch->neighbourhood;
   FillNeighbourhood(in, p, &scratch->neighbourhood, &scratch->candidates, &scratch->frontier);
   if (neighbourhood_size != nullptr) *neighbourhood_size = NeighbourhoodSize(neighbourhood);
-  std::vector<Angle>& headings = scratch->headings;
-  headings.clear();
-  headings.reserve(neighbourhood.size());
+  // CircularMean of the headings: the same sums in the same order, without their list.
+  double sum_x = 0.0;
+  double sum_y = 0.0;
   Vec2 sum;
   for (const Neighbour& n : neighbourhood) {
-    // Statists stand still: they have a place but no heading to align with.
-    if (n.type != kTypeStatist) headings.push_back(n.heading);
     sum = sum + n.position;
+    // Statists stand still: they have a place but no heading to align with.
+    if (n.type == kTypeStatist) continue;
+    const double radians = n.heading.radians();
+    sum_x += std::cos(radians);
+    sum_y += std::sin(radians);
   }
   bool aligned = false;
-  const Angle mean = CircularMean(headings, &aligned);
+  const Angle mean = CircularMeanOfSums(sum_x, sum_y, &aligned);
   // Cancelling headings leave every direction acceptable [T5.2]: keep going straight on.
   Angle heading = (aligned ? mean : in.self.heading) + Angle(free_will);
 
   const Vec2 centroid = sum * (1.0 / static_cast<double>(neighbourhood.size()));
-  if (Distance(position, centroid) > kCentroidTolerance) {
+  // FartherThan decides most without the square root; the rest as before.
+  if (FartherThan(position, centroid, kCentroidTolerance) ||
+      (!CertainlyWithin(position, centroid, kCentroidTolerance) &&
+       Distance(position, centroid) > kCentroidTolerance)) {
     const Angle to_centroid = Bearing(position, centroid);
     heading = heading + Angle(p.cohesion * Angle::SignedDifference(to_centroid, heading));
   }
@@ -283,9 +288,15 @@ bool IsMoveValid(const Perception& in, const FlockingParams& p, Angle heading, d
   // The path is the straight segment of the drive (the turn happens in place).
   const double touching = 2.0 * p.robot_radius_m;
   // A robot farther than touching + the drive from its start cannot be within touching of
-  // any point of the drive.
-  const double reach = touching + Distance(from, to);
+  // any point of the drive. Most are farther than a bound above that reach (sqrt of the
+  // squares, widened past their rounding and any underflow), so the exact reach's hypot is
+  // needed only for the others (FartherThan grows with the distance it is given).
+  const double reach_bound =
+      touching + (std::sqrt(SquaredDistance(from, to)) * (1.0 + 1e-9) + 1e-150);
+  double reach = -1.0;  // not computed yet
   for (const Neighbour& other : in.others) {
+    if (FartherThan(from, other.position, reach_bound)) continue;
+    if (reach < 0.0) reach = touching + Distance(from, to);
     if (FartherThan(from, other.position, reach)) continue;
     // A robot it is already closer to than the separation (touching after a push by the
     // simulator, rounded to float) would block every move: the overlap rule above already

@@ -118,9 +118,24 @@ MetricsFrame FrameOf(std::uint64_t tick, double sim_time, const std::vector<Posi
   MetricsFrame frame;
   frame.tick = tick;
   frame.sim_time_s = sim_time;
+  *bad = 0;
+  // The simulator's frames: physical robots only, finite, in ascending id: straight into the
+  // frame (what the general path below gives for them, without its list of a frame's size).
+  frame.ids.reserve(positions.size());
+  frame.positions.reserve(positions.size());
+  for (const Position& p : positions) {
+    if (p.type != Position::kPhysical || !std::isfinite(p.x) || !std::isfinite(p.y) ||
+        (!frame.ids.empty() && frame.ids.back() >= p.robot_id)) {
+      frame.ids.clear();
+      frame.positions.clear();
+      break;
+    }
+    frame.ids.push_back(p.robot_id);
+    frame.positions.push_back(Vec2{p.x, p.y});
+  }
+  if (frame.ids.size() == positions.size()) return frame;
   std::vector<std::pair<std::uint16_t, Vec2>> robots;
   robots.reserve(positions.size());
-  *bad = 0;
   for (const Position& p : positions) {
     if (p.type != Position::kPhysical) continue;
     if (!std::isfinite(p.x) || !std::isfinite(p.y)) {

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <random>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 namespace swarm_transport {
@@ -120,6 +121,26 @@ TEST(AngleTest, CircularMeanWeighsEachAngle) {
 TEST(AngleTest, CircularMeanRejectsMismatchedWeights) {
   bool defined = false;
   EXPECT_THROW(CircularMean({Angle(0), Angle(90)}, &defined, {1.0}), std::invalid_argument);
+}
+
+// CircularMeanOfSums decides "defined" from the squared length where it is clearly on one side
+// of 1e-9: the same answer as hypot's at and around the limit, at tiny (underflowing) and huge
+// sums, and NaN.
+TEST(AngleTest, CircularMeanOfSumsDefinedAsHypotSays) {
+  std::vector<std::pair<double, double>> sums = {
+      {0.0, 0.0},     {1e-9, 0.0},     {0.0, -1e-9}, {6e-10, 8e-10},      {1e-170, 1e-170},
+      {1e200, 1e200}, {-1e-9, 1e-300}, {3.0, -4.0},  {std::nan(""), 1.0}, {1.0, std::nan("")}};
+  for (double scale :
+       {1.0 - 1e-8, 1.0 - 1e-10, 1.0 - 1e-15, 1.0 + 1e-15, 1.0 + 1e-10, 1.0 + 1e-8}) {
+    sums.emplace_back(1e-9 * scale, 0.0);
+    sums.emplace_back(0.6e-9 * scale, -0.8e-9 * scale);
+    sums.emplace_back(-0.7071067811865476e-9 * scale, 0.7071067811865476e-9 * scale);
+  }
+  for (const auto& s : sums) {
+    bool defined = true;
+    CircularMeanOfSums(s.first, s.second, &defined);
+    EXPECT_EQ(defined, std::hypot(s.first, s.second) >= 1e-9) << s.first << ", " << s.second;
+  }
 }
 
 }  // namespace

@@ -35,6 +35,8 @@ class Angle {
 // 180 cancel]. `weights` may be empty (all 1) or the same size as `angles`.
 Angle CircularMean(const std::vector<Angle>& angles, bool* defined,
                    const std::vector<double>& weights = {});
+// CircularMean from its summed unit vectors (sum of weight * cos, of weight * sin).
+Angle CircularMeanOfSums(double sum_x, double sum_y, bool* defined);
 
 }  // namespace core
 }  // namespace swarm_transport
