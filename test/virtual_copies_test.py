@@ -2,7 +2,8 @@
 """Virtual leaders (SPEC 9.2) in a launched run: robot 0 leads a leader-only mission with
 leader_virtual_copies 3; the other robots' rounds carry its position with its 2 copies while it
 leads (one position, Robot_Position.copies), never before, and not after it arrived; the
-simulator's /flock/world_poses shows the same."""
+simulator's /flock/world_poses shows the same. ~lockstep false: in real time, where the
+simulator takes the copies from the leader's /flock/position instead of its answers."""
 
 import sys
 import threading
@@ -48,7 +49,8 @@ class VirtualCopies(unittest.TestCase):
         subs.append(rospy.Subscriber('/flock/world_poses', Robot_Positions, on_poses,
                                      queue_size=1000))
         log = st.PositionLog()
-        swarm = st.launch_swarm(robots=robots, seed=g('~seed'), lockstep=True, max_ticks=0,
+        swarm = st.launch_swarm(robots=robots, seed=g('~seed'), lockstep=g('~lockstep', True),
+                                max_ticks=0,
                                 placement='corner', extra_config=g('~extra_config'))
         try:
             self.assertTrue(log.wait_tick(3, timeout), 'the swarm never ticked')
