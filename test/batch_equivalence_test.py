@@ -87,6 +87,7 @@ class BatchEquivalence(unittest.TestCase):
         for preset, settings, kind in (
                 (param('flocking_preset'), param('flocking_settings').split(), 'flocking'),
                 (param('leader_preset'), param('leader_settings').split(), 'leader'),
+                (param('copies_preset'), param('copies_settings').split(), 'leader'),
                 (param('transport_preset'), param('transport_settings').split(), 'transport')):
             launched = self.run_preset(preset, settings, 'launch')
             batch = self.run_preset(preset, settings, 'batch')
@@ -124,7 +125,7 @@ class BatchEquivalence(unittest.TestCase):
                     ticks += self.compare_traces(a, b, where, rb['ticks'] - 1)
                     compared += 1
         expected = param('runs') * sum(len(param(p).split()) for p in (
-            'flocking_settings', 'leader_settings', 'transport_settings'))
+            'flocking_settings', 'leader_settings', 'copies_settings', 'transport_settings'))
         self.assertEqual(compared, expected)
         self.assertGreater(arrived, 0, 'no mission ended DONE: the comparison was partial')
         rospy.loginfo('batch and launched runs equal: %d runs, %d ticks of poses', compared,

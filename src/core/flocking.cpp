@@ -154,8 +154,17 @@ void FillNeighbourhood(const Perception& in, const FlockingParams& p,
               Distance(from, n->position) > p.local_range_m);
     });
     for (auto it = linked; it != candidates.end(); ++it) {
-      neighbourhood->push_back(**it);
-      if (p.neighbourhood == Neighbourhood::kChain) frontier.push_back((*it)->position);
+      const Neighbour& n = **it;
+      neighbourhood->push_back(n);
+      // A leader's announced copies stand where it stands: linked with it (SPEC 9.2).
+      for (int k = 1; k <= n.copies; ++k) {
+        Neighbour copy = n;
+        copy.type = kTypeVirtual;
+        copy.sub_id = static_cast<std::uint8_t>(k);
+        copy.copies = 0;
+        neighbourhood->push_back(copy);
+      }
+      if (p.neighbourhood == Neighbourhood::kChain) frontier.push_back(n.position);
     }
     candidates.erase(linked, candidates.end());
   }

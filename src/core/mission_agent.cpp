@@ -10,19 +10,6 @@ namespace core {
 MissionAgent::MissionAgent(std::uint16_t self_id, const MissionAgentParams& params)
     : self_id_(self_id), params_(params) {}
 
-std::vector<std::uint16_t> MissionAgent::LeadingAlone() const {
-  std::vector<std::uint16_t> leaders;
-  for (const auto& kv : live_) {
-    const Live& live = kv.second;
-    if (live.spec.LeaderOnly() && live.phase == MissionPhase::kTransport) {
-      leaders.push_back(live.spec.FirstLeader());
-    }
-  }
-  std::sort(leaders.begin(), leaders.end());
-  leaders.erase(std::unique(leaders.begin(), leaders.end()), leaders.end());
-  return leaders;
-}
-
 bool MissionAgent::OnNewMission(const MissionSpec& mission, std::string* why) {
   if (live_.count(mission.id) > 0) {
     *why = "mission_id " + std::to_string(mission.id) + " is already live";

@@ -163,8 +163,12 @@ BrainTick RobotBrain::Tick(Perception in, std::uint64_t tick, bool publish) {
   in.group = plan.group;
 
   const double dt = params_.tick_period_s;
-  const bool balloon =
-      params_.standby == StandbyMode::kBalloon && !plan.active && !plan.carry && !plan.lead;
+  // A robot that hears a leader's virtual copies (SPEC 9.2) flocks to follow it rather than
+  // spread out.
+  const bool balloon = params_.standby == StandbyMode::kBalloon && !plan.active && !plan.carry &&
+                       !plan.lead &&
+                       std::none_of(in.others.begin(), in.others.end(),
+                                    [](const Neighbour& n) { return n.copies > 0; });
   // Loading spread (SPEC 9.5): until the first leader's freeze, a mission robot in LOADING
   // spreads under its object.
   const bool spreading = params_.loading_spread == LoadingSpread::kBalloon && plan.carry &&
@@ -191,22 +195,13 @@ BrainTick RobotBrain::Tick(Perception in, std::uint64_t tick, bool publish) {
     const LeaderDecision d =
         LeaderStep(in, params_.flocking, leader, plan.goal, plan.steer, rng_, dt, &leader_memory_);
     out.move = d.move;
+    // Virtual leaders (SPEC 9.2): it announces its copies; its hearers count each one as a
+    // neighbour (collisions see only the robots).
+    out.copies = static_cast<std::uint8_t>(params_.leader.virtual_copies - 1);
     if (d.arrived) {
       agent_.LeaderArrived(*plan.active, &out.outbox);
       out.arrived = true;
     }
-  } else if (params_.leader.virtual_copies > 1 && !agent_.LeadingAlone().empty()) {
-    // Virtual leaders (SPEC 9.2): a leading robot heard weighs virtual_copies times in the
-    // alignment; collisions see only the robots.
-    const Perception weighted =
-        StackLeaders(in, agent_.LeadingAlone(), params_.leader.virtual_copies);
-    bool fleeing = false;
-    int neighbourhood_size = 0;
-    const Angle desired =
-        DesiredHeading(weighted, params_.flocking, rng_, &fleeing, &neighbourhood_size);
-    out.move = AvoidCollisions(in, params_.flocking, desired, dt);
-    out.move.fleeing = fleeing;
-    out.move.neighbours_in_range = neighbourhood_size;
   } else if (balloon) {
     // Balloon dispersion (SPEC 9.5): on no mission, it spreads over the arena.
     out.move = BalloonStep(in, params_.flocking, params_.balloon, rng_, dt, &balloon_radius_m_);

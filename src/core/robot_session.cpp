@@ -99,6 +99,7 @@ RobotSession::Step RobotSession::Tick(Perception in, std::uint64_t tick, double 
   step.answer.tick = tick;
   step.answer.sim_time = sim_time;
   step.answer.command = step.brain.command;
+  step.answer.copies = step.brain.copies;
   FillAnswer(step.brain.outbox, std::move(progress), &step.answer);
   return step;
 }

@@ -46,6 +46,7 @@ Neighbour NeighbourOf(const Position& p) {
   n.type = p.type;
   n.position = {p.x, p.y};
   n.heading = Angle(p.angle_deg);
+  n.copies = p.type == Position::kPhysical ? p.copies : 0;
   return n;
 }
 

@@ -29,11 +29,23 @@ void LockstepEngine::BeginRound(std::uint64_t tick, double sim_time,
   truth_.reserve(robots.size());
   for (const auto& entry : robots)
     truth_.push_back(core::PositionOf(entry.first, entry.second.pose));
+  // The virtual copies robots announce travel on their own positions (SPEC 9.2): from their
+  // answers in lock-step, from their /flock/position in real time.
+  if (!copies_.empty()) StampCopies(copies_);
+  if (relayed != nullptr && !relayed->copies().empty()) StampCopies(relayed->copies());
   radio_->Begin(*world_, relayed != nullptr ? relayed->Extras() : std::vector<RadioExtra>(),
                 *missions_, quiet);
   // Virtual copies are relayed at their owner's true pose, the others where announced.
   relayed_ = relayed != nullptr ? relayed->AtOwners(radio_->extra_owner(), truth_)
                                 : std::vector<core::Position>();
+}
+
+void LockstepEngine::StampCopies(const std::map<std::uint16_t, std::uint8_t>& copies) {
+  const auto by_id = [](const core::Position& p, std::uint16_t id) { return p.robot_id < id; };
+  for (const auto& entry : copies) {
+    const auto it = std::lower_bound(truth_.begin(), truth_.end(), entry.first, by_id);
+    if (it != truth_.end() && it->robot_id == entry.first) it->copies = entry.second;
+  }
 }
 
 std::size_t LockstepEngine::Round(std::size_t index, bool connected, core::Round* out) {
@@ -69,6 +81,11 @@ void LockstepEngine::TakeAnswers(
     const core::Answer& a = entry.second;
     // Most answers relay nothing: no sender name to format for them.
     if (!a.messages.empty() || !a.statuses.empty()) relay_.AddAnswer(entry.first, a);
+    if (a.copies > 0) {
+      copies_[entry.first] = a.copies;
+    } else if (!copies_.empty()) {
+      copies_.erase(entry.first);
+    }
     for (const core::MissionMessage& m : a.messages) {
       if (const auto* u = std::get_if<core::ObjectUpdate>(&m)) {
         UpdateMissionObject(u->mission_id, u->centre, *world_, missions_);

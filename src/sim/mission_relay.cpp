@@ -163,7 +163,14 @@ std::optional<core::TuningGeneration> TuningRelay::BeginRound(std::uint64_t tick
 }
 
 std::string RelayedPositions::Take(const core::Position& position) {
-  if (Ignored(position)) return "";
+  if (Ignored(position)) {
+    if (position.copies > 0) {
+      copies_[position.robot_id] = position.copies;
+    } else if (!copies_.empty()) {
+      copies_.erase(position.robot_id);
+    }
+    return "";
+  }
   if (!core::IsFinite(position)) return "a non-finite value";
   if (position.type != core::Position::kVirtual && position.type != core::Position::kStatist) {
     return "unknown type " + std::to_string(position.type);
@@ -180,6 +187,7 @@ bool RelayedPositions::Erase(std::uint16_t robot_id, std::uint8_t sub_id) {
 }
 
 void RelayedPositions::EraseCopiesOf(std::uint16_t robot_id) {
+  copies_.erase(robot_id);
   for (auto r = positions_.begin(); r != positions_.end();) {
     if (r->first.first == robot_id && r->second.type == core::Position::kVirtual) {
       r = positions_.erase(r);

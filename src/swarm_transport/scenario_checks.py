@@ -45,6 +45,14 @@ def nearest_distances(points):
             for i, p in enumerate(points)]
 
 
+def _centroid(log, tick):
+    """The robots' centroid (x, y) at `tick`, None without positions."""
+    pts = log.positions.get(tick)
+    if not pts:
+        return None
+    return (sum(p[0] for p in pts.values()) / len(pts), sum(p[1] for p in pts.values()) / len(pts))
+
+
 def _spacing(e, log):
     pts = log.positions.get(e['at_tick'])
     if not pts or len(pts) < 2:
@@ -116,14 +124,21 @@ def check(e, log, scenario, second=None):
                           % len(log.robot_states) if not held else
                           'robot(s) still holding: %s' % sorted(held.items())[:5])
     if kind == 'centroid_near':
-        pts = log.positions.get(e['at_tick'])
-        if not pts:
+        c = _centroid(log, e['at_tick'])
+        if c is None:
             return False, 'no positions at tick %d' % e['at_tick']
-        cx = sum(p[0] for p in pts.values()) / len(pts)
-        cy = sum(p[1] for p in pts.values()) / len(pts)
-        d = math.hypot(cx - e['x'], cy - e['y'])
+        d = math.hypot(c[0] - e['x'], c[1] - e['y'])
         return e['min_m'] <= d <= e['max_m'], 'centroid (%.2f, %.2f) at tick %d, %.2f m away' % (
-            cx, cy, e['at_tick'], d)
+            c[0], c[1], e['at_tick'], d)
+    if kind == 'centroid_approach':
+        ends = [_centroid(log, e[t]) for t in ('from_tick', 'to_tick')]
+        if None in ends:
+            return False, 'no positions at tick %d' % e['to_tick' if ends[0] else 'from_tick']
+        d = [math.hypot(c[0] - e['x'], c[1] - e['y']) for c in ends]
+        came = d[0] - d[1]
+        return e['min_m'] <= came <= e['max_m'], (
+            'centroid %.2f m nearer from tick %d to %d (%.2f -> %.2f m away)'
+            % (came, e['from_tick'], e['to_tick'], d[0], d[1]))
     if kind == 'spacing':
         return _spacing(e, log)
     if kind in ('robot_near', 'swarm_of'):

@@ -50,6 +50,10 @@ EXPECTATIONS = {
     'released': (set(), {}),
     'object_clear_of_zones': ({'mission'}, {'tolerance_m': 0.0}),
     'centroid_near': ({'at_tick', 'x', 'y'}, {'min_m': 0.0, 'max_m': float('inf')}),
+    # How much nearer (x, y) the robots' centroid came from from_tick to to_tick (its distance
+    # then minus its distance at to_tick; negative when it went away): within [min_m, max_m].
+    'centroid_approach': ({'x', 'y', 'from_tick', 'to_tick'},
+                          {'min_m': -float('inf'), 'max_m': float('inf')}),
     # Each robot's distance to its nearest other robot at at_tick: every one of them within
     # [min_nn_m, max_nn_m], and their coefficient of variation (std / mean) at most max_cv.
     'spacing': ({'at_tick'}, {'min_nn_m': 0.0, 'max_nn_m': float('inf'),
@@ -443,6 +447,8 @@ def _expectation(r, node, where, mission_ids, max_ticks):
             out[key] = r.number(n, kw, 0, 65535, integer=True)
         elif key in ('min_fraction', 'max_fraction'):
             out[key] = r.number(n, kw, 0.0, 1.0)
+        elif kind == 'centroid_approach' and key in ('min_m', 'max_m'):
+            out[key] = r.number(n, kw)  # negative: it went away
         else:
             out[key] = r.number(n, kw, 0)
     if 'min' in out and 'max' in out and out['min'] > out['max']:

@@ -257,36 +257,83 @@ TEST(RobotBrainTest, AdmittingItselfARobotHoldsTheDispatchersLimit) {
   EXPECT_NE(self.missions().Find(2), nullptr);
 }
 
-TEST(RobotBrainTest, VirtualLeaderCopiesWeighInAlignmentOnly) {
-  // Robot 4 hears robot 9 (heading 0, the leader of a leader-only mission under way) and two
-  // robots heading 90. No free will, no cohesion: the desired heading is the alignment mean.
+// Virtual leaders (SPEC 9.2), the hearer's side: the copies a robot announced with its position
+// are neighbours of its hearers' flocking, whatever the hearer knows of missions or its own
+// leader_virtual_copies.
+TEST(RobotBrainTest, AHearerCountsTheCopiesALeaderAnnouncedAsNeighbours) {
+  // Robot 4 hears robot 9 (heading 0) and two robots heading 90. No free will, no cohesion: the
+  // desired heading is the alignment mean.
   SwarmConfig p = Params();
   p.flocking.free_will_deg = 0.0;
   p.flocking.cohesion = 0.0;
   p.flocking.neighbourhood = Neighbourhood::kDisc;
-  MissionSpec trip;
-  trip.id = 3;
-  trip.range_from = 9;
-  trip.range_to = 10;
-  trip.leader_number = 1;
-  trip.target = {9.0, 9.0};
-  trip.object_centre = trip.target;
-  const Perception in =
-      Sees(5.0, 5.0, 90.0, {At(9, 5.5, 5.0, 0.0), At(1, 4.5, 5.0, 90.0), At(2, 5.0, 5.5, 90.0)});
   double desired[2];
-  for (const int k : {1, 4}) {
-    p.leader.virtual_copies = k;
+  for (const int copies : {0, 3}) {
+    Neighbour leader = At(9, 5.5, 5.0, 0.0);
+    leader.copies = static_cast<std::uint8_t>(copies);
+    const Perception in =
+        Sees(5.0, 5.0, 90.0, {leader, At(1, 4.5, 5.0, 90.0), At(2, 5.0, 5.5, 90.0)});
     RobotBrain brain(4, p);
-    ASSERT_EQ(brain.Take(trip, {}, nullptr), "");
-    brain.Take(PhaseStatus{3, MissionPhase::kTransport});
     const BrainTick t = brain.Tick(in, 1, true);
-    desired[k == 1 ? 0 : 1] = t.move.desired_heading.degrees();
-    EXPECT_EQ(t.move.neighbours_in_range, 4) << k;  // itself and 3: copies are nobody
+    desired[copies == 0 ? 0 : 1] = t.move.desired_heading.degrees();
+    EXPECT_EQ(t.move.neighbours_in_range, 4) << copies;  // itself and 3: copies are nobody
+    EXPECT_EQ(t.copies, 0) << "a hearer announces nothing";
   }
   // The mean of unit headings: itself, 1 and 2 at 90 and 9 at 0 -> atan2(3, 1) = 71.6 deg;
   // with 3 copies of 9 -> atan2(3, 4) = 36.9 deg.
   EXPECT_NEAR(desired[0], 71.565, 0.01);
   EXPECT_NEAR(desired[1], 36.870, 0.01);
+}
+
+// In balloon standby a robot that hears a leader's copies flocks to follow it (as a robot of
+// standby: flock does), and spreads out again when it hears none.
+TEST(RobotBrainTest, ABalloonInStandbyFlocksWhileItHearsALeadersCopies) {
+  SwarmConfig flock = Params();
+  SwarmConfig balloon = flock;
+  balloon.standby = StandbyMode::kBalloon;
+  Neighbour leader = At(9, 5.4, 5.0, 0.0);
+  leader.copies = 2;
+  const Perception hears = Sees(5.0, 5.0, 90.0, {leader});
+  RobotBrain flocking(4, flock);
+  RobotBrain spreading(4, balloon);
+  const BrainTick a = flocking.Tick(hears, 1, true);
+  const BrainTick b = spreading.Tick(hears, 1, true);
+  EXPECT_DOUBLE_EQ(a.move.desired_heading.degrees(), b.move.desired_heading.degrees());
+  EXPECT_DOUBLE_EQ(a.command.angular, b.command.angular);
+  leader.copies = 0;
+  const Perception plain = Sees(5.0, 5.0, 90.0, {leader});
+  const BrainTick c = flocking.Tick(plain, 2, true);
+  const BrainTick d = spreading.Tick(plain, 2, true);
+  EXPECT_NE(c.move.desired_heading.degrees(), d.move.desired_heading.degrees());
+}
+
+// The leader's side: it announces leader_virtual_copies - 1 copies while it leads a leader-only
+// mission (not before, not after its arrival); a robot that does not lead announces none.
+TEST(RobotBrainTest, ALeaderAnnouncesItsCopiesWhileItLeadsAlone) {
+  MissionSpec trip;
+  trip.id = 3;
+  trip.range_from = 9;
+  trip.range_to = 10;
+  trip.leader_number = 1;
+  trip.target = {9.0, 5.0};
+  trip.object_centre = trip.target;
+  for (const int k : {1, 4}) {
+    SwarmConfig p = Params();
+    p.leader.virtual_copies = k;
+    RobotBrain leader(9, p);
+    RobotBrain bystander(4, p);
+    EXPECT_EQ(leader.Tick(Sees(5.0, 5.0, 0.0, {}), 0, true).copies, 0) << "no mission yet";
+    for (RobotBrain* brain : {&leader, &bystander}) {
+      ASSERT_EQ(brain->Take(trip, {}, nullptr), "");
+      brain->Take(PhaseStatus{3, MissionPhase::kTransport});
+    }
+    EXPECT_EQ(leader.Tick(Sees(5.0, 5.0, 0.0, {}), 1, true).copies, k - 1) << k;
+    EXPECT_EQ(bystander.Tick(Sees(6.0, 6.0, 0.0, {}), 1, true).copies, 0) << k;
+    // At its target it arrives (still leading this tick), then leads no more.
+    const BrainTick arrival = leader.Tick(Sees(9.0, 5.0, 0.0, {}), 2, true);
+    EXPECT_TRUE(arrival.arrived);
+    EXPECT_EQ(leader.Tick(Sees(9.0, 5.0, 0.0, {}), 3, true).copies, 0) << k;
+  }
   LeaderParams bad;
   bad.virtual_copies = 0;
   EXPECT_NE(bad.Validate(), "");

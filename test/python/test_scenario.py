@@ -305,6 +305,29 @@ class Checks(unittest.TestCase):
         self.assertTrue(self.run_check('  - centroid_near: {at_tick: 5, x: 8, y: 8, min_m: 5}\n',
                                        log)[0])
 
+    def test_centroid_approach_measures_how_much_nearer_the_centroid_came(self):
+        # From tick 5 to 9 the centroid moves from (2, 1) to (4, 1): 2 m nearer (8, 1), 2 m
+        # farther from (0, 1).
+        log = log_of({5: {0: (1.0, 1.0, 0), 1: (3.0, 1.0, 0)},
+                      9: {0: (3.0, 1.0, 0), 1: (5.0, 1.0, 0)}})
+        approach = '  - centroid_approach: {from_tick: 5, to_tick: 9, x: %s, y: 1, %s}\n'
+        ok, measured = self.run_check(approach % (8, 'max_m: 0.5'), log)
+        self.assertFalse(ok)
+        self.assertIn('centroid 2.00 m nearer from tick 5 to 9 (6.00 -> 4.00 m away)', measured)
+        self.assertTrue(self.run_check(approach % (8, 'min_m: 1.9, max_m: 2.1'), log)[0])
+        self.assertTrue(self.run_check(approach % (0, 'max_m: -1.9'), log)[0])
+        self.assertFalse(self.run_check(approach % (0, 'min_m: -1.9'), log)[0])
+        ok, measured = self.run_check(approach.replace('9', '7') % (8, 'max_m: 5'), log)
+        self.assertFalse(ok)
+        self.assertIn('no positions at tick 7', measured)
+        for bad, words in ((approach % (8, 'min_m: 1, max_m: -1'), 'min_m 1 > max_m -1'),
+                           (approach.replace('9', '5') % (8, 'max_m: 1'),
+                            'from_tick 5 must be < to_tick 5')):
+            with self.assertRaises(fmt.ScenarioError) as cm:
+                fmt.parse(MINIMAL + bad, 'bad.yaml')
+            self.assertIn('bad.yaml:13: ', str(cm.exception))
+            self.assertIn(words, str(cm.exception))
+
     def test_spacing_bounds_the_nearest_neighbour_distances_and_their_spread(self):
         # Nearest neighbours 1, 1 and 2 m: mean 4/3, cv sqrt(2/9) / (4/3) = 0.354.
         log = log_of({5: {0: (1.0, 1.0, 0), 1: (2.0, 1.0, 0), 2: (4.0, 1.0, 0)}})

@@ -31,6 +31,24 @@ TEST(ConversionsTest, RobotPositionRoundTripKeepsPoseAndIdentity) {
   EXPECT_NEAR(n.heading.degrees(), 123.0, 1e-4);
 }
 
+// A leader's announced virtual copies (SPEC 9.2) ride on its own position and on its answer.
+TEST(ConversionsTest, AnnouncedCopiesTravelOnPositionsAndAnswers) {
+  core::Position own = core::PositionOf(7, {{1.0, 2.0}, core::Angle(10.0)});
+  own.copies = 4;
+  const Robot_Position msg = ToRobotPosition(own);
+  EXPECT_EQ(msg.copies, 4);
+  EXPECT_EQ(ToPosition(msg).copies, 4);
+  EXPECT_EQ(ToNeighbour(msg).copies, 4);
+  Robot_Position statist = msg;
+  statist.type = Robot_Position::TYPE_STATIST;
+  EXPECT_EQ(ToNeighbour(statist).copies, 0) << "only a robot's own position announces copies";
+  core::Answer answer;
+  answer.copies = 9;
+  const Tick_Answer wire = ToTickAnswer(answer, ros::Time(1.0));
+  EXPECT_EQ(wire.copies, 9);
+  EXPECT_EQ(ToAnswer(wire).copies, 9);
+}
+
 TEST(ConversionsTest, RobotPositionAngleStaysBelow360AfterFloatRounding) {
   // 360 - 1e-9 degrees rounds to 360.0f as float: the message promises [0, 360).
   const Robot_Position msg = ToRobotPosition(1, {{1.0, 1.0}, core::Angle(360.0 - 1e-9)});

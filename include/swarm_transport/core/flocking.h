@@ -48,6 +48,9 @@ struct Neighbour {
   std::uint16_t id = 0;
   std::uint8_t sub_id = 0;
   std::uint8_t type = 0;  // 0 physical, 1 virtual copy, 2 statist (core::Position::Type)
+  // Virtual copies its robot announced with this position (a physical robot's only, SPEC 9.2):
+  // NeighbourhoodOf lists them as neighbours of type 1 wherever it lists the robot.
+  std::uint8_t copies = 0;
   Vec2 position;
   Angle heading;
 };
@@ -103,9 +106,11 @@ int NeighbourhoodSize(const std::vector<Neighbour>& neighbourhood);
 Angle DesiredHeading(const Perception& in, const FlockingParams& p, Rng& rng, bool* fleeing,
                      int* neighbourhood_size = nullptr);
 
-// Leader stacking (SPEC 9.2): `in` with weight - 1 virtual copies (type 1, sub_id 1..) of every
-// physical robot heard whose id is in `leaders` (ascending), for an alignment that weighs each
-// of them `weight` times; collisions and the neighbourhood count take `in` itself.
+// Stacking by the hearer (a carrying robot's transport_leader_weight; a leader-only mission's
+// leader announces its copies itself, Neighbour::copies): `in` with weight - 1 virtual copies (type
+// 1, sub_id 1..) of every physical robot heard whose id is in `leaders` (ascending), for an
+// alignment that weighs each of them `weight` times; collisions and the neighbourhood count take
+// `in` itself.
 Perception StackLeaders(const Perception& in, const std::vector<std::uint16_t>& leaders,
                         int weight);
 

@@ -41,9 +41,10 @@ struct LeaderParams {
   // step 5) until its course is free again; 0: never (the thesis: two leaders heading for each
   // other's side then stand for good).
   int swerve_after_blocked_ticks = 0;
-  // (ext, SPEC 9.2) Virtual leaders and stacking: the leader of a leader-only mission counts
-  // this many times in its neighbours' alignment (itself and virtual_copies - 1 copies at its
-  // pose); 1: only itself (the thesis). At most 255.
+  // (ext, SPEC 9.2) Virtual leaders and stacking: while it leads a leader-only mission a leader
+  // announces virtual_copies - 1 copies (type 1) at its pose with its position, and its
+  // hearers count each as a neighbour (alignment and cohesion): it weighs virtual_copies times
+  // in their flocking. 1: only itself (the thesis). At most 255.
   int virtual_copies = 1;
   std::string Validate() const;
 };

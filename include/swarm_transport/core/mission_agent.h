@@ -143,9 +143,6 @@ class MissionAgent {
   // Inbox. Each returns false with a reason when the message is rejected (state unchanged).
   // `mission` must already have passed ValidateMission with LiveIds() in its context.
   bool OnNewMission(const MissionSpec& mission, std::string* why);
-  // The leaders of the leader-only missions under way (in TRANSPORT as far as this robot knows),
-  // ascending: their neighbours stack them (SPEC 9.2).
-  std::vector<std::uint16_t> LeadingAlone() const;
   // The last plan of a planned gathering this robot made, if any.
   const std::optional<GatherPlanRecord>& last_gather_plan() const { return last_gather_plan_; }
   bool OnObjectUpdate(std::uint16_t mission_id, Vec2 centre, std::string* why);

@@ -38,6 +38,9 @@ struct BrainTick {
   MissionOutbox outbox;  // what a first leader must send before the command
   // A leader-only mission's leader arrived this tick (its outbox holds the DONE).
   bool arrived = false;
+  // Virtual copies it announces with its position (SPEC 9.2): leader_virtual_copies - 1 while
+  // it leads a leader-only mission, else 0.
+  std::uint8_t copies = 0;
 };
 
 class RobotBrain {

@@ -37,6 +37,10 @@ struct Position {
   float x = 0.0f;  // m, arena frame
   float y = 0.0f;
   float angle_deg = 0.0f;  // [0, 360)
+  // A robot's own position only: the virtual copies (type 1, sub_id 1..copies) it announces at
+  // this pose with it (SPEC 9.2: a leader's stacking) - one message, expanded by its hearers'
+  // flocking rule (NeighbourhoodOf).
+  std::uint8_t copies = 0;
 };
 // The position of robot `id` at `pose`.
 Position PositionOf(std::uint16_t id, const Pose2& pose, std::uint8_t sub_id = 0,
@@ -92,6 +96,9 @@ struct Answer {
   std::vector<MissionMessage> messages;
   std::vector<StatusReport> statuses;  // phase reports
   std::vector<StatusReport> progress;  // reports within a phase (observers only)
+  // Virtual copies it announces at its new pose (SPEC 9.2; lock-step: heard from the next round
+  // on, with its position).
+  std::uint8_t copies = 0;
   bool Says() const { return !messages.empty() || !statuses.empty() || !progress.empty(); }
 };
 // The command an answer drives: a non-finite one stands (zero velocity).

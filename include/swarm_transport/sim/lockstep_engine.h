@@ -17,6 +17,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <set>
 #include <string>
 #include <utility>
@@ -48,7 +49,9 @@ class LockstepEngine {
   std::vector<std::pair<core::MissionSpec, std::string>> ReleaseOrders(std::uint64_t tick);
   // The radio samples the world for round `tick` at simulated time `sim_time`: `relayed`
   // (may be null) are the positions relayed besides the world's robots (virtual copies,
-  // statists), `quiet` the robots nobody hears this round.
+  // statists) and the copies robots announced on their positions in real time, `quiet` the
+  // robots nobody hears this round. A robot's position carries the virtual copies its latest
+  // answer announced (Position::copies).
   void BeginRound(std::uint64_t tick, double sim_time, const RelayedPositions* relayed,
                   const std::set<std::uint16_t>& quiet);
   // The round of the robot at world index `index` (call in ascending index; the radio draws
@@ -64,13 +67,17 @@ class LockstepEngine {
   void EndRound() { relay_.Clear(); }
 
   // A tick's answers (a late one before its robot's current one): sorted by robot id (stable),
-  // each into the next tick's relay and the books, then handed to `observe` (the simulator's
-  // topics for observers; the batch engine's dispatcher and recorder). Empties `answers`.
+  // each into the next tick's relay, the books and its robot's announced copies, then handed to
+  // `observe` (the simulator's topics for observers; the batch engine's dispatcher and
+  // recorder). Empties `answers`.
   using Answers = std::vector<std::pair<std::uint16_t, core::Answer>>;
   void TakeAnswers(Answers* answers,
                    const std::function<void(std::uint16_t, const core::Answer&)>& observe);
 
  private:
+  // Each robot's position in truth_ carries the copies `copies` names for it.
+  void StampCopies(const std::map<std::uint16_t, std::uint8_t>& copies);
+
   const World2D* world_;
   Radio* radio_;
   LiveMissions* missions_;
@@ -79,6 +86,7 @@ class LockstepEngine {
   double sim_time_ = 0.0;
   std::vector<core::Position> truth_;
   std::vector<core::Position> relayed_;
+  std::map<std::uint16_t, std::uint8_t> copies_;  // by robot: the copies its answer announced
   RadioRound heard_;
 };
 

@@ -119,14 +119,17 @@ class TuningRelay {
 // sub id).
 class RelayedPositions {
  public:
-  // Empty when taken, else why not (a non-finite value, an unknown type; a physical robot's
-  // own position is ignored: the world's truth is relayed). Angles are kept in [0, 360) degrees.
+  // Empty when taken, else why not (a non-finite value, an unknown type; of a physical robot's
+  // own position only the copies it announces are kept - the world's truth is relayed).
+  // Angles are kept in [0, 360) degrees.
   std::string Take(const core::Position& position);
   bool Ignored(const core::Position& p) const { return p.type == core::Position::kPhysical; }
   // False when there was none.
   bool Erase(std::uint16_t robot_id, std::uint8_t sub_id);
-  // A killed robot's virtual copies die with it.
+  // A killed robot's virtual copies die with it (those it announced on its position too).
   void EraseCopiesOf(std::uint16_t robot_id);
+  // By robot: the virtual copies it announced on its own latest position (none: not listed).
+  const std::map<std::uint16_t, std::uint8_t>& copies() const { return copies_; }
   // For the radio: every relayed position, in key order.
   std::vector<RadioExtra> Extras() const;
   // The relayed positions of the current round: a virtual copy whose owner stands at index
@@ -137,6 +140,7 @@ class RelayedPositions {
 
  private:
   std::map<std::pair<std::uint16_t, std::uint8_t>, core::Position> positions_;
+  std::map<std::uint16_t, std::uint8_t> copies_;
 };
 
 }  // namespace sim

@@ -52,11 +52,13 @@ Robot_Position ToRobotPosition(const core::Position& p) {
   msg.pos_x = p.x;
   msg.pos_y = p.y;
   msg.angle = p.angle_deg;
+  msg.copies = p.copies;
   return msg;
 }
 
 core::Position ToPosition(const Robot_Position& msg) {
-  return core::Position{msg.robot_id, msg.sub_id, msg.type, msg.pos_x, msg.pos_y, msg.angle};
+  return core::Position{msg.robot_id, msg.sub_id, msg.type,  msg.pos_x,
+                        msg.pos_y,    msg.angle,  msg.copies};
 }
 
 std::vector<Robot_Position> ToRobotPositions(const std::vector<core::Position>& positions) {
@@ -291,6 +293,7 @@ Tick_Answer ToTickAnswer(const core::Answer& answer, const ros::Time& stamp) {
   Tick_Answer msg;
   msg.tick = answer.tick;
   msg.command = ToTwist(answer.command);
+  msg.copies = answer.copies;
   const auto add = [](const auto& m, auto* list) { list->push_back(ToMsg(m)); };
   for (const core::MissionMessage& m : answer.messages) {
     std::visit(core::Overloaded{
@@ -314,6 +317,7 @@ Tick_Answer ToTickAnswer(const core::Answer& answer, const ros::Time& stamp) {
 core::Answer ToAnswer(const Tick_Answer& msg) {
   core::Answer answer;
   answer.tick = msg.tick;
+  answer.copies = msg.copies;
   answer.command = IsFinite(msg.command)
                        ? ToVelocity(msg.command)
                        : core::Velocity{std::numeric_limits<double>::quiet_NaN(), 0.0};

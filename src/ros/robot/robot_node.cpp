@@ -302,13 +302,20 @@ void RobotNode::Tick() {
   // deployment and clock, robots of broadcast comm and, on hardware, every robot. The simulator is
   // no observer: it has every robot's true pose, keeps only virtual copies and statists from
   // /flock/position, and every publication would be a callback for it to discard - one per robot
-  // and tick.
-  if (observers_ > 0 || heard_ || transport_->AnnouncesPosition()) {
+  // and tick. A leader that announces virtual copies (SPEC 9.2) carries them on its position:
+  // in real time the simulator takes them from there (lock-step: from its answer), so it
+  // publishes while it has copies and once more when they end.
+  const std::uint8_t copies = step.answer.copies;
+  const bool announce = !lockstep() && (copies > 0 || copies_sent_ > 0);
+  if (observers_ > 0 || heard_ || transport_->AnnouncesPosition() || announce) {
     const core::Pose2 after = core::TurnThenDrive(before, command, config_.tick_period_s);
+    Robot_Position position = ToRobotPosition(id_, after);
+    position.copies = copies;
+    copies_sent_ = copies;
     // By shared pointer: roscpp hands it to subscribers in this process (the simulator of a
     // robot_host) without serialising it and without waking its poll thread; a message
     // published by reference is serialised, and signals that thread, even for them.
-    position_pub_.publish(boost::make_shared<Robot_Position>(ToRobotPosition(id_, after)));
+    position_pub_.publish(boost::make_shared<Robot_Position>(position));
   }
   ++ticks_;
   if (stats_) {

@@ -37,7 +37,8 @@ void RobotRoster::Connect(ros::NodeHandle nh, std::uint32_t position_queue, std:
   kill_srv_ = nh.advertiseService(names::kKill, &RobotRoster::OnKill, this);
   reset_srv_ = nh.advertiseService(names::kReset, &RobotRoster::OnReset, this);
   // /flock/position also carries every robot's own position each tick; we only keep virtual
-  // copies and statists, but the queue must hold a whole tick of the swarm.
+  // copies (in real time those a robot announces on its own position too) and statists, but the
+  // queue must hold a whole tick of the swarm.
   position_sub_ = nh.subscribe(names::kPosition, position_queue, &RobotRoster::OnPosition, this,
                                ros::TransportHints().tcpNoDelay());
   robot_new_sub_ = nh.subscribe(names::kRobotNew, queue, &RobotRoster::OnRobotNew, this);
@@ -151,6 +152,9 @@ bool RobotRoster::OnTeleportRelative(std::uint16_t id, TeleportRelative::Request
 }
 
 void RobotRoster::OnPosition(const Robot_Position::ConstPtr& msg) {
+  // Lock-step: a robot's answer carries the copies it announces (the engine's), so that the
+  // round does not depend on when its position arrived; real time: its position.
+  if (session_ != nullptr && msg->type == Robot_Position::TYPE_PHYSICAL) return;
   const std::string why = relayed_.Take(ToPosition(*msg));
   if (!why.empty() && bad_position_warning_.Due()) {
     ROS_WARN("simulator: rejected a Robot_Position of robot %u/%u: %s%s", msg->robot_id,

@@ -108,9 +108,10 @@ class RobotNode : public RobotInbox {
   // Nodes other than the simulator and this process subscribed to its /flock/position (it
   // publishes its own position each tick only while there are some).
   int observers_ = 0;
-  ros::Subscriber position_sub_;                  // broadcast comm
-  std::unique_ptr<BroadcastHeard> heard_;         // broadcast comm
-  std::unique_ptr<RobotStats> stats_;             // diagnostics
+  std::uint8_t copies_sent_ = 0;           // the virtual copies its last /flock/position announced
+  ros::Subscriber position_sub_;           // broadcast comm
+  std::unique_ptr<BroadcastHeard> heard_;  // broadcast comm
+  std::unique_ptr<RobotStats> stats_;      // diagnostics
   std::map<std::string, WarnThrottle> rejected_;  // by message kind
   WarnThrottle bad_pose_warning_;
   ros::ServiceServer describe_srv_;
