@@ -108,15 +108,15 @@ PathParams MissionAgent::GatherPathParams() const {
 }
 
 void MissionAgent::Gather(Live* live, const Pose2& self, const std::vector<Neighbour>& heard,
-                          std::uint64_t tick, Carry* carry) {
+                          std::uint64_t tick, bool lost_now, Carry* carry) {
   const MissionSpec& spec = live->spec;
   // The way is planned anew with each slot plan (or once, for the object's centre).
   bool new_goal = !live->way_planned;
   if (PlansGathering(params_.transport, spec)) {
-    // Planned at its first gathering tick, then every replan_period ticks (on the same ticks
-    // for every member).
+    // Planned at its first gathering tick, then every replan_period ticks and at once when a
+    // member was lost (on the same ticks for every member: they lose it at the same tick).
     const std::uint64_t period = static_cast<std::uint64_t>(params_.transport.replan_period_ticks);
-    if (!live->slot || (tick % period == 0 && !carry->loading)) {
+    if (!live->slot || ((tick % period == 0 || lost_now) && !carry->loading)) {
       GatherPlanRecord record;
       record.mission_id = spec.id;
       record.tick = tick;

@@ -221,9 +221,11 @@ MissionPlan MissionAgent::Tick(const Pose2& self, const std::vector<Neighbour>& 
     Live& live = live_.at(*plan.active);
     const MissionSpec& spec = live.spec;
     Group group;
+    bool lost_now = false;  // a member was lost this tick
     if (!spec.LeaderOnly()) {
       const bool first_before = LeadsFirst(live);
-      if (Heartbeats(&live, heard, tick)) {
+      lost_now = Heartbeats(&live, heard, tick);
+      if (lost_now) {
         if (live.anchored) live.reanchor = true;
         if (!first_before && LeadsFirst(live)) {
           // Promoted: it takes over the phase machine from the next tick on (a robot node in
@@ -266,7 +268,7 @@ MissionPlan MissionAgent::Tick(const Pose2& self, const std::vector<Neighbour>& 
       carry.target = live.route.empty() ? spec.target : live.route[live.leg];
       carry.goal_tolerance_m = params_.goal_tolerance_m;
       carry.formation_offset = live.place;
-      if (!carry.transport) Gather(&live, self, heard, tick, &carry);
+      if (!carry.transport) Gather(&live, self, heard, tick, lost_now, &carry);
       carry.leaders = leaders;
       std::sort(carry.leaders.begin(), carry.leaders.end());
       for (std::uint16_t id : plan.group.ids) {

@@ -243,11 +243,11 @@ class MissionAgent {
   std::optional<Vec2> PlanSlot(const Live& live, const Pose2& self,
                                const std::vector<Neighbour>& heard, GatherPlanRecord* record) const;
   // A gathering robot's goal this tick (mission_agent_gather.cpp): its slot when the mission
-  // plans its gathering (planned at its first gathering tick and every replan_period ticks),
-  // and the next waypoint of its way around the static danger zones while its goal is not in
-  // clear sight. Fills carry->slot and carry->via.
+  // plans its gathering (planned at its first gathering tick, every replan_period ticks and at
+  // once when a member was lost: `lost_now`), and the next waypoint of its way around the
+  // static danger zones while its goal is not in clear sight. Fills carry->slot and carry->via.
   void Gather(Live* live, const Pose2& self, const std::vector<Neighbour>& heard,
-              std::uint64_t tick, Carry* carry);
+              std::uint64_t tick, bool lost_now, Carry* carry);
   PathParams GatherPathParams() const;
   Group Locate(const Live& live, const Pose2& self, const std::vector<Neighbour>& heard) const;
   // A member of a transport mission: moves the object with its robots once transport began.
