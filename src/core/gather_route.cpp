@@ -12,8 +12,16 @@ constexpr int kMaxEscapes = 4;
 
 std::optional<Vec2> GatherWay::Next(Vec2 at, const std::vector<Zone>& zones, const PathParams& p,
                                     double reach_m) {
-  while (leg + 1 < waypoints.size() && (Distance(at, waypoints[leg]) <= reach_m ||
-                                        SegmentClear(at, waypoints[leg + 1], zones, p))) {
+  // Near a waypoint it cannot reach (a robot stands on it) it may go on, but not across a zone's
+  // corner: the line to the next one keeps half the clearance there.
+  PathParams near = p;
+  near.clearance_m = p.clearance_m / 2.0;
+  while (leg + 1 < waypoints.size()) {
+    const Vec2 next = waypoints[leg + 1];
+    if (!SegmentClear(at, next, zones, p) &&
+        !(Distance(at, waypoints[leg]) <= reach_m && SegmentClear(at, next, zones, near))) {
+      break;
+    }
     ++leg;
   }
   if (leg + 1 >= waypoints.size()) return std::nullopt;

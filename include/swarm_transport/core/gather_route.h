@@ -24,9 +24,9 @@ namespace core {
 struct GatherWay {
   std::vector<Vec2> waypoints;
   std::size_t leg = 0;
-  // The waypoint to head for from `at`: first passes every waypoint it is within `reach_m` of or
-  // beyond which it already sees the next one clear (SegmentClear); none (std::nullopt) once the
-  // goal is next: then it drives for its goal as without zones.
+  // The waypoint to head for from `at`: first passes every waypoint beyond which it already sees
+  // the next one clear (SegmentClear), or with half the clearance when it is within `reach_m` of
+  // it; none (std::nullopt) once the goal is next: then it drives for its goal as without zones.
   std::optional<Vec2> Next(Vec2 at, const std::vector<Zone>& zones, const PathParams& p,
                            double reach_m);
 };
