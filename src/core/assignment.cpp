@@ -56,7 +56,7 @@ CostMatrix SelectionMatrix(const std::vector<PlannerRobot>& robots,
           s > kNoPathM
               ? TurnTime(robots[m].heading, Bearing(robots[m].position, targets[n].position), p)
               : 0.0;
-      x.at(m, n) = (s + targets[n].extra_m) / p.speed_m + turn;
+      x.at(m, n) = (s + targets[n].extra_m + robots[m].extra_m) / p.speed_m + turn;
     }
   }
   return x;

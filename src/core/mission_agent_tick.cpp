@@ -5,92 +5,12 @@
 #include "swarm_transport/core/assignment.h"
 #include "swarm_transport/core/mission_agent.h"
 
-// A mission's tick as its members run it: where the group stands, where the object is, the first
-// leader's phases and each member's slot (the book-keeping of the messages: mission_agent.cpp).
+// A mission's tick as its members run it: where the group stands, where the object is and the
+// first leader's phases (the book-keeping of the messages: mission_agent.cpp; each member's slot
+// and way while gathering: mission_agent_gather.cpp).
 
 namespace swarm_transport {
 namespace core {
-namespace {
-
-// Every member plans on what it hears as /flock/position carries it (float32), its own pose
-// included, so that all members compute the same plan.
-PlannerRobot AsHeard(Vec2 position, Angle heading) {
-  return {{static_cast<float>(position.x), static_cast<float>(position.y)},
-          Angle(static_cast<float>(heading.degrees()))};
-}
-
-// Whether a mission's robots gather to planned slots: gather_planner not nearest, or the order
-// names its leaders (leader_ids: the dispatcher's pick of a count-only order, whose leaders must
-// take the front; issue 27, item 6).
-bool PlansGathering(const TransportParams& tp, const MissionSpec& spec) {
-  return tp.gather_planner != GatherPlanner::kNearest || !spec.leader_ids.empty();
-}
-
-}  // namespace
-
-std::optional<Vec2> MissionAgent::PlanSlot(const Live& live, const Pose2& self,
-                                           const std::vector<Neighbour>& heard,
-                                           GatherPlanRecord* record) const {
-  std::map<std::uint16_t, PlannerRobot> known;
-  known.emplace(self_id_, AsHeard(self.position, self.heading));
-  for (const Neighbour& n : heard) {
-    if (n.type == 0 && live.spec.Assigns(n.id)) known.emplace(n.id, AsHeard(n.position, n.heading));
-  }
-  for (const auto& kv : live.last_seen) known.emplace(kv.first, AsHeard(kv.second, Angle(0.0)));
-  std::vector<PlannerRobot> robots;
-  std::vector<std::uint16_t> ids;
-  int self_index = -1;
-  for (std::uint16_t id : Left(live)) {
-    const auto it = known.find(id);
-    if (it == known.end()) continue;
-    if (id == self_id_) self_index = static_cast<int>(robots.size());
-    robots.push_back(it->second);
-    ids.push_back(id);
-  }
-  if (self_index < 0) return std::nullopt;
-  const std::vector<Vec2> slots = SlotsIn(live.spec.ObjectAt(live.centre), robots.size());
-  if (slots.empty()) return std::nullopt;
-  std::vector<PlannerTarget> targets;
-  for (const Vec2& s : slots) targets.push_back({s, 0.0});
-  SelectionParams sp;
-  sp.speed_m = params_.speed_m_per_tick;
-  sp.turn_deg = params_.transport.planner_turn_deg_per_tick;
-  sp.corridor_m = params_.corridor_m;
-  // A mission that names its leaders (the dispatcher's count-only pick, issue 27) is planned
-  // even with gather_planner nearest (by the selection matrix, which picked them), its leaders
-  // onto the front slots toward the target.
-  const GatherPlanner planner = params_.transport.gather_planner == GatherPlanner::kNearest
-                                    ? GatherPlanner::kSelectionMatrix
-                                    : params_.transport.gather_planner;
-  const Planner plan_by = [planner](const std::vector<PlannerRobot>& r,
-                                    const std::vector<PlannerTarget>& t, const SelectionParams& p) {
-    return planner == GatherPlanner::kSelectionMatrix ? PlanSelection(r, t, p)
-           : planner == GatherPlanner::kRowMinimum
-               ? PlanRowMinimum(r, t, p)
-               : PlanOptimal(r, t, p, planner == GatherPlanner::kBottleneck);
-  };
-  SelectionPlan plan;
-  if (live.spec.leader_ids.empty()) {
-    plan = plan_by(robots, targets, sp);
-  } else {
-    const std::vector<std::uint16_t> leaders = LeadersNow(live);
-    std::vector<bool> is_leader;
-    for (std::uint16_t id : ids) {
-      is_leader.push_back(std::find(leaders.begin(), leaders.end(), id) != leaders.end());
-    }
-    plan = PlanLeadersInFront(robots, is_leader, targets, live.centre,
-                              live.spec.target - live.centre, sp, plan_by);
-  }
-  record->robots = robots;
-  record->ids = ids;
-  record->targets = targets;
-  record->params = sp;
-  record->plan = plan;
-  const int slot = plan.target_of[static_cast<std::size_t>(self_index)];
-  if (slot < 0) return std::nullopt;
-  return slots[static_cast<std::size_t>(slot)];
-}
-
 bool MissionAgent::Group::OneChain(double range) const {
   std::vector<Vec2> left;
   for (const auto& kv : where) left.push_back(kv.second);
@@ -301,9 +221,11 @@ MissionPlan MissionAgent::Tick(const Pose2& self, const std::vector<Neighbour>& 
     Live& live = live_.at(*plan.active);
     const MissionSpec& spec = live.spec;
     Group group;
+    bool lost_now = false;  // a member was lost this tick
     if (!spec.LeaderOnly()) {
       const bool first_before = LeadsFirst(live);
-      if (Heartbeats(&live, heard, tick)) {
+      lost_now = Heartbeats(&live, heard, tick);
+      if (lost_now) {
         if (live.anchored) live.reanchor = true;
         if (!first_before && LeadsFirst(live)) {
           // Promoted: it takes over the phase machine from the next tick on (a robot node in
@@ -346,20 +268,7 @@ MissionPlan MissionAgent::Tick(const Pose2& self, const std::vector<Neighbour>& 
       carry.target = live.route.empty() ? spec.target : live.route[live.leg];
       carry.goal_tolerance_m = params_.goal_tolerance_m;
       carry.formation_offset = live.place;
-      if (PlansGathering(params_.transport, spec) && !carry.transport) {
-        // Planned at its first gathering tick, then every replan_period ticks (on the same
-        // ticks for every member).
-        const std::uint64_t period =
-            static_cast<std::uint64_t>(params_.transport.replan_period_ticks);
-        if (!live.slot || (tick % period == 0 && !carry.loading)) {
-          GatherPlanRecord record;
-          record.mission_id = spec.id;
-          record.tick = tick;
-          live.slot = PlanSlot(live, self, heard, &record);
-          if (record.plan.rounds > 0) last_gather_plan_ = std::move(record);
-        }
-        carry.slot = live.slot;
-      }
+      if (!carry.transport) Gather(&live, self, heard, tick, lost_now, &carry);
       carry.leaders = leaders;
       std::sort(carry.leaders.begin(), carry.leaders.end());
       for (std::uint16_t id : plan.group.ids) {

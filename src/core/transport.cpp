@@ -224,8 +224,9 @@ MoveDecision CarryStep(const Perception& in, const FlockingParams& p, const Tran
   const bool passive_inside_transport = carry.transport && !carry.Arrived() &&
                                         carry.mode == TransportMode::kSwarm && !carry.leader &&
                                         carry.object.Contains(position);
+  const bool routed = !carry.transport && carry.via.has_value();
   const bool to_slot = !carry.transport && carry.slot.has_value();
-  const bool filling = !carry.transport && !to_slot && tp.gathering == GatherMode::kFill;
+  const bool filling = !carry.transport && !routed && !to_slot && tp.gathering == GatherMode::kFill;
   if (!passive_inside_transport && !filling) {
     // The branches below use no free will: draw the sample the others draw.
     rng.Uniform(-p.free_will_deg / 2.0, p.free_will_deg / 2.0);
@@ -234,6 +235,8 @@ MoveDecision CarryStep(const Perception& in, const FlockingParams& p, const Tran
   if (carry.transport && carry.mode == TransportMode::kFormation) {
     return FormationCarry(in, p, tp, carry, duration_s);
   }
+  // Around a danger zone: for its next waypoint (a move into the zone is never valid).
+  if (routed) return AvoidCollisions(in, p, Bearing(position, *carry.via), duration_s);
   if (to_slot) return ToSlot(in, p, tp, carry, duration_s);
   const bool unbound_leader = carry.transport && carry.leader && !tp.leaders_bound;
   const bool near_leader =

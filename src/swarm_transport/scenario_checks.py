@@ -147,6 +147,8 @@ def check(e, log, scenario, second=None):
         return _paths(e, log)
     if kind == 'object_clear_of_zones':
         return _object_clear(e, log, scenario)
+    if kind == 'robots_clear_of_zones':
+        return _robots_clear(e, log, scenario)
     if kind == 'gathered':
         return _gathered(e, log, scenario)
     if kind == 'still_while_frozen':
@@ -368,3 +370,40 @@ def _object_clear(e, log, scenario):
     listed = sum(1 for objects in log.objects.values() if e['mission'] in objects)
     return worst <= e['tolerance_m'] and listed > 0, 'deepest overlap %.4f m%s over %d ticks' % (
         worst, where, listed)
+
+
+def _point_depth(x, y, zone):
+    """How deep the point (x, y) lies inside a zone of the world's danger_zones; 0 outside."""
+    return _overlap_depth((x, y, 0.0, 0.0), zone)
+
+
+# Points checked along each tick's move (its ends included): a move is at most a robot's speed
+# (0.1 m), so a zone is missed only where it is thinner than a hundredth of that.
+_MOVE_SAMPLES = 100
+
+
+def _robots_clear(e, log, scenario):
+    """The mission's robots never went deeper than tolerance_m into a static danger zone from
+    the first tick until the tick the mission first reported until_state (the whole run when it
+    never did): their positions and the straight moves between them (gathering around danger,
+    issue 27)."""
+    zones = scenario['world']['danger_zones'] or []
+    ids = set(_mission(scenario, e['mission'])['robot_ids'])
+    end = log.first_state_tick(e['mission'], e['until_state'])
+    ticks = [t for t in log.ticks() if end is None or t <= end]
+    worst, where, moves = 0.0, '', 0
+    for before, tick in zip(ticks, ticks[1:]):
+        a, b = log.positions[before], log.positions[tick]
+        for rid in ids & set(a) & set(b):
+            moves += 1
+            for k in range(_MOVE_SAMPLES + 1):
+                f = k / float(_MOVE_SAMPLES)
+                x = a[rid][0] + f * (b[rid][0] - a[rid][0])
+                y = a[rid][1] + f * (b[rid][1] - a[rid][1])
+                for z, zone in enumerate(zones):
+                    d = _point_depth(x, y, zone)
+                    if d > worst:
+                        worst, where = d, ' (robot %d, danger_zones[%d], tick %d)' % (rid, z, tick)
+    return worst <= e['tolerance_m'] and moves > 0, (
+        'deepest %.4f m%s over %d moves until tick %s' % (worst, where, moves, ticks[-1] if ticks
+                                                          else None))

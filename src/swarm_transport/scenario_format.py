@@ -49,6 +49,8 @@ EXPECTATIONS = {
     'phase_order': ({'mission', 'state', 'after_mission', 'after_state'}, {}),
     'released': (set(), {}),
     'object_clear_of_zones': ({'mission'}, {'tolerance_m': 0.0}),
+    # The mission's robots' paths (each tick's move) until it reported until_state.
+    'robots_clear_of_zones': ({'mission'}, {'tolerance_m': 0.0, 'until_state': 'LOADING'}),
     'centroid_near': ({'at_tick', 'x', 'y'}, {'min_m': 0.0, 'max_m': float('inf')}),
     # How much nearer (x, y) the robots' centroid came from from_tick to to_tick (its distance
     # then minus its distance at to_tick; negative when it went away): within [min_m, max_m].
@@ -428,7 +430,7 @@ def _expectation(r, node, where, mission_ids, max_ticks):
         kw = '%s.%s' % (w, key)
         if key in ('mission', 'after_mission'):
             out[key] = _mission_ref(r, n, kw, mission_ids)
-        elif key in ('state', 'until_phase', 'after_state'):
+        elif key in ('state', 'until_phase', 'after_state', 'until_state'):
             out[key] = r.choice(n, kw, STATES)
         elif key == 'states':
             out[key] = [r.choice(s, '%s[%d]' % (kw, i), STATES)

@@ -116,6 +116,52 @@ TEST(MissionAgentTest, AFirstLeaderDropsAMemberSilentInGatheringOrAbortsWithoutE
   EXPECT_NE(reason.find("robot(s) 1, 2 lost"), std::string::npos) << reason;
 }
 
+TEST(MissionAgentTest, AMemberLostInGatheringIsPlannedWithoutAtOnce) {
+  // Robots [0, 4) gather by a plan replanned only every 100 ticks; robot 3 falls silent after
+  // tick 1 and is lost at tick 7 (silent for more than 5 ticks): robot 1 replans at once over
+  // the three left and their three slots (issue 27, item 7), for every planner that plans.
+  for (const GatherPlanner planner : {GatherPlanner::kSelectionMatrix, GatherPlanner::kOptimal,
+                                      GatherPlanner::kBottleneck, GatherPlanner::kRowMinimum}) {
+    SCOPED_TRACE(GatherPlannerName(planner));
+    MissionAgentParams params;
+    params.lost_after_ticks = 5;
+    params.transport.gather_planner = planner;
+    params.transport.replan_period_ticks = 100;
+    MissionSpec spec = Thesis();
+    spec.range_to = 4;
+    MissionAgent member(1, params);
+    std::string why;
+    ASSERT_TRUE(member.OnNewMission(spec, &why)) << why;
+    const Pose2 self = PoseAt(3.0, 7.0);
+    const std::vector<Neighbour> all = {At(0, 3.0, 6.0), At(2, 3.0, 8.0), At(3, 3.0, 9.0)};
+    const std::vector<Neighbour> left(all.begin(), all.begin() + 2);
+    MissionOutbox out;
+    member.OnStatus(spec.id, MissionPhase::kGathering);
+    member.Tick(self, all, 1, &out);
+    ASSERT_TRUE(member.last_gather_plan());
+    EXPECT_EQ(member.last_gather_plan()->ids, (std::vector<std::uint16_t>{0, 1, 2, 3}));
+    MissionPlan plan;
+    for (std::uint64_t t = 2; t <= 6; ++t) {
+      member.Tick(self, left, t, &out);
+      EXPECT_EQ(member.last_gather_plan()->tick, 1u) << "tick " << t;
+    }
+    plan = member.Tick(self, left, 7, &out);
+    EXPECT_EQ(member.LostOf(spec.id), (std::set<std::uint16_t>{3}));
+    const GatherPlanRecord& record = *member.last_gather_plan();
+    EXPECT_EQ(record.tick, 7u);
+    EXPECT_EQ(record.ids, (std::vector<std::uint16_t>{0, 1, 2}));
+    ASSERT_EQ(record.plan.target_of.size(), 3u);
+    for (int slot : record.plan.target_of) EXPECT_GE(slot, 0);  // SlotsIn gives 4 for 3 here
+    ASSERT_TRUE(plan.carry && plan.carry->slot);
+    const Vec2 own = record.targets[static_cast<std::size_t>(record.plan.target_of[1])].position;
+    EXPECT_EQ(plan.carry->slot->x, own.x);
+    EXPECT_EQ(plan.carry->slot->y, own.y);
+    // And no other plan until the next period.
+    member.Tick(self, left, 8, &out);
+    EXPECT_EQ(member.last_gather_plan()->tick, 7u);
+  }
+}
+
 // Robot loss (issue 11, SPEC 9.7): a member that follows the thesis mission (robots [0, 3),
 // robot 0 its only leader) through GATHERING, LOADING and into TRANSPORT at tick 10, every robot
 // heard every tick, the group's centroid at the object's centre (7, 7).

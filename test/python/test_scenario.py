@@ -290,6 +290,27 @@ class Checks(unittest.TestCase):
         self.assertIn('danger_zones[1], tick 3', measured)
         self.assertFalse(checks.check(e, log_of({}, objects={}), s)[0])  # never listed
 
+    def test_robots_clear_of_zones(self):
+        s = fmt.parse(MINIMAL.replace('  robots: 6', '  robots: 6\n  danger_zones:\n'
+                                      '    - {shape: rect, x: 3.0, y: 5.0, size_x: 0.4, '
+                                      'size_y: 2.0}') + '  - robots_clear_of_zones: '
+                      '{mission: 7}\n', 'r.yaml')
+        e = s['expect'][-1]
+        self.assertEqual(e['until_state'], 'LOADING')
+        # Robot 1 passes north of the zone; robot 5 (not the mission's) crosses it.
+        around = {1: {1: (2.7, 6.1, 0), 5: (2.7, 5.0, 0)}, 2: {1: (3.3, 6.1, 0), 5: (3.3, 5.0, 0)}}
+        self.assertTrue(checks.check(e, log_of(around), s)[0])
+        # A move whose ends are outside but which cuts the zone's corner fails.
+        cut = {1: {1: (2.7, 5.8, 0)}, 2: {1: (2.9, 6.1, 0)}}
+        ok, measured = checks.check(e, log_of(cut), s)
+        self.assertFalse(ok)
+        self.assertIn('(robot 1, danger_zones[0], tick 2)', measured)
+        # After LOADING it is not checked.
+        late = {1: {1: (2.7, 6.1, 0)}, 2: {1: (2.8, 6.1, 0)}, 3: {1: (3.0, 5.0, 0)}}
+        self.assertTrue(checks.check(e, log_of(late, [(7, 'LOADING', 2)]), s)[0])
+        self.assertFalse(checks.check(e, log_of(late), s)[0])
+        self.assertFalse(checks.check(e, log_of({}), s)[0])  # no move
+
     def test_centroid_near_and_statist_events(self):
         s = fmt.parse(MINIMAL + 'events:\n  - at_tick: 2\n    statist: {id: 900, x: 8, y: 8}\n'
                       '  - at_tick: 9\n    remove_statist: {id: 900}\n', 'm.yaml')

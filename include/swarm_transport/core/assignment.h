@@ -69,6 +69,9 @@ std::string ValidateCostMatrix(const CostMatrix& m);
 struct PlannerRobot {
   Vec2 position;
   Angle heading;
+  // Its way before `position` (m): a robot routed around danger zones stands for the last
+  // corner of its way (RoutedForPlanner, issue 27 item 7); 0 for a robot that drives straight.
+  double extra_m = 0.0;
 };
 
 // A target: where, and the paper's per-target term S_Bn (m; the target robot's distance to the
@@ -114,8 +117,9 @@ struct SelectionPlan {
   std::size_t frozen = 0;        // pairs frozen by PlanSelection's rule when it ended
 };
 
-// X_mn = (S_mn + S_Bn) / V + ANG_mn / VA: S_mn the distance from robot m to target n, ANG_mn
-// the angle (degrees, in [0, 180]) between robot m's heading and its bearing to target n.
+// X_mn = (S_mn + S_Bn + E_m) / V + ANG_mn / VA: S_mn the distance from robot m to target n,
+// ANG_mn the angle (degrees, in [0, 180]) between robot m's heading and its bearing to target n,
+// E_m robot m's extra_m (its way before its position when routed; 0 in the paper).
 CostMatrix SelectionMatrix(const std::vector<PlannerRobot>& robots,
                            const std::vector<PlannerTarget>& targets, const SelectionParams& p);
 

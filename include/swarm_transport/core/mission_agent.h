@@ -15,6 +15,7 @@
 #include "swarm_transport/core/assignment.h"
 #include "swarm_transport/core/balloon.h"
 #include "swarm_transport/core/flocking.h"
+#include "swarm_transport/core/gather_route.h"
 #include "swarm_transport/core/leader.h"
 #include "swarm_transport/core/mission.h"
 #include "swarm_transport/core/transport.h"
@@ -212,6 +213,8 @@ class MissionAgent {
     std::vector<Vec2> route;        // transport: the object's waypoints, the target last
     std::size_t leg = 0;            // ... the one it heads for now
     std::optional<Vec2> slot;       // planned gathering: its own slot under the object
+    GatherWay way;                  // gathering: its way to its goal around danger zones
+    bool way_planned = false;       // ... planned (once per goal: each slot plan, or the centre)
   };
   // Of a live mission, with its lost robots: the robots left (ascending), its leaders now (the
   // first leader_number of them in MissionSpec::LeadOrder) and its first leader now (the first
@@ -231,10 +234,18 @@ class MissionAgent {
   };
   void Drop(std::uint16_t mission_id);
   // Planned gathering: this robot's slot by transport.gather_planner over the mission's robots
-  // left (itself, those heard, the others where last heard), as every member computes it.
+  // left (itself, those heard, the others where last heard), as every member computes it; a
+  // robot whose way to the object is routed around danger zones as RoutedForPlanner sees it.
   // `record` receives the plan as made (robots, slots, parameters, result; rounds 0: none).
   std::optional<Vec2> PlanSlot(const Live& live, const Pose2& self,
                                const std::vector<Neighbour>& heard, GatherPlanRecord* record) const;
+  // A gathering robot's goal this tick (mission_agent_gather.cpp): its slot when the mission
+  // plans its gathering (planned at its first gathering tick, every replan_period ticks and at
+  // once when a member was lost: `lost_now`), and the next waypoint of its way around the
+  // static danger zones while its goal is not in clear sight. Fills carry->slot and carry->via.
+  void Gather(Live* live, const Pose2& self, const std::vector<Neighbour>& heard,
+              std::uint64_t tick, bool lost_now, Carry* carry);
+  PathParams GatherPathParams() const;
   Group Locate(const Live& live, const Pose2& self, const std::vector<Neighbour>& heard) const;
   // A member of a transport mission: moves the object with its robots once transport began.
   void UpdateCentre(Live* live, const Pose2& self, Group* group) const;

@@ -108,13 +108,17 @@ struct Carry {
   std::vector<std::uint16_t> leaders;  // the mission's leaders, ascending
   // Gathering by a plan (gather_planner not nearest): its own slot under the object.
   std::optional<Vec2> slot;
+  // Gathering around static danger zones (issue 27, item 7): the next waypoint of its way to its
+  // slot (or the object's centre) while that goal is not in clear sight; none: no zone in the way.
+  std::optional<Vec2> via;
 
   bool Arrived() const { return transport && Distance(centre, target) <= goal_tolerance_m; }
 };
 
 // One tick of a mission robot, in this order: arrived -> stand; formation -> drive to its place
 // in the body moving along object centre -> target; outside the object -> straight for its
-// centre (no noise, no alignment; leaders too unless unbound); gathering with a slot -> straight
+// centre (no noise, no alignment; leaders too unless unbound) - but gathering with a waypoint
+// (`via`) -> for the waypoint first, around robots in the way; gathering with a slot -> straight
 // for the slot, swerving around robots in the way (inside the object only onto moves that stay
 // inside), standing on it; gathering without -> hold or fill;
 // transport leader -> the bearing object centre -> target, destination inside the object,
