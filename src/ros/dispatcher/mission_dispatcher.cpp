@@ -175,6 +175,7 @@ void MissionDispatcher::OnResent(const ros::MessageEvent<Mission_Resent const>& 
 }
 
 void MissionDispatcher::Shutdown() {
+  ForgetInstance(private_nh_);
   resent_timer_.stop();
   for (ros::Timer& timer : start_timers_) timer.stop();
   watchdog_timer_.stop();
