@@ -123,28 +123,6 @@ void MissionPublishers::Publish(const core::MissionMessage& message) {
              message);
 }
 
-bool PublishersLinger::Due(bool leads, double now_s) {
-  if (leads) {
-    idle_since_s_ = -1.0;
-    return false;
-  }
-  if (idle_since_s_ < 0.0) idle_since_s_ = now_s;
-  if (now_s - idle_since_s_ < linger_s_) return false;
-  idle_since_s_ = -1.0;
-  return true;
-}
-
-bool MissionPublishers::Release(bool leads, double now_s) {
-  if (!status_pub_ || !linger_.Due(leads, now_s)) return false;
-  for (ros::Publisher* pub :
-       {&status_pub_, &progress_pub_, &update_pub_, &delete_pub_, &freeze_pub_, &continue_pub_}) {
-    pub->shutdown();
-    *pub = ros::Publisher();
-  }
-  ready_ = false;
-  return true;
-}
-
 bool MissionPublishers::AllConnected(const TopicNodeCounts& graph) const {
   for (const ros::Publisher* pub :
        {&status_pub_, &progress_pub_, &update_pub_, &delete_pub_, &freeze_pub_, &continue_pub_}) {

@@ -265,12 +265,10 @@ void RobotNode::Tick() {
   const core::Pose2 before = in.self;
   PublishStatusIfDue();
   // Real time: a robot promoted to first leader (its first leader was lost) connects its
-  // mission publishers before it speaks (it takes over the tick after its promotion); one that
-  // has led nothing for a while lets them go (a connection per subscriber and topic).
-  const bool leads = session_->brain().missions().IsFirstLeaderOfAny();
-  if (!lockstep() && !mission_pubs_.advertised() && leads) mission_pubs_.Advertise(nh_);
-  if (!lockstep() && mission_pubs_.Release(leads, ros::WallTime::now().toSec())) {
-    ROS_DEBUG("robot %u: leads no mission: its mission publishers are released", id_);
+  // mission publishers before it speaks (it takes over the tick after its promotion).
+  if (!lockstep() && !mission_pubs_.advertised() &&
+      session_->brain().missions().IsFirstLeaderOfAny()) {
+    mission_pubs_.Advertise(nh_);
   }
   // Lock-step: stamped with the tick's own simulated time (as the batch engine does), not with
   // whatever /clock this process has seen by now.

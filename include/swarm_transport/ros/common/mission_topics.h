@@ -48,19 +48,6 @@ class MissionTopics {
   std::vector<ros::Subscriber> subs_;
 };
 
-// When a real-time robot's mission publishers may go: after `linger_s` of wall time in which it
-// led no live mission (a robot leading again starts the count afresh).
-class PublishersLinger {
- public:
-  explicit PublishersLinger(double linger_s) : linger_s_(linger_s) {}
-  // Each tick, while its publishers are advertised: true once it led nothing for linger_s.
-  bool Due(bool leads, double now_s);
-
- private:
-  double linger_s_;
-  double idle_since_s_ = -1.0;  // < 0: leading (or not advertised)
-};
-
 // A real-time first leader's publishers of the mission topics (only robots that became one
 // advertise them, so the swarm does not become all-to-all), and a lock-step simulator's, which
 // publishes its robots' answers on them for observers.
@@ -84,13 +71,6 @@ class MissionPublishers {
   void PublishProgress(const Mission_Status& status) { progress_pub_.publish(status); }
   // Every subscriber the master lists for each topic is connected.
   bool AllConnected(const TopicNodeCounts& graph) const;
-  // A real-time robot's, each tick: `leads` whether it is a first leader of a live mission now.
-  // After kLingerS of wall time leading none (its last messages delivered), its publishers go,
-  // and with them a connection per subscriber and topic (~6 per robot of the swarm); it
-  // advertises them again when it leads again. True when they went now.
-  bool Release(bool leads, double now_s);
-  // Wall seconds a robot that leads nothing keeps its publishers.
-  static constexpr double kLingerS = 5.0;
 
  private:
   ros::Publisher freeze_pub_;
@@ -103,7 +83,6 @@ class MissionPublishers {
   TopicNodeCounts expected_;  // the graph when they were advertised
   ros::WallTime since_;
   bool ready_ = false;
-  PublishersLinger linger_{kLingerS};
 };
 
 }  // namespace swarm_transport
