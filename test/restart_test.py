@@ -8,7 +8,9 @@ missions in real time (issue 29 items 2 and 3, docs/reliability.md):
 - the restarted recorder appends (one header per file), marks the gap in missions.csv and
   swarm_count.csv, writes the row of mission 1, which ended while no recorder ran, as
   recovered, and writes no mission row twice (mission 3 ended before the kill: its re-sent DONE
-  is not written again)."""
+  is not written again);
+- a swarm stopped cleanly and launched again on the same master is no restart: the dispatcher
+  and the recorder delete their ~instance parameters when they stop."""
 
 import csv
 import os
@@ -21,7 +23,7 @@ import unittest
 import rospy
 import rostest
 from std_srvs.srv import Trigger
-from swarm_transport.msg import Mission_Event, New_Mission
+from swarm_transport.msg import Mission_Event, Mission_Resend_Request, New_Mission
 from swarm_transport.srv import Submit_Mission
 
 import swarm_testing as st
@@ -49,6 +51,42 @@ class Restart(unittest.TestCase):
         os.kill(pid, signal.SIGKILL)
         self.assertTrue(st.wait_for(lambda: not st.process_alive(pid), 10),
                         '%s (pid %d) still runs after SIGKILL' % (node, pid))
+
+    def test_a_clean_stop_is_no_restart(self):
+        """A swarm stopped cleanly (SIGINT, as roslaunch does) and launched again on the same
+        master, as rostests do: its dispatcher and recorder delete their ~instance parameters,
+        so the new ones are no restart (no resend request, no gap in the run's files)."""
+        timeout = g('timeout_s')
+        record_dir = tempfile.mkdtemp(prefix='restart_test_clean_')
+        self.addCleanup(shutil.rmtree, record_dir, True)
+        params = ('/mission_dispatcher/instance', '/recorder/instance')
+
+        def launch():
+            swarm = st.launch_swarm(robots=2, seed=g('seed'), lockstep=False, recorder=True,
+                                    record_dir=record_dir, run_name='run')
+            self.assertTrue(st.wait_for(lambda: all(rospy.has_param(p) for p in params),
+                                        timeout), 'no ~instance parameters')
+            return swarm
+
+        launch().shutdown()
+        self.assertEqual([p for p in params if rospy.has_param(p)], [],
+                         'left after a clean stop')
+        requests = []
+        sub = rospy.Subscriber('/flock/mission/resend_request', Mission_Resend_Request,
+                               requests.append)
+        self.addCleanup(sub.unregister)
+        swarm = launch()
+        self.addCleanup(swarm.shutdown)
+        log = st.PositionLog()
+        self.addCleanup(log.close)
+        self.assertTrue(log.wait_tick(3, timeout), 'the swarm never ticked')
+        # A restarted dispatcher would ask (latched) within its first 1.5 s.
+        self.assertFalse(st.wait_for(lambda: requests, 5.0), requests)
+        rows_file = os.path.join(record_dir, 'run', 'missions.csv')
+        self.assertTrue(st.wait_for(lambda: os.path.exists(rows_file), timeout))
+        with open(rows_file) as f:
+            text = f.read()
+        self.assertNotIn('# gap', text)
 
     def test_dispatcher_and_recorder_restart_during_missions(self):
         self.timeout = g('timeout_s')

@@ -76,4 +76,8 @@ bool WasStartedBefore(const ros::NodeHandle& private_nh, const std::string& what
   return started && bar != std::string::npos && before.substr(bar + 1) == what;
 }
 
+void ForgetInstance(const ros::NodeHandle& private_nh) {
+  if (ros::ok()) private_nh.deleteParam("instance");
+}
+
 }  // namespace swarm_transport

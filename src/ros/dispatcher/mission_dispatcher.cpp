@@ -56,8 +56,9 @@ bool MissionDispatcher::Initialize() {
   core::DispatcherOutlet* outlet = this;
   policy_ = std::make_unique<core::DispatcherPolicy>(std::move(params), outlet);
   policy_->SetFileMissions(std::move(file_missions), std::move(file_ticks));
-  // Latched so that a robot (or `rostopic echo`) connecting later still gets the last order.
-  // Its queue holds a whole table of live orders published at once (a flood's admitted ones).
+  // Latched so that a robot (or `rostopic echo`) connecting later still gets the last order
+  // while its mission waits to start (real time: UnlatchIfStarted). Its queue holds a whole
+  // table of live orders published at once (a flood's admitted ones).
   new_pub_ = nh_.advertise<New_Mission>(names::kMissionNew, kOrderQueue, true);
   status_pub_ = nh_.advertise<Mission_Status>(names::kMissionStatus, 100);
   event_pub_ = nh_.advertise<Mission_Event>(names::kMissionEvent, 10);
@@ -175,6 +176,7 @@ void MissionDispatcher::OnResent(const ros::MessageEvent<Mission_Resent const>& 
 }
 
 void MissionDispatcher::Shutdown() {
+  ForgetInstance(private_nh_);
   resent_timer_.stop();
   for (ros::Timer& timer : start_timers_) timer.stop();
   watchdog_timer_.stop();
@@ -204,6 +206,22 @@ void MissionDispatcher::Order(const core::MissionSpec& spec, std::uint64_t start
   New_Mission order = ToNewMission(spec);
   order.start_tick = start_tick;
   new_pub_.publish(order);
+  latched_id_ = spec.id;
+}
+
+void MissionDispatcher::UnlatchIfStarted() {
+  if (lockstep_ || !latched_id_) return;  // lock-step robots take orders from their rounds only
+  const core::MissionBook::Entry* entry = policy_->book().Find(*latched_id_);
+  if (entry != nullptr && entry->phase == MissionPhase::kQueued) return;
+  // A robot that connects from now on is too late for that mission: its members lose a robot
+  // not heard for lost_after_s, and a process started again under a member's id that took the
+  // order would run it from QUEUED beside the robots that carry it (a second first leader
+  // whose freeze stops them). A new publisher has no latched message; AwaitListeners lets the
+  // subscribers connect to it again before the next order.
+  ROS_DEBUG("%s: mission %u started: its order is latched no more", kNode, *latched_id_);
+  latched_id_.reset();
+  new_pub_.shutdown();
+  new_pub_ = nh_.advertise<New_Mission>(names::kMissionNew, kOrderQueue, true);
 }
 
 void MissionDispatcher::Rejected(const core::MissionSpec& spec, const std::string& reason) {
@@ -305,6 +323,7 @@ void MissionDispatcher::OnStatus(const ros::MessageEvent<Mission_Status const>& 
   }
   const core::MissionBook::StatusOutcome outcome =
       policy_->OnStatus(ToMissionReport(msg), event.getPublisherName());
+  UnlatchIfStarted();
   if (outcome.ignored == "too many live missions" && untracked_warning_.Due()) {
     ROS_WARN("%s: not tracking mission %u: too many live missions%s", kNode, msg.mission_id,
              untracked_warning_.AndMore("missions").c_str());

@@ -278,6 +278,7 @@ void Recorder::Run() {
 void Recorder::Shutdown() {
   if (shut_down_) return;
   shut_down_ = true;
+  ForgetInstance(private_nh_);
   positions_sub_.shutdown();
   mission_new_sub_.shutdown();
   status_sub_.shutdown();

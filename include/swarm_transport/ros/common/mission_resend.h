@@ -3,7 +3,8 @@
 // or led (with the order it carried) and re-sends them on /flock/mission/resent when a restarted
 // dispatcher or recorder asks on /flock/mission/resend_request. Only first leaders subscribe the
 // request, so one request costs one message per first leader and mission, whatever the swarm's
-// size. A node knows it was restarted from its ~instance parameter (WasStartedBefore).
+// size. A node knows it was restarted from its ~instance parameter (WasStartedBefore), which a
+// clean stop deletes (ForgetInstance).
 #ifndef SWARM_TRANSPORT_ROS_MISSION_RESEND_H_
 #define SWARM_TRANSPORT_ROS_MISSION_RESEND_H_
 
@@ -49,6 +50,10 @@ class MissionResender {
 // parameter is set and names it: a recorder's run directory); sets it for the next start
 // (pid, wall time and `what`).
 bool WasStartedBefore(const ros::NodeHandle& private_nh, const std::string& what = "");
+// A clean stop (SIGINT, SIGTERM: roslaunch, Ctrl-C) deletes ~instance, so that the next start
+// on this master (a test launching a swarm again) is no restart; a node killed (SIGKILL) leaves
+// it. Does nothing once roscpp is shut down.
+void ForgetInstance(const ros::NodeHandle& private_nh);
 
 }  // namespace swarm_transport
 

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -67,6 +68,10 @@ class MissionDispatcher : private core::DispatcherOutlet {
   // Before a new order or an event: waits (at most kListenerWaitS) until every registered
   // subscriber of pub's topic is connected.
   void AwaitListeners(const ros::Publisher& pub);
+  // Real time: once the mission of the latched order has left QUEUED, the order topic is
+  // advertised again without it (a robot process connecting later - one killed and started
+  // again under the same id - must not take the order of a mission that runs without it).
+  void UnlatchIfStarted();
   bool FromSelf(const std::string& publisher) const {
     return publisher == ros::this_node::getName();
   }
@@ -96,6 +101,7 @@ class MissionDispatcher : private core::DispatcherOutlet {
   bool lockstep_ = false;  // /use_sim_time: the simulator's lock-step clock
 
   ros::Publisher new_pub_;
+  std::optional<std::uint16_t> latched_id_;  // the mission of the order new_pub_ latches
   ros::Publisher status_pub_;
   ros::Publisher event_pub_;
   ros::Publisher delete_pub_;
