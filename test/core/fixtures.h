@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <set>
+#include <vector>
 
 #include "swarm_transport/core/flocking.h"
 #include "swarm_transport/core/mission.h"
@@ -43,6 +44,16 @@ inline MissionSpec Thesis(std::uint16_t id = 7) {
   return m;
 }
 
+// The length of the polyline from `from` through `points` (a planned path or way).
+inline double PolylineLength(Vec2 from, const std::vector<Vec2>& points) {
+  double length = 0.0;
+  for (const Vec2& w : points) {
+    length += Distance(from, w);
+    from = w;
+  }
+  return length;
+}
+
 // Robot ids [0, n): a swarm the dispatcher's book admits orders for.
 inline std::set<std::uint16_t> Robots(int n) {
   std::set<std::uint16_t> ids;
@@ -57,6 +68,26 @@ inline MissionReport Report(std::uint16_t id, MissionPhase phase, std::uint64_t 
   r.phase = phase;
   r.tick = tick;
   return r;
+}
+
+// A neighbour `id` of `type` (0 physical, 1 virtual copy, 2 statist) at (x, y) heading
+// `heading_deg`.
+inline Neighbour Robot(std::uint16_t id, double x, double y, double heading_deg = 0.0,
+                       std::uint8_t type = 0) {
+  Neighbour n;
+  n.id = id;
+  n.type = type;
+  n.position = {x, y};
+  n.heading = Angle(heading_deg);
+  return n;
+}
+
+// The perceiving robot (id 1) at (x, y) heading `heading_deg`, nothing heard yet.
+inline Perception PerceptionAt(double x, double y, double heading_deg) {
+  Perception in;
+  in.self_id = 1;
+  in.self = {{x, y}, Angle(heading_deg)};
+  return in;
 }
 
 // A physical robot `id` at (x, y) heading `heading_deg`.

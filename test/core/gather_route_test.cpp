@@ -43,14 +43,7 @@ bool InAny(const std::vector<Zone>& zones, Vec2 q) {
   return false;
 }
 
-double WayLength(Vec2 from, const std::vector<Vec2>& way) {
-  double length = 0.0;
-  for (const Vec2& w : way) {
-    length += Distance(from, w);
-    from = w;
-  }
-  return length;
-}
+constexpr auto WayLength = fixtures::PolylineLength;
 
 TEST(GatherRouteTest, NoWayWhenTheStraightLineIsClear) {
   const std::vector<Zone> zones = {Rect(-1, 8, 1, 9, 2)};

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "fixtures.h"
+
 namespace swarm_transport {
 namespace core {
 namespace {
@@ -38,12 +40,8 @@ Neighbour Robot(std::uint16_t id, double x, double y, std::uint8_t type = 0) {
   return n;
 }
 
-Perception At(double x, double y, double heading_deg) {
-  Perception in;
-  in.self_id = 1;
-  in.self = {{x, y}, Angle(heading_deg)};
-  return in;
-}
+// The perceiving robot.
+constexpr auto At = fixtures::PerceptionAt;
 
 TEST(LeaderParamsTest, ValidatesToleranceAndWaitFraction) {
   EXPECT_EQ(LeaderParams().Validate(), "");

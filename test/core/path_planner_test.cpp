@@ -6,6 +6,8 @@
 
 #include <vector>
 
+#include "fixtures.h"
+
 namespace swarm_transport {
 namespace core {
 namespace {
@@ -33,14 +35,7 @@ void ExpectClearPath(Vec2 from, Vec2 to, const std::vector<Vec2>& path,
   }
 }
 
-double Length(Vec2 from, const std::vector<Vec2>& path) {
-  double length = 0.0;
-  for (const Vec2& w : path) {
-    length += Distance(from, w);
-    from = w;
-  }
-  return length;
-}
+constexpr auto Length = fixtures::PolylineLength;
 
 TEST(PathPlannerTest, TheStraightLineWhenItIsClear) {
   const std::vector<Zone> zones = {Rect(-1, 8, 8, 9, 9)};

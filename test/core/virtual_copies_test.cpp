@@ -19,23 +19,10 @@ namespace {
 constexpr double kTolerance = 1e-9;
 
 using fixtures::Quiet;
+using fixtures::Robot;
 
-Neighbour Robot(std::uint16_t id, double x, double y, double heading_deg = 0.0,
-                std::uint8_t type = 0) {
-  Neighbour n;
-  n.id = id;
-  n.type = type;
-  n.position = {x, y};
-  n.heading = Angle(heading_deg);
-  return n;
-}
-
-Perception At(double x, double y, double heading_deg) {
-  Perception in;
-  in.self_id = 1;
-  in.self = {{x, y}, Angle(heading_deg)};
-  return in;
-}
+// The perceiving robot.
+constexpr auto At = fixtures::PerceptionAt;
 
 double Heading(Angle a) { return Angle::SignedDifference(a, Angle(0)); }
 
