@@ -10,6 +10,7 @@
 #include "swarm_transport/core/flocking.h"
 #include "swarm_transport/core/mission.h"
 #include "swarm_transport/core/mission_book.h"
+#include "swarm_transport/core/path_planner.h"
 
 namespace swarm_transport {
 namespace core {
@@ -42,6 +43,18 @@ inline MissionSpec Thesis(std::uint16_t id = 7) {
   m.object_size = {2.0, 2.0};
   m.target = {3.0, 3.0};
   return m;
+}
+
+// A static danger zone `id`: the rectangle from (x0, y0) to (x1, y1).
+inline Zone RectZone(int id, double x0, double y0, double x1, double y1) {
+  return Zone{id, Shape::FromRect({(x0 + x1) / 2, (y0 + y1) / 2}, {x1 - x0, y1 - y0}), false};
+}
+
+// Path planning that keeps `clearance` (m) from every zone, the rest as defaulted.
+inline PathParams WithClearance(double clearance) {
+  PathParams p;
+  p.clearance_m = clearance;
+  return p;
 }
 
 // The length of the polyline from `from` through `points` (a planned path or way).

@@ -20,15 +20,8 @@ namespace {
 using fixtures::At;
 using fixtures::Quiet;
 
-Zone Rect(int id, double x0, double y0, double x1, double y1) {
-  return Zone{id, Shape::FromRect({(x0 + x1) / 2, (y0 + y1) / 2}, {x1 - x0, y1 - y0}), false};
-}
-
-PathParams Clearance(double clearance) {
-  PathParams p;
-  p.clearance_m = clearance;
-  return p;
-}
+constexpr auto Rect = fixtures::RectZone;
+constexpr auto Clearance = fixtures::WithClearance;
 
 // A cup open to the west at x 3.5..5.4, y 5.1..8.9: a gathering robot inside it whose object
 // lies to the east would press against its bottom for good driving straight.

@@ -12,15 +12,8 @@ namespace swarm_transport {
 namespace core {
 namespace {
 
-Zone Rect(int id, double x0, double y0, double x1, double y1) {
-  return Zone{id, Shape::FromRect({(x0 + x1) / 2, (y0 + y1) / 2}, {x1 - x0, y1 - y0}), false};
-}
-
-PathParams Params(double clearance) {
-  PathParams p;
-  p.clearance_m = clearance;
-  return p;
-}
+constexpr auto Rect = fixtures::RectZone;
+constexpr auto Params = fixtures::WithClearance;
 
 // Every leg of the path from `from` is clear and the path ends at `to`.
 void ExpectClearPath(Vec2 from, Vec2 to, const std::vector<Vec2>& path,
