@@ -105,9 +105,16 @@ void Radio::Hear(std::size_t i, RadioRound* out) {
         for (std::uint32_t f = start[near]; f < near_end; ++f) {
           const std::size_t j = index[f];
           if (heard[j]) continue;
-          mark(j);
           ring_.push_back(j);
-          if (!(lossy && Lost())) out->chain.push_back(j);
+          if (lossy && Lost()) {
+            // Passed on hop by hop, but its own position lost: a mission peer still reaches it
+            // over the mission channel below (2: visited, not heard).
+            heard[j] = 2;
+            touched_.push_back(j);
+          } else {
+            mark(j);
+            out->chain.push_back(j);
+          }
         }
       }
       ring_begin = ring_end;
@@ -130,7 +137,7 @@ void Radio::Hear(std::size_t i, RadioRound* out) {
   for (std::size_t m : missions_of_[i]) {
     for (std::uint16_t member : member_lists_[m]) {
       const long j = IndexOf(member);
-      if (member == id || j < 0 || heard_[static_cast<std::size_t>(j)] ||
+      if (member == id || j < 0 || heard_[static_cast<std::size_t>(j)] == 1 ||
           quiet_[static_cast<std::size_t>(j)]) {
         continue;
       }

@@ -109,6 +109,20 @@ TEST(RadioTest, LossDropsPositionsButNotTheMissionChannel) {
   const RadioRound round = HearOne(&radio, 0);
   EXPECT_TRUE(round.in_range.empty());
   EXPECT_EQ(round.peers, (Indices{1}));  // a lost neighbour still reaches it as a peer
+  // Over a chain too: a member whose position the chain lost is heard as a peer (issue 29: it
+  // was not, and a burst of radio loss made members lose their first leader, promote another
+  // and stall the mission in TRANSPORT with two first leaders).
+  RadioParams chain = Range(1.0, 16);
+  chain.loss = 1.0;
+  missions[1].members = {0, 1, 2};
+  core::Rng lossy(1, 0);
+  Radio over_chain(chain, &lossy);
+  over_chain.Begin(world, {}, missions);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const RadioRound r = HearOne(&over_chain, i);
+    EXPECT_TRUE(r.in_range.empty() && r.chain.empty());
+    EXPECT_EQ(r.peers.size(), 2u) << "robot " << i;
+  }
   // The same seed loses the same positions.
   p.loss = 0.5;
   core::Rng a(7, 3), b(7, 3);
