@@ -103,9 +103,27 @@ bool MissionAgent::OnEvent(std::uint16_t mission_id, MissionEventKind event,
   return true;
 }
 
-void MissionAgent::OnStatus(std::uint16_t mission_id, MissionPhase phase) {
+void MissionAgent::OnStatus(std::uint16_t mission_id, MissionPhase phase,
+                            const std::vector<std::uint16_t>& lost) {
   auto it = live_.find(mission_id);
-  if (it == live_.end() || LeadsFirst(it->second)) return;
+  if (it == live_.end()) return;
+  Live& live = it->second;
+  if (!live.spec.LeaderOnly()) {
+    // Its first leader's lost robots are lost here too (for good, as its own): a robot that is
+    // named leaves the mission's lead, and one that leads now because of them was promoted.
+    const bool first_before = LeadsFirst(live);
+    for (std::uint16_t id : lost) {
+      if (live.spec.Assigns(id) && live.lost.insert(id).second) {
+        live.last_seen.erase(id);
+        live.lost_heard = true;
+      }
+    }
+    if (live.lost_heard && !first_before && LeadsFirst(live)) {
+      live.promoted = true;
+      live.first_since = tick_;
+    }
+  }
+  if (LeadsFirst(live)) return;
   // QUEUED and REJECTED come from the dispatcher (a REJECTED may name a live mission's id when
   // a duplicate was refused): only the first leader's phases move a mission on.
   if (phase == MissionPhase::kQueued || phase == MissionPhase::kRejected) return;
@@ -175,10 +193,12 @@ bool MissionAgent::LeadsFirst(const Live& live) const {
 bool MissionAgent::Heartbeats(Live* live, const std::vector<Neighbour>& heard, std::uint64_t tick) {
   const MissionSpec& spec = live->spec;
   const std::size_t lost_before = live->lost.size();
-  // A robot that missed ticks for as long (hung, then resumed) was lost for the others: it
-  // counts itself lost too, so that it does not lead beside the one promoted in its place.
+  // A robot that missed ticks for as long (hung, then resumed) was lost for the others where its
+  // radio fell silent with it: it counts itself lost too, so that it does not lead beside the
+  // one promoted in its place (MissionAgentParams::heard_while_hung).
   const auto self = live->heard_tick.find(self_id_);
-  if (self != live->heard_tick.end() && tick - self->second > params_.lost_after_ticks) {
+  if (!params_.heard_while_hung && self != live->heard_tick.end() &&
+      tick - self->second > params_.lost_after_ticks) {
     live->lost.insert(self_id_);
   }
   // A member never heard counts from the mission's first tick.
@@ -211,6 +231,7 @@ StatusReport MissionAgent::Report(const Live& live, std::uint16_t inside) const 
   r.inside = inside;
   r.object = live.centre;
   r.distance_to_target = Distance(live.centre, live.spec.target);
+  r.lost.assign(live.lost.begin(), live.lost.end());
   return r;
 }
 

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <map>
 #include <sstream>
+#include <utility>
 
 #include "swarm_transport/core/assignment.h"
 #include "swarm_transport/core/mission_agent.h"
@@ -225,6 +226,8 @@ MissionPlan MissionAgent::Tick(const Pose2& self, const std::vector<Neighbour>& 
     if (!spec.LeaderOnly()) {
       const bool first_before = LeadsFirst(live);
       lost_now = Heartbeats(&live, heard, tick);
+      // Robots a status named lost since the last tick count as lost now.
+      lost_now = std::exchange(live.lost_heard, false) || lost_now;
       if (lost_now) {
         if (live.anchored) live.reanchor = true;
         if (!first_before && LeadsFirst(live)) {

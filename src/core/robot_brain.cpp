@@ -62,7 +62,7 @@ std::string RobotBrain::Take(const MissionMessage& message,
           return OnEvent(m.mission_id, m.kind, m.not_before_tick);
         } else {
           static_assert(std::is_same_v<M, PhaseStatus>, "a mission message without its case");
-          OnStatus(m.mission_id, m.phase);
+          OnStatus(m);
           return "";
         }
       },
@@ -141,8 +141,10 @@ std::string RobotBrain::OnEvent(std::uint16_t mission_id, MissionEventKind event
   return agent_.OnEvent(mission_id, event, not_before_tick, &why) ? "" : why;
 }
 
-void RobotBrain::OnStatus(std::uint16_t mission_id, MissionPhase phase) {
-  if (phase <= MissionPhase::kRejected) agent_.OnStatus(mission_id, phase);
+void RobotBrain::OnStatus(const PhaseStatus& status) {
+  if (status.phase <= MissionPhase::kRejected) {
+    agent_.OnStatus(status.mission_id, status.phase, status.lost);
+  }
 }
 
 std::string RobotBrain::OnTuning(const FlockingTuning& tuning) {

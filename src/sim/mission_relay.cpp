@@ -62,6 +62,7 @@ void MissionRelay::Note(const core::PhaseStatus& m) {
       return;
     default:
       if (m.phase > MissionPhase::kUnloading) return;  // no phase
+      it->second.lost.insert(m.lost.begin(), m.lost.end());
       // Phases only move forward (as the robots take them: core::MissionAgent::OnStatus).
       if (!it->second.phase || m.phase > *it->second.phase) it->second.phase = m.phase;
       return;
@@ -72,7 +73,7 @@ void MissionRelay::AddAnswer(std::uint16_t id, const core::Answer& answer) {
   const std::string sender = AnswerSender(id);
   for (const MissionMessage& m : answer.messages) Add(sender, m);
   for (const core::StatusReport& s : answer.statuses) {
-    Add(sender, core::PhaseStatus{s.mission_id, s.phase});
+    Add(sender, core::PhaseStatus{s.mission_id, s.phase, s.lost});
   }
 }
 
@@ -90,7 +91,7 @@ std::vector<core::MissionSpec> MissionRelay::ReleaseOrders(std::uint64_t tick) {
     // A started mission keeps its order (one with its id now is a duplicate the robots refuse).
     const auto standing = standing_.find(held.order.id);
     if (standing == standing_.end() || !Started(standing->second)) {
-      standing_[held.order.id] = Standing{held.order, std::nullopt};
+      standing_[held.order.id] = Standing{held.order, std::nullopt, {}};
     }
     Push(held.sender, held.order);
   }
@@ -128,7 +129,11 @@ std::size_t MissionRelay::FillStanding(core::Round* round) const {
     if (carries(kv.first, core::MissionSpec())) continue;  // released in this round
     orders.push_back(kv.second.order);
     if (kv.second.phase && !carries(kv.first, core::PhaseStatus())) {
-      phases.push_back(core::PhaseStatus{kv.first, *kv.second.phase});
+      // With the robots lost so far: a robot process started again under a lost robot's id
+      // (a respawn) must not lead or count in the mission it was lost from.
+      phases.push_back(core::PhaseStatus{
+          kv.first, *kv.second.phase,
+          std::vector<std::uint16_t>(kv.second.lost.begin(), kv.second.lost.end())});
     }
   }
   // Orders come first in a round, phases last.

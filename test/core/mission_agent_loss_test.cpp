@@ -217,6 +217,8 @@ TEST(MissionAgentTest, ALostFirstLeaderIsReplacedByTheNextAssignedRobot) {
   ASSERT_EQ(Phases(out), std::vector<std::string>{"TRANSPORT"});
   EXPECT_NE(out.statuses[0].reason.find("robot 1 leads: robot(s) 0 lost"), std::string::npos)
       << out.statuses[0].reason;
+  // Its status names the lost robot: the others (robot 0 itself too) learn it from there.
+  EXPECT_EQ(out.statuses[0].lost, (std::vector<std::uint16_t>{0}));
   ASSERT_TRUE(out.update_object.has_value());
   EXPECT_NEAR(out.update_object->second.x, 6.9, 1e-12);
   EXPECT_NEAR(out.update_object->second.y, 6.9, 1e-12);
@@ -403,6 +405,72 @@ TEST(MissionAgentTest, ARobotThatMissedItsTicksCountsItselfLostAndDoesNotLead) {
   EXPECT_TRUE(out.empty());
   EXPECT_FALSE(robot0.IsFirstLeaderOfAny());
   EXPECT_EQ(robot0.LostOf(7), (std::set<std::uint16_t>{0}));
+
+  // In a real-time simulation its peers heard it all along (the simulator relays its pose): it
+  // goes on leading after the same gap (issue 29: counting itself lost left the mission
+  // without a first leader), until its first leader's status names it lost.
+  params.heard_while_hung = true;
+  MissionAgent starved(0, params);
+  ASSERT_TRUE(starved.OnNewMission(Thesis(), &why)) << why;
+  out = MissionOutbox();
+  starved.Tick(PoseAt(7.0, 7.0), heard, 1, &out);
+  ASSERT_EQ(Phases(out), std::vector<std::string>{"GATHERING"});
+  out = MissionOutbox();
+  starved.Tick(PoseAt(7.0, 7.0), heard, 10, &out);
+  EXPECT_TRUE(starved.IsFirstLeaderOfAny());
+  EXPECT_TRUE(starved.LostOf(7).empty());
+  starved.OnStatus(7, MissionPhase::kGathering, {0});
+  EXPECT_FALSE(starved.IsFirstLeaderOfAny());
+}
+
+TEST(MissionAgentTest, EveryRobotOfAMissionCountsLostWhomItsFirstLeaderCountsLost) {
+  // A burst of radio loss (issue 29): robot 1 did not hear the first leader, robot 0, for long
+  // enough and leads in its place, while robot 0 heard the others and went on leading - two
+  // first leaders of one mission, which then stood in TRANSPORT for good. Robot 1's status
+  // names robot 0 lost: robot 0 counts itself lost and stops leading, and a robot that had
+  // counted robot 1 lost already is promoted by it.
+  MissionAgentParams params;
+  params.lost_after_ticks = 5;
+  std::string why;
+  MissionAgent robot0(0, params);
+  ASSERT_TRUE(robot0.OnNewMission(Thesis(), &why)) << why;
+  MissionOutbox out;
+  const std::vector<Neighbour> heard = {At(1, 4.0, 4.0), At(2, 7.2, 7.2)};  // robot 1 on its way
+  robot0.Tick(PoseAt(7.0, 7.0), heard, 1, &out);
+  ASSERT_EQ(Phases(out), std::vector<std::string>{"GATHERING"});
+  ASSERT_TRUE(robot0.IsFirstLeaderOfAny());
+  robot0.OnStatus(7, MissionPhase::kGathering, {0});
+  EXPECT_FALSE(robot0.IsFirstLeaderOfAny());
+  EXPECT_EQ(robot0.LostOf(7), (std::set<std::uint16_t>{0}));
+  out = MissionOutbox();
+  MissionPlan plan = robot0.Tick(PoseAt(7.0, 7.0), heard, 2, &out);
+  EXPECT_TRUE(out.empty());  // it says nothing more of the mission
+  ASSERT_TRUE(plan.carry.has_value());
+  EXPECT_FALSE(plan.carry->leader);
+  EXPECT_EQ(plan.carry->leaders, (std::vector<std::uint16_t>{1}));
+  // Robots of other missions and unknown ones in the list change nothing.
+  robot0.OnStatus(7, MissionPhase::kGathering, {0, 40});
+  EXPECT_EQ(robot0.LostOf(7), (std::set<std::uint16_t>{0}));
+
+  // Robot 2 heard robot 0 but not robot 1 (lost at tick 7); robot 0's lost list promotes it.
+  MissionAgent robot2(2, params);
+  ASSERT_TRUE(robot2.OnNewMission(Thesis(), &why)) << why;
+  robot2.OnStatus(7, MissionPhase::kGathering, {});
+  for (std::uint64_t t = 1; t <= 7; ++t) {
+    out = MissionOutbox();
+    robot2.Tick(PoseAt(7.2, 7.2), {At(0, 7.0, 7.0)}, t, &out);
+    ASSERT_TRUE(out.empty());
+  }
+  ASSERT_EQ(robot2.LostOf(7), (std::set<std::uint16_t>{1}));
+  ASSERT_FALSE(robot2.IsFirstLeaderOfAny());
+  robot2.OnStatus(7, MissionPhase::kGathering, {0});
+  EXPECT_TRUE(robot2.IsFirstLeaderOfAny());
+  out = MissionOutbox();
+  robot2.Tick(PoseAt(7.2, 7.2), {At(0, 7.0, 7.0)}, 8, &out);
+  ASSERT_FALSE(out.statuses.empty());
+  EXPECT_NE(out.statuses[0].reason.find("robot 2 leads: robot(s) 0, 1 lost"), std::string::npos)
+      << out.statuses[0].reason;
+  EXPECT_EQ(out.statuses[0].lost, (std::vector<std::uint16_t>{0, 1}));
 }
 
 }  // namespace

@@ -90,7 +90,7 @@ TEST(RobotBrainTest, ABalloonLoadingMemberSpreadsUnderItsObjectUntilTheFreeze) {
   MissionTaken taken;
   for (RobotBrain* brain : {&spreading, &standing}) {
     ASSERT_EQ(brain->Take(Thesis(), {0, 1, 2}, &taken), "");
-    brain->Take(PhaseStatus{7, MissionPhase::kLoading});
+    brain->Take(PhaseStatus{7, MissionPhase::kLoading, {}});
   }
   // none: the first leader froze the group at LOADING.
   ASSERT_EQ(standing.Take(Freeze{0, 3}), "");
@@ -325,7 +325,7 @@ TEST(RobotBrainTest, ALeaderAnnouncesItsCopiesWhileItLeadsAlone) {
     EXPECT_EQ(leader.Tick(Sees(5.0, 5.0, 0.0, {}), 0, true).copies, 0) << "no mission yet";
     for (RobotBrain* brain : {&leader, &bystander}) {
       ASSERT_EQ(brain->Take(trip, {}, nullptr), "");
-      brain->Take(PhaseStatus{3, MissionPhase::kTransport});
+      brain->Take(PhaseStatus{3, MissionPhase::kTransport, {}});
     }
     EXPECT_EQ(leader.Tick(Sees(5.0, 5.0, 0.0, {}), 1, true).copies, k - 1) << k;
     EXPECT_EQ(bystander.Tick(Sees(6.0, 6.0, 0.0, {}), 1, true).copies, 0) << k;

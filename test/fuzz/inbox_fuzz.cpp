@@ -51,11 +51,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                          static_cast<core::MissionEventKind>(in.ConsumeIntegral<std::uint8_t>()),
                          in.ConsumeIntegral<std::uint64_t>()});
         break;
-      case 6:
-        brain.Take(
-            core::PhaseStatus{in.ConsumeIntegralInRange<std::uint16_t>(0, 5),
-                              static_cast<core::MissionPhase>(in.ConsumeIntegral<std::uint8_t>())});
+      case 6: {
+        core::PhaseStatus status;
+        status.mission_id = in.ConsumeIntegralInRange<std::uint16_t>(0, 5);
+        status.phase = static_cast<core::MissionPhase>(in.ConsumeIntegral<std::uint8_t>());
+        // The robots its first leader counts lost: any ids, the robot itself among them.
+        const int lost = in.ConsumeIntegralInRange<int>(0, 3);
+        for (int k = 0; k < lost; ++k) {
+          status.lost.push_back(in.ConsumeIntegralInRange<std::uint16_t>(0, 12));
+        }
+        brain.Take(status);
         break;
+      }
       case 7: {
         // Any value, NaN and infinities included.
         const auto any = [&in]() -> double {

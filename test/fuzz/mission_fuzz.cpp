@@ -103,7 +103,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       book.OnStatus(ToMissionReport(status), 1.0 * k);
     }
     member.Take(
-        core::PhaseStatus{status.mission_id, static_cast<core::MissionPhase>(status.state)});
+        core::PhaseStatus{status.mission_id, static_cast<core::MissionPhase>(status.state), {}});
   }
   // A few ticks of both robots on finite positions.
   for (std::uint64_t tick = 0; tick < 3; ++tick) {

@@ -82,6 +82,7 @@ TEST(MissionRelayTest, RoundListsEachKindBySenderThenArrival) {
   robot12.statuses = {Status(1, Mission_Status::LOADING)};
   Tick_Answer robot3;
   robot3.statuses = {Status(2, Mission_Status::GATHERING), Status(2, Mission_Status::LOADING)};
+  robot3.statuses[1].lost = {0, 4};  // the robots its first leader counts lost travel with it
   relay.AddAnswer(12, robot12);
   relay.Add("/test", Status(3, Mission_Status::QUEUED));
   relay.AddAnswer(3, robot3);
@@ -92,6 +93,14 @@ TEST(MissionRelayTest, RoundListsEachKindBySenderThenArrival) {
   EXPECT_EQ(round.statuses[1].mission_id, 2);  // robot 3, in its order
   EXPECT_EQ(round.statuses[1].state, Mission_Status::GATHERING);
   EXPECT_EQ(round.statuses[2].state, Mission_Status::LOADING);
+  EXPECT_EQ(round.statuses[2].lost, (std::vector<std::uint16_t>{0, 4}));
+  EXPECT_TRUE(round.statuses[1].lost.empty());
+  const core::Round taken = ToRound(round);
+  const auto* phase = std::get_if<core::PhaseStatus>(&taken.messages.back());
+  ASSERT_NE(phase, nullptr);
+  EXPECT_EQ(phase->lost, (std::vector<std::uint16_t>{}));  // robot 12's, last
+  EXPECT_EQ(std::get<core::PhaseStatus>(taken.messages[taken.messages.size() - 2]).lost,
+            (std::vector<std::uint16_t>{0, 4}));
   EXPECT_EQ(round.statuses[3].mission_id, 1);  // robot 12
   // A second robot's round of the same tick gets the same lists.
   Neighbors other;
@@ -195,10 +204,17 @@ TEST(MissionRelayTest, AConnectingRobotGetsTheOrdersOfTheMissionsThatHaveNotEnde
   EXPECT_FLOAT_EQ(round.missions[0].object_position_y, 5.5f);
   ASSERT_EQ(round.statuses.size(), 1u);
   EXPECT_EQ(round.statuses[0].state, Mission_Status::TRANSPORT);
+  EXPECT_TRUE(round.statuses[0].lost.empty());
 
   // Released in this very round: not twice; nor its phase when the round has one of it.
   relay.AddOrder("/mission_dispatcher", Order(8, 0));
   ASSERT_EQ(relay.ReleaseOrders(2).size(), 1u);
+  Tick_Answer promoted;  // a first leader promoted over robot 7, then one that lost robot 3
+  promoted.statuses = {Status(1, Mission_Status::TRANSPORT)};
+  promoted.statuses[0].lost = {7};
+  relay.AddAnswer(8, promoted);
+  promoted.statuses[0].lost = {3, 7};
+  relay.AddAnswer(8, promoted);
   relay.Add("/mission_dispatcher", Status(1, Mission_Status::UNLOADING));
   Neighbors joining;
   relay.Fill(&joining);
@@ -206,8 +222,8 @@ TEST(MissionRelayTest, AConnectingRobotGetsTheOrdersOfTheMissionsThatHaveNotEnde
   ASSERT_EQ(joining.missions.size(), 2u);
   EXPECT_EQ(joining.missions[0].mission_id, 8);
   EXPECT_EQ(joining.missions[1].mission_id, 1);
-  ASSERT_EQ(joining.statuses.size(), 1u);
-  EXPECT_EQ(joining.statuses[0].state, Mission_Status::UNLOADING);
+  ASSERT_EQ(joining.statuses.size(), 3u);  // this round's own: not the standing phase again
+  EXPECT_EQ(joining.statuses.front().state, Mission_Status::UNLOADING);  // the dispatcher's
   // A second order with a started mission's id is a duplicate: the mission keeps its order.
   relay.Clear();
   New_Mission duplicate = Order(1, 0);
@@ -219,6 +235,11 @@ TEST(MissionRelayTest, AConnectingRobotGetsTheOrdersOfTheMissionsThatHaveNotEnde
   relay.FillStanding(&later);
   ASSERT_EQ(later.missions.size(), 2u);
   EXPECT_EQ(later.missions[0].mission_id, 1);
+  // Its standing phase names every robot its statuses named lost: a robot started again under
+  // a lost robot's id learns it was lost there.
+  ASSERT_EQ(later.statuses.size(), 1u);
+  EXPECT_EQ(later.statuses[0].state, Mission_Status::UNLOADING);
+  EXPECT_EQ(later.statuses[0].lost, (std::vector<std::uint16_t>{3, 7}));
   EXPECT_FLOAT_EQ(later.missions[0].target_x, 0.0f);
   EXPECT_FLOAT_EQ(later.missions[0].object_position_x, 4.5f);
 }

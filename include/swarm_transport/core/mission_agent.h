@@ -46,6 +46,17 @@ struct MissionAgentParams {
   // member counts where it was last heard; in transport the object is re-anchored when one is
   // lost, so that it does not jump. Robots take it from /swarm/lost_after_s.
   std::uint64_t lost_after_ticks = 20;
+  // Whether a robot's peers go on hearing it while it misses its ticks (its process hung or
+  // starved of CPU). False where its radio falls silent with it: in lock-step (the simulator
+  // makes a robot that does not answer quiet) and wherever a robot announces its own position
+  // (hardware, broadcast comm); then a robot whose ticks jumped by more than lost_after_ticks
+  // was lost for the others, and counts itself lost too, so that it does not lead beside the
+  // one promoted in its place. True in a real-time simulation, where the simulator relays every
+  // connected robot's pose from its world whatever its process does: its peers never lost it,
+  // and it goes on as before (counting itself lost there left its mission without a first
+  // leader until the dispatcher aborted it as silent: issue 29). Either way a robot named lost
+  // in its first leader's status counts itself lost (OnStatus).
+  bool heard_while_hung = false;
   // A running transport with fewer robots left than this (and always with fewer than its
   // leaders) ends ABORTED naming the lost robots (SPEC 9.7, /swarm/mission_min_robots; 0: the
   // leaders' number).
@@ -80,6 +91,9 @@ struct StatusReport {
   std::uint16_t inside = 0;
   Vec2 object;
   double distance_to_target = 0.0;
+  // The robots of the mission its first leader counts lost (ascending): the others learn them
+  // from it (MissionAgent::OnStatus).
+  std::vector<std::uint16_t> lost;
 };
 
 // Messages the robot must publish after this tick (only a first leader fills them).
@@ -151,8 +165,15 @@ class MissionAgent {
   // The first leader acts on it at tick `not_before_tick` at the earliest (0: at once).
   bool OnEvent(std::uint16_t mission_id, MissionEventKind event, std::uint64_t not_before_tick,
                std::string* why);
-  // A status published by a mission's first leader (how other members learn the phase).
-  void OnStatus(std::uint16_t mission_id, MissionPhase phase);
+  // A status published by a mission's first leader (how other members learn the phase), with
+  // the robots it counts lost: they are lost for this robot too, itself included (a robot the
+  // first leader no longer hears, or a first leader whose members promoted another in its place
+  // while it heard them: every robot of a mission comes to agree on who is lost, so on who
+  // leads it, and a lost robot never leads beside the one promoted in its place).
+  void OnStatus(std::uint16_t mission_id, MissionPhase phase,
+                const std::vector<std::uint16_t>& lost = {});
+  // Where it runs (MissionAgentParams::heard_while_hung).
+  void set_heard_while_hung(bool heard) { params_.heard_while_hung = heard; }
   // The swarm's local range and speed changed (a valid flocking tuning, issue 13).
   void Retune(double local_range_m, double speed_m_per_tick) {
     params_.local_range_m = local_range_m;
@@ -210,6 +231,7 @@ class MissionAgent {
     bool promoted = false;          // it leads as first leader because the first leader was lost
     bool announced = false;         // ... and said so
     std::size_t lost_told = 0;      // first-leader: lost robots it has named in a report so far
+    bool lost_heard = false;        // a status named robots lost since its last tick
     std::vector<Vec2> route;        // transport: the object's waypoints, the target last
     std::size_t leg = 0;            // ... the one it heads for now
     std::optional<Vec2> slot;       // planned gathering: its own slot under the object

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <variant>
+#include <vector>
 
 #include "swarm_transport/core/geometry.h"
 #include "swarm_transport/core/mission.h"
@@ -45,10 +46,12 @@ struct Signal {
 };
 
 // PhaseStatus: a mission's phase as its first leader (or the dispatcher) published it; a
-// value beyond kRejected is no phase and ignored.
+// value beyond kRejected is no phase and ignored. `lost`: the robots of the mission its first
+// leader counts lost (ascending; the dispatcher's and a relay's standing phase: none).
 struct PhaseStatus {
   std::uint16_t mission_id = 0;
   MissionPhase phase = MissionPhase::kQueued;
+  std::vector<std::uint16_t> lost;
 };
 
 // The alternatives in the order a round carries them (core::Round): a mission before its

@@ -70,6 +70,8 @@ class RobotBrain {
   // Who may order it: the dispatcher (its admitted orders) or anyone (core::MayOrder).
   Admission admission() const { return params_.admission; }
   const MissionAgent& missions() const { return agent_; }
+  // Whether its peers hear it while it misses ticks (MissionAgentParams::heard_while_hung).
+  void set_heard_while_hung(bool heard) { agent_.set_heard_while_hung(heard); }
   const MissionPlan& last_plan() const { return last_plan_; }
   const MoveDecision& last_move() const { return last_move_; }
   std::size_t last_heard() const { return last_heard_; }
@@ -89,9 +91,9 @@ class RobotBrain {
   std::string OnObjectDelete(std::uint16_t mission_id);
   std::string OnEvent(std::uint16_t mission_id, MissionEventKind event,
                       std::uint64_t not_before_tick);
-  // A status published by a mission's first leader (how members learn its phase); a value
-  // beyond kRejected is ignored.
-  void OnStatus(std::uint16_t mission_id, MissionPhase phase);
+  // A status published by a mission's first leader (how members learn its phase and who is
+  // lost, MissionAgent::OnStatus); a value beyond kRejected is ignored.
+  void OnStatus(const PhaseStatus& status);
   bool InRange(std::uint16_t from, std::uint16_t to) const { return from <= id_ && id_ < to; }
 
   std::uint16_t id_;

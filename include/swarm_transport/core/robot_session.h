@@ -71,6 +71,8 @@ class RobotSession {
 
   std::uint16_t id() const { return brain_.id(); }
   const RobotBrain& brain() const { return brain_; }
+  // Whether its peers hear it while it misses ticks (MissionAgentParams::heard_while_hung).
+  void set_heard_while_hung(bool heard) { brain_.set_heard_while_hung(heard); }
   std::uint32_t tuning_generation() const { return tuning_generation_; }
   std::uint64_t tuning_tick() const { return tuning_tick_; }
 

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <variant>
@@ -68,6 +69,7 @@ class MissionRelay {
   struct Standing {
     core::MissionSpec order;
     std::optional<core::MissionPhase> phase;  // its latest phase status
+    std::set<std::uint16_t> lost;             // the robots its statuses named lost so far
   };
   // It has a phase status past QUEUED (its first leader started it).
   static bool Started(const Standing& standing);

@@ -137,6 +137,7 @@ Mission_Status ToMsg(const core::PhaseStatus& m) {
   Mission_Status msg;
   msg.mission_id = m.mission_id;
   msg.state = static_cast<std::uint8_t>(m.phase);
+  msg.lost = m.lost;
   return msg;
 }
 
@@ -164,7 +165,7 @@ core::MissionMessage ToMissionMessage(const Mission_Event& msg) {
 }
 
 core::MissionMessage ToMissionMessage(const Mission_Status& msg) {
-  return core::PhaseStatus{msg.mission_id, static_cast<core::MissionPhase>(msg.state)};
+  return core::PhaseStatus{msg.mission_id, static_cast<core::MissionPhase>(msg.state), msg.lost};
 }
 
 std::vector<core::MissionMessage> ToMissionMessages(const Neighbors& round) {
@@ -286,6 +287,7 @@ Mission_Status ToStatusMsg(const core::StatusReport& r, std::uint64_t tick,
   m.object_position_x = static_cast<float>(r.object.x);
   m.object_position_y = static_cast<float>(r.object.y);
   m.distance_to_target = static_cast<float>(r.distance_to_target);
+  m.lost = r.lost;
   return m;
 }
 
@@ -347,6 +349,7 @@ core::StatusReport ToStatusReport(const Mission_Status& s) {
   r.inside = s.robots_inside;
   r.object = {s.object_position_x, s.object_position_y};
   r.distance_to_target = s.distance_to_target;
+  r.lost = s.lost;
   return r;
 }
 

@@ -33,6 +33,21 @@ void MissionResender::Remember(const Mission_Status& status, const core::Mission
   }
 }
 
+void MissionResender::Ended(std::uint16_t mission_id) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto it = latest_.find(mission_id);
+  if (it == latest_.end()) return;
+  const std::uint8_t state = it->second.status.state;
+  if (state == Mission_Status::DONE || state == Mission_Status::ABORTED) return;
+  latest_.erase(it);
+  heard_.erase(mission_id);
+}
+
+bool MissionResender::Remembers(std::uint16_t mission_id) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return latest_.count(mission_id) > 0;
+}
+
 std::size_t MissionResender::remembered() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return latest_.size();

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 #include <utility>
+#include <variant>
 
 #include "swarm_transport/core/kinematics.h"
 #include "swarm_transport/ros/common/conversions.h"
@@ -83,6 +84,10 @@ bool RobotNode::Initialize(const RobotNodeOptions& options,
   }
   id_ = static_cast<std::uint16_t>(options_.id);
   session_.emplace(id_, config_);
+  // A real-time simulation relays its pose from the simulator's world while its process misses
+  // ticks; lock-step makes it quiet, and a robot that announces its own position falls silent.
+  session_->set_heard_while_hung(!lockstep() && !transport_->AnnouncesPosition() &&
+                                 options_.comm != core::Comm::kBroadcast);
   // Who listens to its own /flock/position: connect and disconnect callbacks run on its queue.
   position_pub_ = nh_.advertise<Robot_Position>(
       names::kPosition, 10,
@@ -218,6 +223,12 @@ void RobotNode::Hand(const core::MissionMessage& message, const core::Sender& fr
   // Real time: a new first leader publishes its statuses on topics of its own (lock-step: its
   // answers carry them); published with this tick's messages.
   if (taken.first_leader && !lockstep()) mission_pubs_.Advertise(nh_);
+  if (const auto* status = std::get_if<core::PhaseStatus>(&message)) {
+    if (taken.why.empty() && (status->phase == core::MissionPhase::kDone ||
+                              status->phase == core::MissionPhase::kAborted)) {
+      resender_.Ended(status->mission_id);
+    }
+  }
   Say(taken);
 }
 

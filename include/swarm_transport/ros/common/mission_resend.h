@@ -30,9 +30,15 @@ class MissionResender {
   static constexpr std::size_t kMaxMissions = 64;
   // `status` is the latest of its mission, with the order the robot carries (may be null).
   void Remember(const Mission_Status& status, const core::MissionSpec* order);
+  // Mission `mission_id` ended (its DONE or ABORTED heard from the robot that ended it, or the
+  // dispatcher): a phase remembered before is forgotten, so that a robot that led it once (a
+  // first leader lost and replaced) never re-sends it live to a restarted dispatcher. Its own
+  // DONE or ABORTED is kept.
+  void Ended(std::uint16_t mission_id);
   // Answers requests from now on (the first call subscribes and advertises on `nh`).
   void Start(ros::NodeHandle nh);
   std::size_t remembered() const;
+  bool Remembers(std::uint16_t mission_id) const;
 
  private:
   void OnRequest(const Mission_Resend_Request::ConstPtr& request);
