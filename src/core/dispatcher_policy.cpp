@@ -326,7 +326,7 @@ std::string DispatcherPolicy::Signal(std::uint16_t mission_id, MissionEventKind 
     why =
         "event must be 1 (LOADED) or 2 (UNLOADED) but is " + std::to_string(static_cast<int>(kind));
   } else {
-    why = book_.Signal(mission_id, kind);
+    why = book_.Signal(mission_id, kind, params_.clock());
   }
   if (!why.empty()) {
     Log(true, "refused a signal: %s", why.c_str());
@@ -338,6 +338,13 @@ std::string DispatcherPolicy::Signal(std::uint16_t mission_id, MissionEventKind 
 
 void DispatcherPolicy::Watchdog(double wall_s, double grace_s) {
   const double now_s = params_.clock();
+  // Real time: a LOADED / UNLOADED a robot may have missed goes again while its mission stands
+  // in the phase it was sent for (lock-step delivers every signal in its round).
+  if (!params_.lockstep && params_.signal_resend_s > 0.0) {
+    for (const core::Signal& owed : book_.Owed(now_s, params_.signal_resend_s)) {
+      outlet_->Event(owed, "again: its mission is still in the phase it was sent for");
+    }
+  }
   std::map<std::uint16_t, double> still_silent;
   for (const auto& silent : book_.Silent(now_s)) {
     const std::uint16_t id = silent.first;

@@ -232,6 +232,8 @@ void MissionBook::EnterPhase(std::uint16_t id, Entry* m, MissionPhase phase, dou
     if (delay_s < 0.0 || *sent) return;
     signals->push_back({id, kind, SignalTick(m->phase_tick, delay_s, params_.tick_period_s)});
     *sent = true;
+    m->signal_s = now_s;
+    m->signal_tick = signals->back().not_before_tick;
   };
   if (phase == MissionPhase::kLoading) {
     due(MissionEventKind::kLoaded, params_.loaded_delay_s, &m->loaded_sent);
@@ -243,6 +245,20 @@ void MissionBook::EnterPhase(std::uint16_t id, Entry* m, MissionPhase phase, dou
     finished_.emplace_back(id, m->generation);
     Forget();  // never the mission just finished: it is the newest
   }
+}
+
+std::vector<core::Signal> MissionBook::Owed(double now_s, double after_s) {
+  std::vector<core::Signal> owed;
+  for (auto& kv : entries_) {
+    Entry& m = kv.second;
+    const bool loading = m.phase == MissionPhase::kLoading && m.loaded_sent;
+    const bool unloading = m.phase == MissionPhase::kUnloading && m.unloaded_sent;
+    if ((!loading && !unloading) || now_s - m.signal_s < after_s) continue;
+    owed.push_back({kv.first, loading ? MissionEventKind::kLoaded : MissionEventKind::kUnloaded,
+                    m.signal_tick});
+    m.signal_s = now_s;
+  }
+  return owed;
 }
 
 std::vector<std::pair<std::uint16_t, std::string>> MissionBook::Silent(double now_s) const {
@@ -273,7 +289,7 @@ bool MissionBook::Abort(std::uint16_t mission_id, const std::string& reason, dou
   return true;
 }
 
-std::string MissionBook::Signal(std::uint16_t mission_id, MissionEventKind kind) {
+std::string MissionBook::Signal(std::uint16_t mission_id, MissionEventKind kind, double now_s) {
   const std::string mission = "mission " + std::to_string(mission_id);
   auto it = entries_.find(mission_id);
   if (it == entries_.end()) return mission + " is unknown";
@@ -281,6 +297,8 @@ std::string MissionBook::Signal(std::uint16_t mission_id, MissionEventKind kind)
     return mission + " is finished (" + PhaseName(it->second.phase) + ")";
   }
   (kind == MissionEventKind::kLoaded ? it->second.loaded_sent : it->second.unloaded_sent) = true;
+  it->second.signal_s = now_s;  // sent now, to take effect at once (as a repeat does)
+  it->second.signal_tick = 0;
   return "";
 }
 

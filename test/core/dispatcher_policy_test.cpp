@@ -272,6 +272,58 @@ TEST_F(PolicyTest, ASilentMissionIsAbortedOnlyAfterTheWallGrace) {
   EXPECT_EQ(policy.book().LiveCount(), 0);
 }
 
+// Real time: an event is not latched, and a robot not yet connected to a restarted dispatcher
+// missed the UNLOADED it owed (a soak slice: the mission stood in UNLOADING for good, issue 29).
+TEST_F(PolicyTest, ASignalGoesAgainWhileItsMissionStaysInItsPhase) {
+  DispatcherPolicyParams params = Params(false);
+  params.book.silent_after_s = -1.0;
+  params.signal_resend_s = 5.0;
+  DispatcherPolicy policy(params, &outlet);
+  policy.SetSwarm(0, Row(5));
+  ASSERT_TRUE(policy.Submit(Thesis(7), "service", false, true).accepted);
+  MissionReport report;
+  report.mission_id = 7;
+  report.phase = MissionPhase::kLoading;
+  report.tick = 40;
+  now_s = 1.0;
+  policy.OnStatus(report, "robot_0");
+  ASSERT_EQ(outlet.events.size(), 1u);
+  now_s = 5.9;  // not yet
+  policy.Watchdog(0.0, 1.0);
+  EXPECT_EQ(outlet.events.size(), 1u);
+  now_s = 6.0;  // still LOADING 5 s later: the same LOADED again, then 5 s after that
+  policy.Watchdog(0.0, 1.0);
+  ASSERT_EQ(outlet.events.size(), 2u);
+  EXPECT_EQ(outlet.events[1].kind, MissionEventKind::kLoaded);
+  EXPECT_EQ(outlet.events[1].not_before_tick, outlet.events[0].not_before_tick);
+  now_s = 8.0;
+  policy.Watchdog(0.0, 1.0);
+  EXPECT_EQ(outlet.events.size(), 2u);
+  now_s = 11.0;
+  policy.Watchdog(0.0, 1.0);
+  EXPECT_EQ(outlet.events.size(), 3u);
+  // In TRANSPORT nothing is owed.
+  report.phase = MissionPhase::kTransport;
+  report.tick = 200;
+  policy.OnStatus(report, "robot_0");
+  now_s = 30.0;
+  policy.Watchdog(0.0, 1.0);
+  EXPECT_EQ(outlet.events.size(), 3u);
+  // Lock-step delivers every signal in its round: never again.
+  DispatcherPolicy lockstep(Params(true), &outlet);
+  lockstep.SetSwarm(0, Row(5));
+  ASSERT_TRUE(lockstep.Submit(Thesis(8), "service", false, true).accepted);
+  report.mission_id = 8;
+  report.phase = MissionPhase::kLoading;
+  report.tick = 40;
+  now_s = 31.0;
+  lockstep.OnStatus(report, "robot_0");
+  ASSERT_EQ(outlet.events.size(), 4u);
+  now_s = 100.0;
+  lockstep.Watchdog(0.0, 1.0);
+  EXPECT_EQ(outlet.events.size(), 4u);
+}
+
 }  // namespace
 }  // namespace core
 }  // namespace swarm_transport

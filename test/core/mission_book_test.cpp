@@ -67,12 +67,12 @@ TEST(MissionBookTest, PhasesSignalsAndTheEndOfAMission) {
   EXPECT_TRUE(book.OnStatus(Report(7, MissionPhase::kLoading, 66), 72.6).signals.empty());
   // UNLOADED only on a signal (negative delay).
   EXPECT_TRUE(book.OnStatus(Report(7, MissionPhase::kUnloading, 135), 148.5).signals.empty());
-  EXPECT_EQ(book.Signal(7, MissionEventKind::kUnloaded), "");
-  EXPECT_EQ(book.Signal(8, MissionEventKind::kUnloaded), "mission 8 is unknown");
+  EXPECT_EQ(book.Signal(7, MissionEventKind::kUnloaded, 0.0), "");
+  EXPECT_EQ(book.Signal(8, MissionEventKind::kUnloaded, 0.0), "mission 8 is unknown");
   out = book.OnStatus(Report(7, MissionPhase::kDone, 137), 150.7);
   EXPECT_TRUE(out.entered);
   EXPECT_FALSE(book.Find(7)->Live());
-  EXPECT_EQ(book.Signal(7, MissionEventKind::kLoaded), "mission 7 is finished (DONE)");
+  EXPECT_EQ(book.Signal(7, MissionEventKind::kLoaded, 0.0), "mission 7 is finished (DONE)");
   // Late news of it changes nothing; its id may be used again.
   EXPECT_FALSE(book.OnStatus(Report(7, MissionPhase::kTransport, 136), 151.0).ignored.empty());
   EXPECT_EQ(book.Find(7)->phase, MissionPhase::kDone);

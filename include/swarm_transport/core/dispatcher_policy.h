@@ -36,6 +36,9 @@ struct DispatcherPolicyParams {
   // (core/dispatcher_answer.h); else they go when due.
   bool lockstep = false;
   double start_delay_s = 1.0;  // file missions without at_tick: this long after the first swarm
+  // Real time: the watchdog sends a LOADED / UNLOADED again when its mission is still in the
+  // phase it was sent for this long after (MissionBook::Owed; <= 0: never).
+  double signal_resend_s = 5.0;
   // Lock-step: the robots at tick `tick` given those of now (a scenario's spawns and kills);
   // empty: those of now.
   std::function<std::set<std::uint16_t>(const std::set<std::uint16_t>&, std::uint64_t)> robots_at;

@@ -68,6 +68,10 @@ class MissionBook {
     std::uint8_t reached = 0;         // bit p: phase p was entered
     bool loaded_sent = false;
     bool unloaded_sent = false;
+    // The LOADED / UNLOADED of its phase as last sent: when (caller's seconds) and its tick
+    // (Owed sends the same again).
+    double signal_s = 0.0;
+    std::uint64_t signal_tick = 0;
     std::uint64_t generation = 0;  // tells a reused id's new entry from the forgotten one
     std::uint64_t phase_tick = 0;  // the first leader's tick of its latest report
     double heard_s = 0.0;          // when its first leader (or its order) was last heard of
@@ -115,10 +119,16 @@ class MissionBook {
   StatusOutcome Restore(const MissionReport& report, const MissionSpec* order, double now_s);
   // A report within a phase: robots inside, distance to go (and its first leader is alive).
   void OnProgress(const MissionReport& report, double now_s);
-  // A user's LOADED / UNLOADED for a live mission (takes effect at once). Empty when it is to
-  // be sent, else why not.
-  std::string Signal(std::uint16_t mission_id, MissionEventKind kind);
+  // A user's LOADED / UNLOADED for a live mission (takes effect at once), sent at `now_s`.
+  // Empty when it is to be sent, else why not.
+  std::string Signal(std::uint16_t mission_id, MissionEventKind kind, double now_s);
 
+  // The LOADED / UNLOADED sent at least `after_s` before `now_s` (and not again since) of the
+  // missions still in the phase it was sent for: due again, stamped with the same tick (a robot
+  // takes a repeat as the same signal). A real-time event is not latched: a robot not yet
+  // connected to a restarted dispatcher misses it, and its mission stood in UNLOADING for good
+  // (issue 29).
+  std::vector<core::Signal> Owed(double now_s, double after_s);
   // Running missions whose first leader has been silent for silent_after_s at `now_s`, with
   // the reason to end them for (naming the first leader and the last word heard).
   std::vector<std::pair<std::uint16_t, std::string>> Silent(double now_s) const;

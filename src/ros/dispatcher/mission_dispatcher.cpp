@@ -89,13 +89,16 @@ bool MissionDispatcher::Initialize() {
       s->Add("max_live_missions", static_cast<std::uint64_t>(options_.max_live_missions));
     });
   });
-  if (options_.silent_abort_ticks > 0) {
-    // On ros::Time (simulated in lock-step), ten times per silence limit.
+  if (options_.silent_abort_ticks > 0 || !lockstep_) {
+    // On ros::Time (simulated in lock-step), ten times per silence limit; without one, every
+    // second in real time, where it also sends a LOADED / UNLOADED a robot may have missed again.
+    const double period_s = options_.silent_abort_ticks > 0
+                                ? options_.silent_abort_ticks * config_.tick_period_s / 10.0
+                                : 1.0;
     watchdog_timer_ =
-        nh_.createTimer(ros::Duration(options_.silent_abort_ticks * config_.tick_period_s / 10.0),
-                        [this](const ros::TimerEvent&) {
-                          policy_->Watchdog(ros::WallTime::now().toSec(), kSilentWallGraceS);
-                        });
+        nh_.createTimer(ros::Duration(period_s), [this](const ros::TimerEvent&) {
+          policy_->Watchdog(ros::WallTime::now().toSec(), kSilentWallGraceS);
+        });
   }
 
   if (WasStartedBefore(private_nh_)) {
