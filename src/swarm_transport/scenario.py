@@ -169,6 +169,34 @@ def start_launch(args, log_path, env=None):
     return proc, log
 
 
+# A real-time run ends this many ticks after its last mission ended (and its last event and
+# checked tick passed) instead of at max_ticks: the wall clock is the cost of real time.
+SETTLE_TICKS = 30
+FINAL_STATES = ('DONE', 'ABORTED', 'REJECTED')
+
+
+def last_needed_tick(s):
+    """The latest tick a scenario's missions, events or checks name (its by_tick bounds aside)."""
+    ticks = [m['at_tick'] for m in s['missions']] + [e['at_tick'] for e in s['events']]
+    for e in s['expect']:
+        ticks += [e[k] for k in ('at_tick', 'from_tick', 'to_tick') if e.get(k) is not None]
+    return max(ticks + [0])
+
+
+def all_ended(s, recorder):
+    """The tick by which every mission of the scenario had a final state, else None."""
+    if not s['missions']:
+        return None
+    ended = {}
+    with recorder.lock:
+        for mission_id, state, tick in recorder.statuses:
+            if state in FINAL_STATES:
+                ended.setdefault(mission_id, tick)
+    if any(m['id'] not in ended for m in s['missions']):
+        return None
+    return max(ended.values())
+
+
 def stop_launch(proc, log, timeout=20):
     if proc.poll() is None:
         os.killpg(proc.pid, signal.SIGINT)
@@ -219,6 +247,10 @@ def run_once(s, recorder, directory, env=None, say=print):
             if not lockstep and started is not None and \
                     time.time() - started >= s['max_ticks'] * tick_s:
                 break
+            if not lockstep and last >= 0:
+                ended = all_ended(s, recorder)
+                if ended is not None and last >= max(ended + SETTLE_TICKS, last_needed_tick(s)):
+                    break
             time.sleep(0.05)
         else:
             raise RunError('the run did not reach tick %d within %.0f s (last tick %d; see %s)'

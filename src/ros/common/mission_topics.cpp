@@ -10,9 +10,10 @@
 namespace swarm_transport {
 namespace {
 
-// Up to a dispatcher's whole table of live orders at once (a flood of hand-made ones is the
-// dispatcher's to refuse: the robots take only the orders it admitted).
-constexpr std::uint32_t kMissionQueue = 256;
+// Up to a dispatcher's whole table of live orders at once, and a flood of hand-made ones (the
+// dispatcher's to refuse: the robots take only the orders it admitted) that must not push one
+// of its orders out of the queue of a robot starved of CPU meanwhile.
+constexpr std::uint32_t kMissionQueue = 1024;
 constexpr std::uint32_t kQueue = 20;
 constexpr std::uint32_t kStatusQueue = 50;
 constexpr std::uint32_t kProgressQueue = 10;

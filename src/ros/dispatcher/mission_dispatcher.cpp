@@ -24,6 +24,7 @@ constexpr char kNode[] = "mission_dispatcher";
 // master lists as a subscriber of its topic to be connected.
 constexpr double kListenerWaitS = 1.0;
 constexpr std::uint32_t kOrderQueue = 256;
+constexpr std::uint32_t kStatusQueue = 4096;
 constexpr double kSilentWallGraceS = 1.0;
 constexpr double kListenerPollS = 0.005;
 // A restart: how long (wall) it takes re-sent statuses before anything else, and how often it
@@ -72,7 +73,11 @@ bool MissionDispatcher::Initialize() {
   }
   positions_sub_ = nh_.subscribe(names::kWorldPoses, 1, &MissionDispatcher::OnPositions, this);
   new_sub_ = nh_.subscribe(names::kMissionNew, 100, &MissionDispatcher::OnNewMission, this);
-  status_sub_ = nh_.subscribe(names::kMissionStatus, 100, &MissionDispatcher::OnStatus, this);
+  // It hears its own REJECTED on the topic too: a flood's 500 of them, while a wait for
+  // listeners held its callbacks, pushed a first leader's DONE out of a queue of 100 (a 2-minute
+  // soak slice: the mission was then aborted as silent in UNLOADING; issue 29).
+  status_sub_ =
+      nh_.subscribe(names::kMissionStatus, kStatusQueue, &MissionDispatcher::OnStatus, this);
   progress_sub_ = nh_.subscribe(names::kMissionProgress, 100, &MissionDispatcher::OnProgress, this);
   // Private names: with the default node name they are names::kSubmitMission and
   // names::kSignalMission.
@@ -95,10 +100,9 @@ bool MissionDispatcher::Initialize() {
     const double period_s = options_.silent_abort_ticks > 0
                                 ? options_.silent_abort_ticks * config_.tick_period_s / 10.0
                                 : 1.0;
-    watchdog_timer_ =
-        nh_.createTimer(ros::Duration(period_s), [this](const ros::TimerEvent&) {
-          policy_->Watchdog(ros::WallTime::now().toSec(), kSilentWallGraceS);
-        });
+    watchdog_timer_ = nh_.createTimer(ros::Duration(period_s), [this](const ros::TimerEvent&) {
+      policy_->Watchdog(ros::WallTime::now().toSec(), kSilentWallGraceS);
+    });
   }
 
   if (WasStartedBefore(private_nh_)) {

@@ -10,7 +10,8 @@
 namespace swarm_transport {
 namespace {
 
-constexpr std::uint32_t kMissionQueue = 100;
+// A flood of 500 hand-made orders must not push an order of the dispatcher out.
+constexpr std::uint32_t kMissionQueue = 1024;
 
 }  // namespace
 
