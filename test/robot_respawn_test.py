@@ -14,7 +14,6 @@ import unittest
 
 import rospy
 import rostest
-from swarm_transport.msg import New_Mission
 from swarm_transport.srv import Kill, Spawn
 
 import swarm_testing as st
@@ -31,13 +30,7 @@ class RobotRespawn(unittest.TestCase):
     def respawn_in_transport(self, mission_id, robot):
         timeout = g('timeout_s')
         status = st.StatusLog()
-        pub = rospy.Publisher('/flock/mission/new', New_Mission, queue_size=10)
-        swarm = st.launch_swarm(robots=g('robots'), seed=g('seed'), lockstep=False, max_ticks=0)
-        self.addCleanup(swarm.shutdown)
-        log = st.PositionLog()
-        self.addCleanup(log.close)
-        self.assertTrue(log.wait_tick(3, timeout), 'the swarm never ticked')
-        self.assertTrue(st.wait_connected(pub, timeout, at_least=g('robots') + 2))
+        pub, _ = st.realtime_swarm_for(self, g('robots'), g('seed'), timeout)
         pub.publish(st.mission(mission_id, 0, g('group'), 1, (7.0, 7.0, 2.0, 2.0), (3.0, 3.0)))
         self.assertTrue(
             st.wait_for(lambda: status.first(mission_id, TRANSPORT) is not None, timeout),

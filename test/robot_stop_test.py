@@ -16,7 +16,7 @@ import unittest
 
 import rospy
 import rostest
-from swarm_transport.msg import Mission_Status, New_Mission
+from swarm_transport.msg import Mission_Status
 
 import swarm_testing as st
 
@@ -52,13 +52,7 @@ class RobotStop(unittest.TestCase):
         timeout = g('timeout_s')
         status = st.StatusLog()
         senders = Senders()
-        pub = rospy.Publisher('/flock/mission/new', New_Mission, queue_size=10)
-        swarm = st.launch_swarm(robots=g('robots'), seed=g('seed'), lockstep=False, max_ticks=0)
-        self.addCleanup(swarm.shutdown)
-        log = st.PositionLog()
-        self.addCleanup(log.close)
-        self.assertTrue(log.wait_tick(3, timeout), 'the swarm never ticked')
-        self.assertTrue(st.wait_connected(pub, timeout, at_least=g('robots') + 2))
+        pub, _ = st.realtime_swarm_for(self, g('robots'), g('seed'), timeout)
         leader = 0
         for mission_id, phase, obj, target in ((1, GATHERING, (7.0, 7.0), (3.0, 3.0)),
                                                 (2, TRANSPORT, (3.0, 3.0), (7.0, 7.0))):

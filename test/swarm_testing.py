@@ -99,6 +99,21 @@ class PositionLog(object):
         self.sub.unregister()
 
 
+def realtime_swarm_for(case, robots, seed, timeout):
+    """A real-time swarm for one test case (`case`, a unittest.TestCase: stopped at its cleanup)
+    that ticks, with a publisher of orders connected to every node that takes them; returns
+    (that publisher, the swarm's PositionLog)."""
+    pub = rospy.Publisher('/flock/mission/new', New_Mission, queue_size=10)
+    swarm = launch_swarm(robots=robots, seed=seed, lockstep=False, max_ticks=0)
+    case.addCleanup(swarm.shutdown)
+    log = PositionLog()
+    case.addCleanup(log.close)
+    case.assertTrue(log.wait_tick(3, timeout), 'the swarm never ticked')
+    # Every robot, the simulator and the dispatcher.
+    case.assertTrue(wait_connected(pub, timeout, at_least=robots + 2))
+    return pub, log
+
+
 def wait_for(predicate, timeout, period=0.02):
     deadline = time.time() + timeout
     while time.time() < deadline and not rospy.is_shutdown():

@@ -58,6 +58,14 @@ struct PolicyTest : ::testing::Test {
   double now_s = 0.0;
   Outlet outlet;
 
+  // A first leader's report of mission `id` entering `phase` at its tick `tick`.
+  static MissionReport Report(std::uint16_t id, MissionPhase phase, std::uint64_t tick) {
+    MissionReport r;
+    r.mission_id = id;
+    r.phase = phase;
+    r.tick = tick;
+    return r;
+  }
   DispatcherPolicyParams Params(bool lockstep) {
     DispatcherPolicyParams p;
     p.book.tick_period_s = 0.1;
@@ -226,11 +234,7 @@ TEST_F(PolicyTest, LoadedIsSentWithItsDelayAndSignalsAreChecked) {
   DispatcherPolicy policy(Params(true), &outlet);
   policy.SetSwarm(0, Row(5));
   ASSERT_TRUE(policy.Submit(Thesis(7), "service", false, true).accepted);
-  MissionReport loading;
-  loading.mission_id = 7;
-  loading.phase = MissionPhase::kLoading;
-  loading.tick = 40;
-  policy.OnStatus(loading, "robot_0");
+  policy.OnStatus(Report(7, MissionPhase::kLoading, 40), "robot_0");
   ASSERT_EQ(outlet.events.size(), 1u);
   EXPECT_EQ(outlet.events[0].kind, MissionEventKind::kLoaded);
   EXPECT_EQ(outlet.events[0].not_before_tick, 43u);  // 40 + ceil(0.25 / 0.1)
@@ -256,11 +260,7 @@ TEST_F(PolicyTest, ASilentMissionIsAbortedOnlyAfterTheWallGrace) {
   DispatcherPolicy policy(Params(true), &outlet);
   policy.SetSwarm(0, Row(5));
   ASSERT_TRUE(policy.Submit(Thesis(7), "service", false, true).accepted);
-  MissionReport gathering;
-  gathering.mission_id = 7;
-  gathering.phase = MissionPhase::kGathering;
-  gathering.tick = 1;
-  policy.OnStatus(gathering, "robot_0");
+  policy.OnStatus(Report(7, MissionPhase::kGathering, 1), "robot_0");
   now_s = 10.0;  // silent for 10 s of the run's clock
   policy.Watchdog(100.0, 1.0);
   EXPECT_TRUE(outlet.aborted.empty());
@@ -281,12 +281,8 @@ TEST_F(PolicyTest, ASignalGoesAgainWhileItsMissionStaysInItsPhase) {
   DispatcherPolicy policy(params, &outlet);
   policy.SetSwarm(0, Row(5));
   ASSERT_TRUE(policy.Submit(Thesis(7), "service", false, true).accepted);
-  MissionReport report;
-  report.mission_id = 7;
-  report.phase = MissionPhase::kLoading;
-  report.tick = 40;
   now_s = 1.0;
-  policy.OnStatus(report, "robot_0");
+  policy.OnStatus(Report(7, MissionPhase::kLoading, 40), "robot_0");
   ASSERT_EQ(outlet.events.size(), 1u);
   now_s = 5.9;  // not yet
   policy.Watchdog(0.0, 1.0);
@@ -303,9 +299,7 @@ TEST_F(PolicyTest, ASignalGoesAgainWhileItsMissionStaysInItsPhase) {
   policy.Watchdog(0.0, 1.0);
   EXPECT_EQ(outlet.events.size(), 3u);
   // In TRANSPORT nothing is owed.
-  report.phase = MissionPhase::kTransport;
-  report.tick = 200;
-  policy.OnStatus(report, "robot_0");
+  policy.OnStatus(Report(7, MissionPhase::kTransport, 200), "robot_0");
   now_s = 30.0;
   policy.Watchdog(0.0, 1.0);
   EXPECT_EQ(outlet.events.size(), 3u);
@@ -313,11 +307,8 @@ TEST_F(PolicyTest, ASignalGoesAgainWhileItsMissionStaysInItsPhase) {
   DispatcherPolicy lockstep(Params(true), &outlet);
   lockstep.SetSwarm(0, Row(5));
   ASSERT_TRUE(lockstep.Submit(Thesis(8), "service", false, true).accepted);
-  report.mission_id = 8;
-  report.phase = MissionPhase::kLoading;
-  report.tick = 40;
   now_s = 31.0;
-  lockstep.OnStatus(report, "robot_0");
+  lockstep.OnStatus(Report(8, MissionPhase::kLoading, 40), "robot_0");
   ASSERT_EQ(outlet.events.size(), 4u);
   now_s = 100.0;
   lockstep.Watchdog(0.0, 1.0);

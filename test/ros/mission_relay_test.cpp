@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 
+#include "status_fixture.h"
 #include "swarm_transport/ros/common/conversions.h"
 
 namespace swarm_transport {
@@ -53,12 +54,7 @@ class MissionRelay {
   sim::MissionRelay relay_;
 };
 
-Mission_Status Status(std::uint16_t mission, std::uint8_t state) {
-  Mission_Status s;
-  s.mission_id = mission;
-  s.state = state;
-  return s;
-}
+using fixtures::Status;
 
 New_Mission Order(std::uint16_t id, std::uint64_t start_tick) {
   New_Mission m;

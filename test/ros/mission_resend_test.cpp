@@ -6,15 +6,12 @@
 
 #include <gtest/gtest.h>
 
+#include "status_fixture.h"
+
 namespace swarm_transport {
 namespace {
 
-Mission_Status Status(std::uint16_t mission, std::uint8_t state) {
-  Mission_Status s;
-  s.mission_id = mission;
-  s.state = state;
-  return s;
-}
+using fixtures::Status;
 
 TEST(MissionResenderTest, AMissionHeardEndingIsForgottenUnlessItEndedItItself) {
   MissionResender resender;
