@@ -16,6 +16,7 @@ namespace swarm_transport {
 namespace core {
 namespace {
 
+using fixtures::Report;
 using fixtures::Thesis;
 
 // Records what the policy does.
@@ -58,14 +59,6 @@ struct PolicyTest : ::testing::Test {
   double now_s = 0.0;
   Outlet outlet;
 
-  // A first leader's report of mission `id` entering `phase` at its tick `tick`.
-  static MissionReport Report(std::uint16_t id, MissionPhase phase, std::uint64_t tick) {
-    MissionReport r;
-    r.mission_id = id;
-    r.phase = phase;
-    r.tick = tick;
-    return r;
-  }
   DispatcherPolicyParams Params(bool lockstep) {
     DispatcherPolicyParams p;
     p.book.tick_period_s = 0.1;
