@@ -4,6 +4,7 @@ rows of them."""
 
 import csv
 import os
+import re
 import threading
 import time
 
@@ -27,6 +28,7 @@ class Missions(object):
         self.states = {}     # id -> list of (wall, state, reason)
         self.slots = {}      # id -> (from slot, to slot)
         self.submitted = {}  # id -> wall time of its submission
+        self.robots = {}     # id -> its robots, as the dispatcher picked them
         self.progress = {}   # id -> (wall of its last progress, least distance, most inside)
         self.next_id = 1
 
@@ -103,6 +105,9 @@ def submit(missions, a, rng, log):
         missions.states[m.mission_id] = []
         missions.submitted[m.mission_id] = time.time()
         missions.slots[m.mission_id] = (src, dst)
+        picked = re.search(r'robots \{([0-9, ]+)\}', answer.message)
+        if picked:
+            missions.robots[m.mission_id] = [int(r) for r in picked.group(1).split(',')]
         if answer.code != 0:
             missions.states[m.mission_id].append((time.time(), REJECTED, answer.message))
     log('mission %d: %d robots, slot %d -> %d: %s' % (m.mission_id, a.mission_robots, src, dst,

@@ -5,6 +5,7 @@ what each did, and the figures of the RESULT line."""
 import os
 import random
 import signal
+import threading
 import time
 
 from swarm_transport import soak_faults as sf
@@ -261,7 +262,36 @@ class Run(object):
         for name in [sf.SIMULATOR, sf.DISPATCHER, sf.RECORDER] + self.robot_names():
             self.watch.track(name, now)
         self.watch.sample(now)
-        self.hung.update(self.missions.hung(now, self.a.hung_s))
+        hung = set(self.missions.hung(now, self.a.hung_s))
+        for mission_id in sorted(hung - self.hung):
+            self.describe_hung(mission_id)
+        self.hung.update(hung)
+
+    def describe_hung(self, mission_id):
+        """What each robot of a mission found hung says of itself (its ~describe): a hung
+        mission's cause is read from there."""
+        import rospy
+        from std_srvs.srv import Trigger
+        with self.missions.lock:
+            robots = list(self.missions.robots.get(mission_id, []))
+        self.log('mission %d hung (no progress for %.0f s); its robots %s say:'
+                 % (mission_id, self.a.hung_s, robots))
+        if self.a.deploy != 'process':
+            return
+        for r in robots:
+            said = ['no answer within 2 s']
+
+            def ask(name=sf.robot_node(r, 'process') + '/describe', out=said):
+                try:
+                    out[0] = rospy.ServiceProxy(name, Trigger)().message
+                except Exception as e:  # noqa: BLE001 - dead or restarting: say so
+                    out[0] = 'no answer (%s)' % type(e).__name__
+
+            # A stopped robot accepts the call and never answers: it does not hold the soak.
+            asking = threading.Thread(target=ask, daemon=True)
+            asking.start()
+            asking.join(2.0)
+            self.log('  robot %d: %s' % (r, said[0]))
 
     def progress(self, now):
         m = self.missions
