@@ -172,7 +172,6 @@ def start_launch(args, log_path, env=None):
 # A real-time run ends this many ticks after its last mission ended (and its last event and
 # checked tick passed) instead of at max_ticks: the wall clock is the cost of real time.
 SETTLE_TICKS = 30
-FINAL_STATES = ('DONE', 'ABORTED', 'REJECTED')
 
 
 def last_needed_tick(s):
@@ -190,7 +189,7 @@ def all_ended(s, recorder):
     ended = {}
     with recorder.lock:
         for mission_id, state, tick in recorder.statuses:
-            if state in FINAL_STATES:
+            if state in fmt.FINAL_STATES:
                 ended.setdefault(mission_id, tick)
     if any(m['id'] not in ended for m in s['missions']):
         return None
@@ -232,6 +231,7 @@ def run_once(s, recorder, directory, env=None, say=print):
         limit = 120.0 + s['max_ticks'] * (robots * 0.0005 if lockstep else 0.0)
         deadline = time.time() + limit
         started = None
+        needed = last_needed_tick(s)
         while time.time() < deadline:
             if proc.poll() is not None:
                 raise RunError('the swarm stopped early (see %s)' % log.name)
@@ -249,7 +249,7 @@ def run_once(s, recorder, directory, env=None, say=print):
                 break
             if not lockstep and last >= 0:
                 ended = all_ended(s, recorder)
-                if ended is not None and last >= max(ended + SETTLE_TICKS, last_needed_tick(s)):
+                if ended is not None and last >= max(ended + SETTLE_TICKS, needed):
                     break
             time.sleep(0.05)
         else:

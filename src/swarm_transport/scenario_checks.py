@@ -5,6 +5,7 @@ check returns (passed, measured): the measured value is printed beside pass / fa
 import math
 
 from swarm_transport import core_metrics
+from swarm_transport.scenario_format import FINAL_STATES
 
 
 class RunLog(object):
@@ -33,7 +34,7 @@ class RunLog(object):
 
     def end_tick(self, mission_id):
         ends = [t for m, s, t in self.statuses
-                if m == mission_id and s in ('DONE', 'ABORTED', 'REJECTED')]
+                if m == mission_id and s in FINAL_STATES]
         return min(ends) if ends else None
 
 

@@ -22,6 +22,7 @@ CLOCKS = ('lockstep', 'realtime')
 PLACEMENTS = ('random', 'corner', 'file')
 STATES = ('QUEUED', 'GATHERING', 'LOADING', 'TRANSPORT', 'UNLOADING', 'DONE', 'ABORTED',
           'REJECTED')
+FINAL_STATES = ('DONE', 'ABORTED', 'REJECTED')  # a mission's end
 EVENT_KINDS = ('freeze', 'continue', 'kill', 'spawn', 'object_update', 'signal', 'statist',
                'remove_statist', 'odom_stop')
 # deploy: hardware - the stand-in's bases (docs/hardware.md): their keys with defaults, and the
