@@ -55,6 +55,11 @@ RobotSession::Taken RobotSession::Take(const MissionMessage& message, const Send
     out.say = brain_.missions().Find(mission_id) == nullptr ? Say::kDebug : Say::kWarn;
   } else if (std::holds_alternative<ObjectDelete>(message)) {
     out.say = Say::kDebug;
+  } else if (std::holds_alternative<Signal>(message)) {
+    // The dispatcher re-sends a LOADED or UNLOADED while its view of the mission lags (real
+    // time: MissionBook::Owed), so one for a mission that ended here is routine; one in the
+    // wrong phase of a mission it holds is not.
+    out.say = brain_.missions().Find(mission_id) == nullptr ? Say::kDebug : Say::kWarn;
   } else {
     out.say = Say::kWarn;
   }

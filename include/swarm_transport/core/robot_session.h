@@ -33,7 +33,8 @@ class RobotSession {
     enum class Say {
       kNothing,  // taken, or routine (an order for other robots, an update of a mission it
                  // does not hold)
-      kDebug,    // not for it (an order it may not take from that sender yet)
+      kDebug,    // not for it (an order it may not take from that sender yet, a signal
+                 // for a mission it does not hold: the dispatcher re-sends them)
       kWarn,     // bad input: worth a (throttled) warning
     };
     Say say = Say::kNothing;
