@@ -112,6 +112,17 @@ bool RobotNode::Initialize(const RobotNodeOptions& options,
     stats_ = std::make_unique<RobotStats>(id_, options_.clock, options_.comm, config_.tick_period_s,
                                           options_.hardware);
   }
+  // A real-time simulation's robot in a process of its own: its mission publishers and its
+  // resender from the start, not when it first leads. Every subscriber (each robot, the
+  // simulator, the dispatcher, the recorder) connects once, while the swarm starts, so a first
+  // leader's first messages find them connected and its open descriptors stay flat for the rest
+  // of its life (docs/reliability.md). A robot host advertises them for its first first leader
+  // (one process's publishers serve all of its robots); a robot on hardware when it first
+  // leads, because a full mesh of connections at start-up would crowd a slow radio link.
+  if (!lockstep() && transport_->OwnProcess() && !options_.hardware) {
+    mission_pubs_.Advertise(nh_);
+    resender_.Start(nh_);
+  }
   if (transport_->OffersServices()) {
     describe_srv_ = private_nh_.advertiseService("describe", &RobotNode::OnDescribe, this);
     state_srv_ = private_nh_.advertiseService("state", &RobotNode::OnState, this);

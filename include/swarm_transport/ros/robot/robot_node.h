@@ -102,7 +102,7 @@ class RobotNode : public RobotInbox {
   // Declared before everything it connects: its handles' callbacks may run on its queues.
   std::unique_ptr<RobotTransport> transport_;
   std::optional<core::RobotSession> session_;  // its behaviour and state (set by Initialize)
-  MissionPublishers mission_pubs_;             // real time, once it is a first leader
+  MissionPublishers mission_pubs_;             // real time (robot_node.cpp says when)
   MissionResender resender_;                   // ... and its statuses re-sent on request
   ros::Publisher position_pub_;
   // Nodes other than the simulator and this process subscribed to its /flock/position (it
