@@ -44,12 +44,15 @@ def parse_args(argv):
     p.add_argument('--hung-max', type=int, default=0,
                    help='--junit: the hung check fails above this many hung missions (0); '
                         'scripts/test allows the open finding of docs/reliability.md')
+    p.add_argument('--fd-growth-max', type=int, default=10,
+                   help='--junit: the descriptors check fails when a long-lived node opened more '
+                        'than this many descriptors after its warm-up (10: flat)')
     p.add_argument('--first-fault-s', type=float, default=30.0,
                    help='seconds of missions before the first fault (30)')
     p.add_argument('--junit', default='',
                    help='also write the checks of a bounded soak (scripts/test) as JUnit XML: '
                         'no mission hung, no crash, no mission row lost or written twice, every '
-                        'fault kind injected with its effect, missions DONE')
+                        'fault kind injected with its effect, missions DONE, descriptors flat')
     a = p.parse_args(argv)
     if not (a.minutes > 0 and a.robots >= a.mission_robots >= 2 and a.live >= 1
             and 0 < a.gap_s[0] <= a.gap_s[1]):
@@ -97,14 +100,14 @@ def main(argv=None):
     out_log.close()
     print(line)
     if a.junit:
-        failed = write_junit(a.junit, checks(result, a.hung_max))
+        failed = write_junit(a.junit, checks(result, a.hung_max, a.fd_growth_max))
         return 1 if failed or not result.get('ok') else 0
     return 0 if result.get('ok') else 1
 
 
-def checks(result, hung_max=0):
+def checks(result, hung_max=0, fd_growth_max=10):
     """(name, failure or '') of what a soak must show (issue 29); at most `hung_max` hung
-    missions pass."""
+    missions pass, and a node's descriptors may grow by `fd_growth_max` after its warm-up."""
     from swarm_transport.soak_faults import KINDS
     faults = result['fault_log']
     kinds = sorted(set(f['kind'] for f in faults))
@@ -124,6 +127,9 @@ def checks(result, hung_max=0):
          'injected only %s' % ', '.join(kinds)),
         ('every_fault_had_its_effect', '; '.join(bad_effects)),
         ('missions_done', '' if result['done'] >= 1 else 'no mission ended DONE'),
+        ('descriptors_flat', '' if result['fd_growth'] <= fd_growth_max else
+         '%s opened %d descriptors after its warm-up (at most %d allowed)'
+         % (result.get('fd_growth_node', '?'), result['fd_growth'], fd_growth_max)),
     ]
     return out
 

@@ -30,6 +30,7 @@ class Missions(object):
         self.submitted = {}  # id -> wall time of its submission
         self.robots = {}     # id -> its robots, as the dispatcher picked them
         self.progress = {}   # id -> (wall of its last progress, least distance, most inside)
+        self.last = {}       # id -> the last Mission_Status heard of it
         self.next_id = 1
 
     def on_status(self, msg):
@@ -39,6 +40,7 @@ class Missions(object):
             if msg.mission_id not in self.states:
                 return
             now = time.time()
+            self.last[msg.mission_id] = msg
             seen = self.states[msg.mission_id]
             moved = False
             if not seen or seen[-1][1] != msg.state:

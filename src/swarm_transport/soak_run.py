@@ -268,14 +268,23 @@ class Run(object):
         self.hung.update(hung)
 
     def describe_hung(self, mission_id):
-        """What each robot of a mission found hung says of itself (its ~describe): a hung
-        mission's cause is read from there."""
+        """A mission found hung: its last status, where its robots are, and what each says of
+        itself (its ~describe). A hung mission's cause is read from there."""
         import rospy
         from std_srvs.srv import Trigger
         with self.missions.lock:
             robots = list(self.missions.robots.get(mission_id, []))
+            last = self.missions.last.get(mission_id)
         self.log('mission %d hung (no progress for %.0f s); its robots %s say:'
                  % (mission_id, self.a.hung_s, robots))
+        if last is not None:
+            self.log('  its last status: %s, tick %d, object at (%.2f, %.2f), %.2f m to its '
+                     'target, %d of %d robots inside, lost %s'
+                     % (STATE[last.state] if last.state < len(STATE) else last.state, last.tick,
+                        last.object_position_x, last.object_position_y,
+                        last.distance_to_target, last.robots_inside, last.robots_assigned,
+                        list(last.lost)))
+        self.log('  where they are: %s' % self.poses_of(robots))
         if self.a.deploy != 'process':
             return
         for r in robots:
@@ -292,6 +301,20 @@ class Run(object):
             asking.start()
             asking.join(2.0)
             self.log('  robot %d: %s' % (r, said[0]))
+
+    @staticmethod
+    def poses_of(robots):
+        """The robots' poses in the simulator's world (one /flock/world_poses message)."""
+        import rospy
+        from swarm_transport.msg import Robot_Positions
+        try:
+            world = rospy.wait_for_message('/flock/world_poses', Robot_Positions, timeout=2.0)
+        except Exception as e:  # noqa: BLE001 - a stopped simulator: say so
+            return 'unknown (%s)' % type(e).__name__
+        wanted = set(robots)
+        return ', '.join('%d (%.2f, %.2f, %.0f deg)' % (p.robot_id, p.pos_x, p.pos_y, p.angle)
+                         for p in world.robots
+                         if p.robot_id in wanted and p.sub_id == 0) or 'none of them listed'
 
     def progress(self, now):
         m = self.missions

@@ -10,6 +10,7 @@ from swarm_transport import soak, soak_faults, soak_missions
 
 def result(**changes):
     base = {'ok': True, 'hung': 0, 'crashes': 0, 'lost_rows': 0, 'duplicate_rows': 0, 'done': 2,
+            'fd_growth': 2, 'fd_growth_node': '/simulator',
             'fault_log': [{'kind': k, 'at_s': 1.0, 'effect': 'live missions: none'}
                           for k in soak_faults.KINDS]}
     base.update(changes)
@@ -105,6 +106,9 @@ class Checks(unittest.TestCase):
         self.assertIn('no_mission_row_lost', self.failures(result(lost_rows=1)))
         self.assertIn('no_mission_row_twice', self.failures(result(duplicate_rows=1)))
         self.assertIn('missions_done', self.failures(result(done=0)))
+        self.assertIn('descriptors_flat', self.failures(result(fd_growth=11)))
+        self.assertNotIn('descriptors_flat', {n: w for n, w in
+                                              soak.checks(result(fd_growth=11), 0, 20) if w})
         self.assertIn('soak_ran', self.failures(result(ok=False, error='no master')))
         log = result()['fault_log'][:3]
         self.assertIn('every_fault_kind_injected', self.failures(result(fault_log=log)))
