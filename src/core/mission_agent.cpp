@@ -62,6 +62,16 @@ double MaxObjectStep(std::uint64_t ticks, double speed_m_per_tick) {
   return (2.0 * static_cast<double>(ticks) + 2.0) * speed_m_per_tick;
 }
 
+Vec2 InsideArena(Vec2 centre, Vec2 size, double world_size_m) {
+  if (!(world_size_m > 0.0)) return centre;
+  const auto axis = [world_size_m](double c, double extent) {
+    const double half = extent / 2.0;
+    if (!(half * 2.0 <= world_size_m)) return c;
+    return std::clamp(c, half, world_size_m - half);
+  };
+  return Vec2{axis(centre.x, size.x), axis(centre.y, size.y)};
+}
+
 bool MissionAgent::OnObjectDelete(std::uint16_t mission_id, std::string* why) {
   if (live_.count(mission_id) == 0) {
     *why = "object delete for unknown mission " + std::to_string(mission_id);

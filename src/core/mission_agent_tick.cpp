@@ -62,6 +62,15 @@ void MissionAgent::UpdateCentre(Live* live, const Pose2& self, Group* group) con
     }
     live->reanchor = false;
     live->centre = live->offset + group->centroid;
+    // The arena's walls hold the object: robots that drive on along a wall leave it behind (it
+    // slips from them, its offset to them changes) instead of carrying it through. Robots outside
+    // an object held beyond the wall would chase its centre into the wall for good (a soak's
+    // mission stood 4 minutes in TRANSPORT at x 11.37 in the 11.09 m arena).
+    const Vec2 held = InsideArena(live->centre, live->spec.object_size, params_.world_size_m);
+    if (held.x != live->centre.x || held.y != live->centre.y) {
+      live->offset = held - group->centroid;
+      live->centre = held;
+    }
   }
   const Shape object = live->spec.ObjectAt(live->centre);
   group->inside = 0;
@@ -232,7 +241,7 @@ MissionPlan MissionAgent::Tick(const Pose2& self, const std::vector<Neighbour>& 
         if (live.anchored) live.reanchor = true;
         if (!first_before && LeadsFirst(live)) {
           // Promoted: it takes over the phase machine from the next tick on (a robot node in
-          // real time connects its mission publishers first).
+          // real time that never led connects its mission publishers first).
           live.promoted = true;
           live.first_since = tick;
         }

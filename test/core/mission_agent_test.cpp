@@ -163,6 +163,38 @@ TEST(MissionAgentTest, TheObjectMovesWithTheCurrentCentroidOfItsRobots) {
   EXPECT_TRUE(plan.carry->object.Contains({5.5, 5.5}));
 }
 
+TEST(MissionAgentTest, TheArenaWallHoldsTheObjectAndItsRobotsLeaveItBehind) {
+  MissionAgent leader(0, MissionAgentParams());  // the thesis's 11.09 m arena
+  IntoTransport(&leader);                          // a 2 x 2 object on the centroid (7, 7)
+  MissionOutbox out;
+  // The robots drove east to the wall (centroid (10.9, 7)): the object would stick out 0.8 m
+  // beyond it. The wall holds it: its east edge on the wall, the robots still inside it.
+  MissionPlan plan =
+      leader.Tick(PoseAt(10.9, 7.0), {At(1, 10.95, 7.3), At(2, 10.85, 6.7)}, 11, &out);
+  ASSERT_TRUE(plan.carry.has_value());
+  const double wall = MissionAgentParams().world_size_m;
+  EXPECT_NEAR(plan.carry->centre.x, wall - 1.0, 1e-9);
+  EXPECT_NEAR(plan.carry->centre.y, 7.0, 1e-9);
+  EXPECT_TRUE(plan.carry->object.Contains({10.9, 7.0}));
+  ASSERT_TRUE(out.update_object.has_value());
+  EXPECT_LE(out.update_object->second.x + 1.0, wall);  // an update every robot accepts
+  // They turn back west by 1 m: the object goes with them from where the wall left it (it
+  // slipped 0.81 m), not 0.81 m east of them again.
+  out = MissionOutbox();
+  plan = leader.Tick(PoseAt(9.9, 7.0), {At(1, 9.95, 7.3), At(2, 9.85, 6.7)}, 12, &out);
+  EXPECT_NEAR(plan.carry->centre.x, wall - 2.0, 1e-9);
+  EXPECT_TRUE(plan.carry->object.Contains({9.9, 7.0}));
+}
+
+TEST(MissionAgentTest, InsideArenaKeepsAnObjectInTheArena) {
+  EXPECT_NEAR(InsideArena({11.37, 9.94}, {1.0, 1.0}, 11.0).x, 10.5, 1e-12);
+  EXPECT_NEAR(InsideArena({11.37, 9.94}, {1.0, 1.0}, 11.0).y, 9.94, 1e-12);
+  EXPECT_NEAR(InsideArena({-0.2, 0.1}, {1.0, 2.0}, 11.0).x, 0.5, 1e-12);
+  EXPECT_NEAR(InsideArena({-0.2, 0.1}, {1.0, 2.0}, 11.0).y, 1.0, 1e-12);
+  EXPECT_NEAR(InsideArena({3.0, 4.0}, {12.0, 1.0}, 11.0).x, 3.0, 1e-12);  // wider than the arena
+  EXPECT_NEAR(InsideArena({12.0, 4.0}, {1.0, 1.0}, 0.0).x, 12.0, 1e-12);  // no arena
+}
+
 TEST(MissionAgentTest, EveryMemberAnchorsTheObjectToTheSameCentroid) {
   // A passive member learns TRANSPORT one tick after the first leader (the status is relayed);
   // everyone stood meanwhile, so it anchors the object where the first leader did.

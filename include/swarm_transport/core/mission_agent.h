@@ -81,6 +81,10 @@ struct MissionAgentParams {
 // speed moves at most the speed; the rest is slack for rounding, a tick's lag and real-time
 // jitter, where two updates may arrive between two of a robot's ticks).
 double MaxObjectStep(std::uint64_t ticks, double speed_m_per_tick);
+// The nearest centre to `centre` at which an object of `size` lies inside the arena
+// [0, world_size_m]^2 (an axis the object does not fit in keeps its coordinate; world_size_m
+// <= 0: no arena, `centre` itself).
+Vec2 InsideArena(Vec2 centre, Vec2 size, double world_size_m);
 
 // A status report the first leader publishes.
 struct StatusReport {
