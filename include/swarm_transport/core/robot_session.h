@@ -40,8 +40,8 @@ class RobotSession {
     Say say = Say::kNothing;
     std::string kind;  // the message's kind (KindName: "order", ...)
     std::string why;   // empty when taken
-    // It took a mission as its first leader (a real-time transport advertises its mission
-    // topics now).
+    // It took a mission as its first leader (a real-time robot without mission topics yet
+    // advertises them now).
     bool first_leader = false;
   };
 

@@ -48,9 +48,9 @@ class MissionTopics {
   std::vector<ros::Subscriber> subs_;
 };
 
-// A real-time first leader's publishers of the mission topics (only robots that became one
-// advertise them, so the swarm does not become all-to-all), and a lock-step simulator's, which
-// publishes its robots' answers on them for observers.
+// A real-time robot's publishers of the mission topics (a simulated robot process advertises
+// them at start-up, a robot host or a robot on hardware when one of its robots first leads),
+// and a lock-step simulator's, which publishes its robots' answers on them for observers.
 class MissionPublishers {
  public:
   bool advertised() const { return static_cast<bool>(status_pub_); }
