@@ -42,8 +42,7 @@ def parse_args(argv):
     p.add_argument('--progress-s', type=float, default=30.0)
     p.add_argument('--out', default='', help='directory of the log, result and recorder files')
     p.add_argument('--hung-max', type=int, default=0,
-                   help='--junit: the hung check fails above this many hung missions (0); '
-                        'scripts/test allows the open finding of docs/reliability.md')
+                   help='--junit: the hung check fails above this many hung missions (0)')
     p.add_argument('--fd-growth-max', type=int, default=10,
                    help='--junit: the descriptors check fails when a long-lived node opened more '
                         'than this many descriptors after its warm-up (10: flat)')
