@@ -43,9 +43,10 @@ def parse_args(argv):
     p.add_argument('--out', default='', help='directory of the log, result and recorder files')
     p.add_argument('--hung-max', type=int, default=0,
                    help='--junit: the hung check fails above this many hung missions (0)')
-    p.add_argument('--fd-growth-max', type=int, default=10,
+    p.add_argument('--fd-growth-max', type=int, default=20,
                    help='--junit: the descriptors check fails when a long-lived node opened more '
-                        'than this many descriptors after its warm-up (10: flat)')
+                        'than this many descriptors after its warm-up (20: flat but for the ~5 '
+                        'connections of a dispatcher or recorder restarting at a sample)')
     p.add_argument('--first-fault-s', type=float, default=30.0,
                    help='seconds of missions before the first fault (30)')
     p.add_argument('--junit', default='',
@@ -104,7 +105,7 @@ def main(argv=None):
     return 0 if result.get('ok') else 1
 
 
-def checks(result, hung_max=0, fd_growth_max=10):
+def checks(result, hung_max=0, fd_growth_max=20):
     """(name, failure or '') of what a soak must show (issue 29); at most `hung_max` hung
     missions pass, and a node's descriptors may grow by `fd_growth_max` after its warm-up."""
     from swarm_transport.soak_faults import KINDS

@@ -106,9 +106,9 @@ class Checks(unittest.TestCase):
         self.assertIn('no_mission_row_lost', self.failures(result(lost_rows=1)))
         self.assertIn('no_mission_row_twice', self.failures(result(duplicate_rows=1)))
         self.assertIn('missions_done', self.failures(result(done=0)))
-        self.assertIn('descriptors_flat', self.failures(result(fd_growth=11)))
+        self.assertIn('descriptors_flat', self.failures(result(fd_growth=21)))
         self.assertNotIn('descriptors_flat', {n: w for n, w in
-                                              soak.checks(result(fd_growth=11), 0, 20) if w})
+                                              soak.checks(result(fd_growth=21), 0, 30) if w})
         self.assertIn('soak_ran', self.failures(result(ok=False, error='no master')))
         log = result()['fault_log'][:3]
         self.assertIn('every_fault_kind_injected', self.failures(result(fault_log=log)))
