@@ -165,7 +165,7 @@ TEST(MissionAgentTest, TheObjectMovesWithTheCurrentCentroidOfItsRobots) {
 
 TEST(MissionAgentTest, TheArenaWallHoldsTheObjectAndItsRobotsLeaveItBehind) {
   MissionAgent leader(0, MissionAgentParams());  // the thesis's 11.09 m arena
-  IntoTransport(&leader);                          // a 2 x 2 object on the centroid (7, 7)
+  IntoTransport(&leader);                        // a 2 x 2 object on the centroid (7, 7)
   MissionOutbox out;
   // The robots drove east to the wall (centroid (10.9, 7)): the object would stick out 0.8 m
   // beyond it. The wall holds it: its east edge on the wall, the robots still inside it.
