@@ -65,7 +65,7 @@ void MissionAgent::UpdateCentre(Live* live, const Pose2& self, Group* group) con
     // The arena's walls hold the object: robots that drive on along a wall leave it behind (it
     // slips from them, its offset to them changes) instead of carrying it through. Robots outside
     // an object held beyond the wall would chase its centre into the wall for good (a soak's
-    // mission stood 4 minutes in TRANSPORT at x 11.37 in the 11.09 m arena).
+    // mission stood in TRANSPORT at x 11.37 in the 11.09 m arena until its phase timed out).
     const Vec2 held = InsideArena(live->centre, live->spec.object_size, params_.world_size_m);
     if (held.x != live->centre.x || held.y != live->centre.y) {
       live->offset = held - group->centroid;

@@ -116,9 +116,9 @@ bool RobotNode::Initialize(const RobotNodeOptions& options,
   // resender from the start, not when it first leads. Every subscriber (each robot, the
   // simulator, the dispatcher, the recorder) connects once, while the swarm starts, so a first
   // leader's first messages find them connected and its open descriptors stay flat for the rest
-  // of its life (docs/reliability.md). A robot host advertises them for its first first leader
-  // (one process's publishers serve all of its robots); a robot on hardware when it first
-  // leads, because a full mesh of connections at start-up would crowd a slow radio link.
+  // of its life (docs/reliability.md). A robot host advertises them when one of its robots
+  // first leads (one process's publishers serve all of its robots), a robot on hardware when it
+  // first leads: a full mesh of connections at start-up would crowd a slow radio link.
   if (!lockstep() && transport_->OwnProcess() && !options_.hardware) {
     mission_pubs_.Advertise(nh_);
     resender_.Start(nh_);
