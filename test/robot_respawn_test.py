@@ -4,7 +4,8 @@
 item 5): the mission still ends, DONE, within the test's bound - whether the robot was its first
 leader or a passive member - and nobody runs it again from QUEUED (the fresh process got the
 dispatcher's latched order of the running mission and led it a second time, from GATHERING:
-its LOADING froze the robots in TRANSPORT, which then stood for good)."""
+its LOADING froze the robots in TRANSPORT, which then stood for good). A robot started again
+while a mission that names it is still QUEUED gets that order and carries the mission."""
 
 import os
 import signal
@@ -18,7 +19,16 @@ from swarm_transport.srv import Kill, Spawn
 
 import swarm_testing as st
 
-TRANSPORT = 3
+GATHERING, TRANSPORT = 1, 3
+
+
+def describe(robot):
+    """What the robot says of itself (its ~describe), or why it cannot say."""
+    try:
+        from std_srvs.srv import Trigger
+        return rospy.ServiceProxy('/robot_%d/robot/describe' % robot, Trigger)().message
+    except Exception as e:  # noqa: BLE001 - a test's diagnostic only
+        return 'no answer (%s)' % e
 
 
 def g(key):
@@ -62,6 +72,44 @@ class RobotRespawn(unittest.TestCase):
                          'a status of an earlier phase after TRANSPORT: %s' % states)
         rospy.loginfo('mission %d ended %.1f s after robot %d was respawned', mission_id,
                       time.time() - respawned_s, robot)
+
+    def test_a_robot_started_again_while_its_next_mission_waits(self):
+        """Robot 5 is killed and started again while its mission (4) is QUEUED behind another
+        (3, which holds robots 2 and 3) and a third (5) was ordered after it: the dispatcher
+        latched only its last order, and unlatched it once that one started, so the fresh
+        process never got order 4. It was heard on the radio all the same, so mission 4's
+        GATHERING waited for it for good (scripts/soak, session 21). Mission 4 must end DONE
+        with robot 5 in it (never named lost)."""
+        timeout = g('timeout_s')
+        status = st.StatusLog()
+        pub, _ = st.realtime_swarm_for(self, g('robots'), g('seed'), timeout)
+        pub.publish(st.mission(3, 0, 4, 1, (5.0, 5.0, 2.0, 2.0), (3.0, 3.0)))
+        self.assertTrue(st.wait_for(lambda: status.first(3, GATHERING) is not None, timeout),
+                        'mission 3 never started; states %s' % status.states(3))
+        pub.publish(st.mission(4, 2, 6, 1, (9.0, 2.5, 1.0, 1.0), (9.0, 8.0)))
+        pub.publish(st.mission(5, 6, 8, 1, (2.0, 9.0, 1.0, 1.0), (5.0, 9.5)))
+        self.assertTrue(st.wait_for(lambda: status.first(5, GATHERING) is not None, timeout),
+                        'mission 5 never started; states %s' % status.states(5))
+        self.assertEqual(status.states(4), ['QUEUED'], 'mission 4 must wait for robots 2 and 3')
+        os.kill(st.node_pid('/robot_5/robot'), signal.SIGKILL)
+        time.sleep(g('respawn_after_s'))
+        rospy.ServiceProxy('/kill', Kill)(robot_id=5)
+        answer = rospy.ServiceProxy('/spawn', Spawn)(robot_id=5, x=10.0, y=5.0, theta=0.0)
+        self.assertEqual(answer.code, 0, answer.message)
+        fresh = st.launch_file('robot.launch', id=5)
+        self.addCleanup(fresh.shutdown)
+        # Up: its services answer (the master lists the killed process's until then).
+        rospy.wait_for_service('/robot_5/robot/describe', timeout)
+        rospy.loginfo('robot 5 started again; mission 4 %s; robot 5 says: %s',
+                      status.states(4), describe(5))
+        self.assertTrue(st.wait_for(lambda: status.final(4), g('queued_end_within_s')),
+                        'mission 4 never ended within %d s after robot 5 was started again; '
+                        'states %s, robot 5 says: %s'
+                        % (g('queued_end_within_s'), status.states(4), describe(5)))
+        ended = [m for m in status.of(4) if m.state in (5, 6)]
+        self.assertEqual(st.NAMES[ended[0].state], 'DONE', ended[0].reason)
+        named = sorted({r for m in status.of(4) for r in m.lost})
+        self.assertNotIn(5, named, 'robot 5 was lost to mission 4 (lost %s)' % named)
 
     def test_a_respawned_first_leader(self):
         self.respawn_in_transport(1, 0)

@@ -6,6 +6,16 @@
 
 namespace swarm_transport {
 namespace core {
+namespace {
+
+bool SameOrder(const MissionSpec& a, const MissionSpec& b) {
+  const auto same = [](Vec2 p, Vec2 q) { return p.x == q.x && p.y == q.y; };
+  return a.id == b.id && a.Assigned() == b.Assigned() && a.Leaders() == b.Leaders() &&
+         same(a.object_centre, b.object_centre) && same(a.object_size, b.object_size) &&
+         same(a.target, b.target) && a.transport_mode == b.transport_mode;
+}
+
+}  // namespace
 
 RobotSession::RobotSession(std::uint16_t id, const SwarmConfig& config) : brain_(id, config) {}
 
@@ -34,8 +44,15 @@ RobotSession::Taken RobotSession::Take(const MissionMessage& message, const Send
       return out;
     }
     out.why = "order " + std::to_string(mission_id) + ": " + out.why;
-    // Only the robots concerned say so, so that one bad order does not log N lines.
-    out.say = order->Assigns(id()) || id() == 0 ? Say::kWarn : Say::kNothing;
+    // Only the robots concerned say so, so that one bad order does not log N lines. The order
+    // it holds, again, is routine: the dispatcher sends the QUEUED ones to a robot as it
+    // connects, which may be just after it published one of them to everybody.
+    const MissionSpec* held = brain_.missions().Find(mission_id);
+    if (held != nullptr && SameOrder(*held, *order)) {
+      out.say = Say::kDebug;
+    } else {
+      out.say = order->Assigns(id()) || id() == 0 ? Say::kWarn : Say::kNothing;
+    }
     return out;
   }
   const bool reported = std::holds_alternative<ObjectUpdate>(message) ||

@@ -43,6 +43,23 @@ TEST(RobotSessionTest, AReSentSignalOfAMissionItDoesNotHoldIsRoutine) {
   EXPECT_EQ(late.say, Say::kDebug);
 }
 
+TEST(RobotSessionTest, TheOrderItHoldsAgainIsRoutineAnotherWithItsIdIsNot) {
+  RobotSession session(0, Params());
+  const std::set<std::uint16_t> robots = fixtures::Robots(3);
+  ASSERT_EQ(session.Take(fixtures::Thesis(7), kDispatcher, robots).why, "");
+  // The dispatcher sends the QUEUED orders to a robot as it connects, perhaps just after it
+  // published one of them: the same order twice is refused quietly.
+  const RobotSession::Taken again = session.Take(fixtures::Thesis(7), kDispatcher, robots);
+  EXPECT_NE(again.why, "");
+  EXPECT_EQ(again.say, Say::kDebug);
+  // A different order under the live id is bad input.
+  MissionSpec other = fixtures::Thesis(7);
+  other.target.x += 1.0;
+  const RobotSession::Taken clash = session.Take(other, kDispatcher, robots);
+  EXPECT_NE(clash.why, "");
+  EXPECT_EQ(clash.say, Say::kWarn);
+}
+
 }  // namespace
 }  // namespace core
 }  // namespace swarm_transport

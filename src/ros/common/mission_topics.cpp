@@ -72,6 +72,15 @@ bool MissionTopics::AllConnected(const TopicNodeCounts& graph) const {
   return true;
 }
 
+bool MissionTopics::DispatcherConnected(const TopicNodeCounts& graph) const {
+  for (const ros::Subscriber& sub : subs_) {
+    const std::string topic = sub.getTopic();
+    if (topic != names::kMissionNew && topic != names::kMissionEvent) continue;
+    if (!graph.AllConnected(sub)) return false;
+  }
+  return true;
+}
+
 void MissionPublishers::Advertise(ros::NodeHandle nh, std::uint32_t queue_size) {
   if (status_pub_) return;
   const auto queue = [queue_size](std::uint32_t own) { return queue_size > 0 ? queue_size : own; };

@@ -1,6 +1,7 @@
 #include "swarm_transport/ros/dispatcher/mission_dispatcher.h"
 
 #include <cmath>
+#include <iterator>
 #include <optional>
 
 #include "swarm_transport/Delete_Object.h"
@@ -32,6 +33,7 @@ constexpr double kListenerPollS = 0.005;
 constexpr double kRebuildWaitS = 1.5;
 constexpr double kRequestPeriodS = 0.5;
 constexpr std::uint32_t kResentQueue = 1000;
+constexpr double kAskAgainS = 1.0;
 
 const char* EventName(core::MissionEventKind kind) {
   return kind == core::MissionEventKind::kLoaded ? "LOADED" : "UNLOADED";
@@ -57,10 +59,17 @@ bool MissionDispatcher::Initialize() {
   core::DispatcherOutlet* outlet = this;
   policy_ = std::make_unique<core::DispatcherPolicy>(std::move(params), outlet);
   policy_->SetFileMissions(std::move(file_missions), std::move(file_ticks));
-  // Latched so that a robot (or `rostopic echo`) connecting later still gets the last order
-  // while its mission waits to start (real time: UnlatchIfStarted). Its queue holds a whole
-  // table of live orders published at once (a flood's admitted ones).
-  new_pub_ = nh_.advertise<New_Mission>(names::kMissionNew, kOrderQueue, true);
+  // A robot (or `rostopic echo`) connecting later still gets an order while its mission waits
+  // to start: lock-step latches the last one (its robots take orders from their rounds), real
+  // time sends every order still QUEUED to each subscriber as it connects (OnOrderListener).
+  // Its queue holds a whole table of live orders published at once (a flood's admitted ones).
+  if (lockstep_) {
+    new_pub_ = nh_.advertise<New_Mission>(names::kMissionNew, kOrderQueue, true);
+  } else {
+    new_pub_ = nh_.advertise<New_Mission>(
+        names::kMissionNew, kOrderQueue,
+        [this](const ros::SingleSubscriberPublisher& listener) { OnOrderListener(listener); });
+  }
   status_pub_ = nh_.advertise<Mission_Status>(names::kMissionStatus, 100);
   event_pub_ = nh_.advertise<Mission_Event>(names::kMissionEvent, 10);
   delete_pub_ = nh_.advertise<Delete_Object>(names::kObjectDelete, 10);
@@ -135,14 +144,13 @@ void MissionDispatcher::RebuildFromRobots() {
   resent_sub_ =
       resent_nh.subscribe(names::kMissionResent, kResentQueue, &MissionDispatcher::OnResent, this);
   request_pub_ = nh_.advertise<Mission_Resend_Request>(names::kMissionResendRequest, 1, true);
-  Mission_Resend_Request request;
-  request.requester = ros::this_node::getName();
+  request_.requester = ros::this_node::getName();
   const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(kRebuildWaitS);
   ros::WallTime next_request = ros::WallTime::now();
   while (ros::ok() && ros::WallTime::now() < until) {
     if (ros::WallTime::now() >= next_request) {
-      ++request.request;
-      request_pub_.publish(request);
+      ++request_.request;
+      request_pub_.publish(request_);
       next_request += ros::WallDuration(kRequestPeriodS);
     }
     resent_queue_.callAvailable(ros::WallDuration(kListenerPollS));
@@ -182,6 +190,17 @@ void MissionDispatcher::OnResent(const ros::MessageEvent<Mission_Resent const>& 
                     event.getPublisherName());
 }
 
+void MissionDispatcher::AskAgain(std::uint16_t mission_id) {
+  if (!request_pub_ || ros::WallTime::now() < next_ask_) return;
+  next_ask_ = ros::WallTime::now() + ros::WallDuration(kAskAgainS);
+  ++request_.request;
+  request_pub_.publish(request_);
+  ROS_INFO(
+      "%s: heard of live mission %u, which it has not rebuilt: asks the first leaders to "
+      "re-send their statuses again (request %u)",
+      kNode, mission_id, request_.request);
+}
+
 void MissionDispatcher::Shutdown() {
   ForgetInstance(private_nh_);
   resent_timer_.stop();
@@ -213,22 +232,27 @@ void MissionDispatcher::Order(const core::MissionSpec& spec, std::uint64_t start
   New_Mission order = ToNewMission(spec);
   order.start_tick = start_tick;
   new_pub_.publish(order);
-  latched_id_ = spec.id;
+  if (!lockstep_) queued_orders_[spec.id] = order;
 }
 
-void MissionDispatcher::UnlatchIfStarted() {
-  if (lockstep_ || !latched_id_) return;  // lock-step robots take orders from their rounds only
-  const core::MissionBook::Entry* entry = policy_->book().Find(*latched_id_);
-  if (entry != nullptr && entry->phase == MissionPhase::kQueued) return;
-  // A robot that connects from now on is too late for that mission: its members lose a robot
-  // not heard for lost_after_s, and a process started again under a member's id that took the
-  // order would run it from QUEUED beside the robots that carry it (a second first leader
-  // whose freeze stops them). A new publisher has no latched message; AwaitListeners lets the
-  // subscribers connect to it again before the next order.
-  ROS_DEBUG("%s: mission %u started: its order is latched no more", kNode, *latched_id_);
-  latched_id_.reset();
-  new_pub_.shutdown();
-  new_pub_ = nh_.advertise<New_Mission>(names::kMissionNew, kOrderQueue, true);
+void MissionDispatcher::OnOrderListener(const ros::SingleSubscriberPublisher& listener) {
+  ForgetStartedOrders();
+  for (const auto& kv : queued_orders_) listener.publish(kv.second);
+  if (!queued_orders_.empty()) {
+    ROS_INFO("%s: sent the %zu order(s) still QUEUED to %s, which connected after them", kNode,
+             queued_orders_.size(), listener.getSubscriberName().c_str());
+  }
+}
+
+void MissionDispatcher::ForgetStartedOrders() {
+  // A robot that connects from now on is too late for a started mission: quiet on the radio
+  // until its order topic is connected (OwnTopicsTransport), it is lost for the mission's
+  // members after lost_after_s, and the mission goes on without it.
+  for (auto it = queued_orders_.begin(); it != queued_orders_.end();) {
+    const core::MissionBook::Entry* entry = policy_->book().Find(it->first);
+    const bool queued = entry != nullptr && entry->phase == MissionPhase::kQueued;
+    it = queued ? std::next(it) : queued_orders_.erase(it);
+  }
 }
 
 void MissionDispatcher::Rejected(const core::MissionSpec& spec, const std::string& reason) {
@@ -330,7 +354,7 @@ void MissionDispatcher::OnStatus(const ros::MessageEvent<Mission_Status const>& 
   }
   const core::MissionBook::StatusOutcome outcome =
       policy_->OnStatus(ToMissionReport(msg), event.getPublisherName());
-  UnlatchIfStarted();
+  ForgetStartedOrders();
   if (outcome.ignored == "too many live missions" && untracked_warning_.Due()) {
     ROS_WARN("%s: not tracking mission %u: too many live missions%s", kNode, msg.mission_id,
              untracked_warning_.AndMore("missions").c_str());
@@ -341,6 +365,7 @@ void MissionDispatcher::OnProgress(const ros::MessageEvent<Mission_Status const>
   const Mission_Status::ConstPtr& msg = event.getMessage();
   if (!MayReport("progress", msg->mission_id, event.getPublisherName())) return;
   if (!std::isfinite(msg->distance_to_target)) return;
+  if (policy_->book().Find(msg->mission_id) == nullptr) AskAgain(msg->mission_id);
   policy_->OnProgress(ToMissionReport(*msg));
 }
 

@@ -5,6 +5,7 @@
 
 #include <chrono>
 
+#include "swarm_transport/ros/common/graph.h"
 #include "swarm_transport/ros/common/names.h"
 
 namespace swarm_transport {
@@ -16,6 +17,9 @@ constexpr std::uint32_t kNeighborsQueue = 2;
 // held up, and then the oldest are stale - its diagnostics count them missed).
 constexpr std::size_t kRoundsKept = 4;
 constexpr std::uint32_t kStatsQueue = 10;
+// AwaitDispatcher: how long a robot stays quiet at most, and how often it asks the master.
+constexpr double kDispatcherWaitS = 10.0;
+constexpr double kDispatcherPollS = 0.2;
 
 }  // namespace
 
@@ -34,21 +38,13 @@ void OwnTopicsTransport::Connect(ros::NodeHandle nh, const TransportOptions& lin
   // tcpNoDelay: a tick's perception is one small message; Nagle would add ~40 ms per tick.
   if (realtime()) {
     cmd_pub_ = nh.advertise<geometry_msgs::Twist>(names::kCmdVel, 2);
-    // Put into its mailbox by roscpp's receiving thread; taken at its next tick (OnTickDue).
-    ros::SubscribeOptions ops = ros::SubscribeOptions::create<Neighbors>(
-        names::kNeighbors, kNeighborsQueue,
-        [this](const Neighbors::ConstPtr& msg) {
-          mailbox_.Put(msg, ros::WallTime::now().toSec(), kRoundsKept);
-        },
-        ros::VoidConstPtr(), &inline_queue_);
-    ops.transport_hints = ros::TransportHints().tcpNoDelay();
-    neighbors_sub_ = nh.subscribe(ops);
     // Lock-step: mission messages arrive relayed inside its rounds, each at the tick after it
     // was sent, and go out inside its answers: no mission topics, nothing to connect.
     mission_topics_.Subscribe(
         nh, [robot](const core::MissionMessage& message, const core::Sender& from) {
           robot->Hand(message, from);
         });
+    AwaitDispatcher(nh);
   } else {
     answer_pub_ = nh.advertise<Tick_Answer>(names::kAnswer, 2);
     neighbors_sub_ = nh.subscribe<Neighbors>(
@@ -66,7 +62,49 @@ void OwnTopicsTransport::Connect(ros::NodeHandle nh, const TransportOptions& lin
     stats_pub_ = nh.advertise<std_msgs::String>(names::kRobotStats, kStatsQueue);
 }
 
+void OwnTopicsTransport::AwaitDispatcher(ros::NodeHandle nh) {
+  const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(kDispatcherWaitS);
+  const auto ready = [this, until, nh](bool first) {
+    TopicNodeCounts graph;
+    const bool connected =
+        QueryTopicNodeCounts(&graph) && mission_topics_.DispatcherConnected(graph);
+    if (!connected && ros::WallTime::now() < until) {
+      if (first) {
+        ROS_DEBUG("robot %u: quiet on the radio until the dispatcher's topics are connected", id_);
+      }
+      return false;
+    }
+    if (!connected) {
+      ROS_WARN(
+          "robot %u: the dispatcher's topics are not connected after %.0f s; joining the "
+          "radio all the same (an order sent meanwhile may have missed it)",
+          id_, kDispatcherWaitS);
+    }
+    SubscribeNeighbors(nh);
+    return true;
+  };
+  if (ready(true)) return;
+  dispatcher_wait_ = nh.createWallTimer(ros::WallDuration(kDispatcherPollS),
+                                        [this, ready](const ros::WallTimerEvent&) {
+                                          if (!neighbors_sub_ && ready(false))
+                                            dispatcher_wait_.stop();
+                                        });
+}
+
+void OwnTopicsTransport::SubscribeNeighbors(ros::NodeHandle nh) {
+  // Put into its mailbox by roscpp's receiving thread; taken at its next tick (OnTickDue).
+  ros::SubscribeOptions ops = ros::SubscribeOptions::create<Neighbors>(
+      names::kNeighbors, kNeighborsQueue,
+      [this](const Neighbors::ConstPtr& msg) {
+        mailbox_.Put(msg, ros::WallTime::now().toSec(), kRoundsKept);
+      },
+      ros::VoidConstPtr(), &inline_queue_);
+  ops.transport_hints = ros::TransportHints().tcpNoDelay();
+  neighbors_sub_ = nh.subscribe(ops);
+}
+
 void OwnTopicsTransport::Disconnect() {
+  dispatcher_wait_.stop();
   ticker_.Stop();
   neighbors_sub_.shutdown();
   mission_topics_.Shutdown();

@@ -39,6 +39,9 @@ class MissionTopics {
   void Shutdown();
   // Every publisher the master lists for each topic is connected.
   bool AllConnected(const TopicNodeCounts& graph) const;
+  // The same for the dispatcher's topics only: its orders (/flock/mission/new) and signals
+  // (/flock/mission/event).
+  bool DispatcherConnected(const TopicNodeCounts& graph) const;
 
  private:
   template <typename M>

@@ -9,11 +9,13 @@
 #include <xmlrpcpp/XmlRpcValue.h>
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "swarm_transport/Mission_Resend_Request.h"
 #include "swarm_transport/Mission_Resent.h"
 #include "swarm_transport/Mission_Signal.h"
 #include "swarm_transport/Mission_Status.h"
@@ -68,10 +70,15 @@ class MissionDispatcher : private core::DispatcherOutlet {
   // Before a new order or an event: waits (at most kListenerWaitS) until every registered
   // subscriber of pub's topic is connected.
   void AwaitListeners(const ros::Publisher& pub);
-  // Real time: once the mission of the latched order has left QUEUED, the order topic is
-  // advertised again without it (a robot process connecting later - one killed and started
-  // again under the same id - must not take the order of a mission that runs without it).
-  void UnlatchIfStarted();
+  // Real time: the orders published whose missions are still QUEUED go to each subscriber that
+  // connects to the order topic (a robot process started late or again, the recorder): a robot
+  // that connects after its order missed it while audible on the radio, so its mission's
+  // members never lost it and their GATHERING waited for it for good (the soak). The order of
+  // a mission that has started does not go (a process killed and started again under a member's
+  // id must not run it from QUEUED beside the robots that carry it).
+  void OnOrderListener(const ros::SingleSubscriberPublisher& listener);
+  // Forgets the published orders whose missions left QUEUED.
+  void ForgetStartedOrders();
   bool FromSelf(const std::string& publisher) const {
     return publisher == ros::this_node::getName();
   }
@@ -81,6 +88,11 @@ class MissionDispatcher : private core::DispatcherOutlet {
   // (to a restarted recorder's request) are taken as they come.
   void RebuildFromRobots();
   void OnResent(const ros::MessageEvent<Mission_Resent const>& event);
+  // A restarted dispatcher hears of a live mission it did not rebuild (its first leader's answer
+  // was lost while the connections to the first leaders were still being made, on a loaded
+  // machine): it asks the first leaders again, at most once a second. Without it, such a
+  // mission never got its UNLOADED and stood in UNLOADING for good.
+  void AskAgain(std::uint16_t mission_id);
 
   void OnPositions(const Robot_Positions::ConstPtr& msg);
   void OnNewMission(const ros::MessageEvent<New_Mission const>& event);
@@ -100,8 +112,8 @@ class MissionDispatcher : private core::DispatcherOutlet {
   std::unique_ptr<core::DispatcherPolicy> policy_;  // made by Initialize
   bool lockstep_ = false;  // /use_sim_time: the simulator's lock-step clock
 
-  ros::Publisher new_pub_;
-  std::optional<std::uint16_t> latched_id_;  // the mission of the order new_pub_ latches
+  ros::Publisher new_pub_;  // lock-step: latched; real time: OnOrderListener
+  std::map<std::uint16_t, New_Mission> queued_orders_;  // real time: published, still QUEUED
   ros::Publisher status_pub_;
   ros::Publisher event_pub_;
   ros::Publisher delete_pub_;
@@ -117,7 +129,9 @@ class MissionDispatcher : private core::DispatcherOutlet {
   ros::ServiceServer status_srv_;
   ros::CallbackQueue resent_queue_;  // a restart's re-sent statuses, taken first
   ros::Subscriber resent_sub_;
-  ros::Publisher request_pub_;
+  ros::Publisher request_pub_;      // a restart's: the latched Mission_Resend_Request
+  Mission_Resend_Request request_;  // ... its latest (numbered from 1)
+  ros::WallTime next_ask_;          // AskAgain: not before
   ros::WallTimer resent_timer_;
   std::vector<ros::Timer> start_timers_;
   ros::Timer watchdog_timer_;

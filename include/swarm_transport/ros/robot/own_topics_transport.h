@@ -37,6 +37,13 @@ class OwnTopicsTransport : public RobotTransport {
   bool realtime() const { return clock_ == core::Clock::kRealtime; }
   // Its tick is due (the poll thread): takes in the rounds that arrived and ticks.
   void OnTickDue();
+  // Real time: it subscribes its neighbors (and so is heard on the radio, and moves) only once
+  // the dispatcher's topics are connected, at most kDispatcherWaitS after its start. A robot
+  // heard before it can get orders missed a mission that named it (a process started again
+  // while the dispatcher sent it), and its members, hearing it, waited for it for good; a
+  // quiet one is lost to them after lost_after_s, and the mission goes on without it.
+  void AwaitDispatcher(ros::NodeHandle nh);
+  void SubscribeNeighbors(ros::NodeHandle nh);
 
   const core::Clock clock_;
   RobotInbox* robot_ = nullptr;
@@ -51,6 +58,7 @@ class OwnTopicsTransport : public RobotTransport {
   std::vector<RoundMailbox::Arrived> arrived_;
   PollThreadTicker ticker_;
   ros::Subscriber neighbors_sub_;
+  ros::WallTimer dispatcher_wait_;  // real time, until AwaitDispatcher is done
   ros::Subscriber robots_sub_;
   MissionTopics mission_topics_;  // real time
   ros::Publisher cmd_pub_;        // real time
