@@ -66,17 +66,14 @@ RobotSession::Taken RobotSession::Take(const MissionMessage& message, const Send
   }
   out.why = brain_.Take(message, known_robots);
   if (out.why.empty()) return out;
-  if (std::holds_alternative<ObjectUpdate>(message)) {
-    // An update for a mission it does not hold is routine; a non-finite, out-of-arena or
-    // implausible one is bad input.
+  if (std::holds_alternative<ObjectUpdate>(message) || std::holds_alternative<Signal>(message)) {
+    // For a mission it does not hold, routine: an object update of another's mission, or a
+    // LOADED / UNLOADED the dispatcher re-sends while its view of the mission lags its end (real
+    // time: MissionBook::Owed). For one it holds, bad input: a non-finite, out-of-arena or
+    // implausible update, or a signal in the wrong phase.
     out.say = brain_.missions().Find(mission_id) == nullptr ? Say::kDebug : Say::kWarn;
   } else if (std::holds_alternative<ObjectDelete>(message)) {
     out.say = Say::kDebug;
-  } else if (std::holds_alternative<Signal>(message)) {
-    // The dispatcher re-sends a LOADED or UNLOADED while its view of the mission lags (real
-    // time: MissionBook::Owed), so one for a mission that ended here is routine; one in the
-    // wrong phase of a mission it holds is not.
-    out.say = brain_.missions().Find(mission_id) == nullptr ? Say::kDebug : Say::kWarn;
   } else {
     out.say = Say::kWarn;
   }
