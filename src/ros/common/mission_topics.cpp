@@ -65,17 +65,11 @@ void MissionTopics::Shutdown() {
   for (ros::Subscriber& sub : subs_) sub.shutdown();
 }
 
-bool MissionTopics::AllConnected(const TopicNodeCounts& graph) const {
+bool MissionTopics::AllConnected(const TopicNodeCounts& graph,
+                                 const std::vector<std::string>& only) const {
   for (const ros::Subscriber& sub : subs_) {
-    if (!graph.AllConnected(sub)) return false;
-  }
-  return true;
-}
-
-bool MissionTopics::DispatcherConnected(const TopicNodeCounts& graph) const {
-  for (const ros::Subscriber& sub : subs_) {
-    const std::string topic = sub.getTopic();
-    if (topic != names::kMissionNew && topic != names::kMissionEvent) continue;
+    if (!only.empty() && std::find(only.begin(), only.end(), sub.getTopic()) == only.end())
+      continue;
     if (!graph.AllConnected(sub)) return false;
   }
   return true;

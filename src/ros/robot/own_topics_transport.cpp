@@ -64,16 +64,12 @@ void OwnTopicsTransport::Connect(ros::NodeHandle nh, const TransportOptions& lin
 
 void OwnTopicsTransport::AwaitDispatcher(ros::NodeHandle nh) {
   const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(kDispatcherWaitS);
-  const auto ready = [this, until, nh](bool first) {
+  const auto ready = [this, until, nh]() {
     TopicNodeCounts graph;
     const bool connected =
-        QueryTopicNodeCounts(&graph) && mission_topics_.DispatcherConnected(graph);
-    if (!connected && ros::WallTime::now() < until) {
-      if (first) {
-        ROS_DEBUG("robot %u: quiet on the radio until the dispatcher's topics are connected", id_);
-      }
-      return false;
-    }
+        QueryTopicNodeCounts(&graph) &&
+        mission_topics_.AllConnected(graph, {names::kMissionNew, names::kMissionEvent});
+    if (!connected && ros::WallTime::now() < until) return false;
     if (!connected) {
       ROS_WARN(
           "robot %u: the dispatcher's topics are not connected after %.0f s; joining the "
@@ -83,11 +79,10 @@ void OwnTopicsTransport::AwaitDispatcher(ros::NodeHandle nh) {
     SubscribeNeighbors(nh);
     return true;
   };
-  if (ready(true)) return;
+  if (ready()) return;
   dispatcher_wait_ = nh.createWallTimer(ros::WallDuration(kDispatcherPollS),
                                         [this, ready](const ros::WallTimerEvent&) {
-                                          if (!neighbors_sub_ && ready(false))
-                                            dispatcher_wait_.stop();
+                                          if (!neighbors_sub_ && ready()) dispatcher_wait_.stop();
                                         });
 }
 

@@ -37,11 +37,9 @@ class MissionTopics {
   void SubscribeFrom(ros::NodeHandle nh, TakeFrom take, std::uint32_t queue_size);
   // Stops every subscription (each waits for its callback in progress).
   void Shutdown();
-  // Every publisher the master lists for each topic is connected.
-  bool AllConnected(const TopicNodeCounts& graph) const;
-  // The same for the dispatcher's topics only: its orders (/flock/mission/new) and signals
-  // (/flock/mission/event).
-  bool DispatcherConnected(const TopicNodeCounts& graph) const;
+  // Every publisher the master lists for each topic is connected; with `only`, for those
+  // topics only (e.g. the dispatcher's: names::kMissionNew and names::kMissionEvent).
+  bool AllConnected(const TopicNodeCounts& graph, const std::vector<std::string>& only = {}) const;
 
  private:
   template <typename M>
