@@ -10,18 +10,24 @@ missions in real time (issue 29 items 2 and 3, docs/reliability.md):
   recovered, and writes no mission row twice (mission 3 ended before the kill: its re-sent DONE
   is not written again);
 - a swarm stopped cleanly and launched again on the same master is no restart: the dispatcher
-  and the recorder delete their ~instance parameters when they stop."""
+  and the recorder delete their ~instance parameters when they stop;
+- a restarted dispatcher that missed a first leader's answer during its rebuild asks again when
+  it hears the mission's progress, and ends the mission (a stand-in first leader,
+  fake_first_leader.py, loses every answer of the rebuild wait)."""
 
 import csv
 import os
 import shutil
 import signal
+import subprocess
 import sys
 import tempfile
 import unittest
 
+import rospkg
 import rospy
 import rostest
+from rosgraph_msgs.msg import Log
 from std_srvs.srv import Trigger
 from swarm_transport.msg import Mission_Event, Mission_Resend_Request, New_Mission
 from swarm_transport.srv import Submit_Mission
@@ -87,6 +93,68 @@ class Restart(unittest.TestCase):
         with open(rows_file) as f:
             text = f.read()
         self.assertNotIn('# gap', text)
+
+    def test_a_restarted_dispatcher_asks_again(self):
+        """A restarted dispatcher whose rebuild missed a first leader's answer (its connection
+        came late: seen in a soak, issue 29) learns of the live mission when it hears the
+        mission's progress: it asks the first leaders again, takes the answer and sends the
+        UNLOADED that ends the mission. Deterministic: a stand-in first leader
+        (fake_first_leader.py, /robot_4/robot) answers no request of the rebuild wait."""
+        timeout = g('timeout_s')
+        mission_id = 40
+        # The ~instance a killed dispatcher leaves behind: the next one is a restart.
+        rospy.set_param('/mission_dispatcher/instance', '1@0|')
+        requests = []
+        request_sub = rospy.Subscriber('/flock/mission/resend_request', Mission_Resend_Request,
+                                       requests.append)
+        self.addCleanup(request_sub.unregister)
+        events = []
+        event_sub = rospy.Subscriber('/flock/mission/event', Mission_Event,
+                                     lambda m: events.append((m.mission_id, m.event)))
+        self.addCleanup(event_sub.unregister)
+        asked_again = []
+        rosout_sub = rospy.Subscriber(
+            '/rosout', Log, lambda m: asked_again.append(m.msg)
+            if m.name == '/mission_dispatcher' and 'heard of live mission %d' % mission_id in m.msg
+            else None)
+        self.addCleanup(rosout_sub.unregister)
+        fake = subprocess.Popen(
+            [sys.executable,
+             os.path.join(rospkg.RosPack().get_path('swarm_transport'), 'test',
+                          'fake_first_leader.py'),
+             '4', str(mission_id), '__ns:=/robot_4', '__name:=robot'],
+            start_new_session=True)
+        self.addCleanup(st.stop_process_groups, [fake])
+
+        def fake_listens():
+            import rosgraph
+            _, subs, _ = rosgraph.Master(rospy.get_name()).getSystemState()
+            return any(topic == '/flock/mission/resend_request' and '/robot_4/robot' in nodes
+                       for topic, nodes in subs)
+
+        self.assertTrue(st.wait_for(fake_listens, timeout), 'the stand-in never subscribed')
+        config = os.path.join(rospkg.RosPack().get_path('swarm_transport'), 'config',
+                              'swarm.yaml')
+        dispatcher = st.launch_file('dispatcher.launch', config=config, unloaded_delay_s=0.5,
+                                    silent_abort_ticks=0)
+        self.addCleanup(dispatcher.shutdown)
+        self.assertTrue(
+            st.wait_for(lambda: (mission_id, Mission_Event.UNLOADED) in events, timeout),
+            'mission %d never got its UNLOADED: the dispatcher never learnt of it (requests: %s,'
+            ' events: %s)' % (mission_id, [r.request for r in requests], events))
+        self.assertTrue(st.wait_for(lambda: asked_again, 5.0),
+                        'the dispatcher learnt of mission %d without asking again' % mission_id)
+
+        def done_in_table():
+            try:
+                table = rospy.ServiceProxy('/mission_dispatcher/status', Trigger)().message
+            except (rospy.ServiceException, rospy.ROSException):
+                return False
+            return any(line.split()[:2] == [str(mission_id), 'DONE']
+                       for line in table.splitlines())
+
+        self.assertTrue(st.wait_for(done_in_table, timeout),
+                        'mission %d not DONE in the dispatcher\'s table' % mission_id)
 
     def test_dispatcher_and_recorder_restart_during_missions(self):
         self.timeout = g('timeout_s')
