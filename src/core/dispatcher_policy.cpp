@@ -72,7 +72,10 @@ MissionBook::Verdict DispatcherPolicy::Submit(MissionSpec spec, const std::strin
   if (spec.robot_count > 0 && spec.robot_ids.empty() && spec.range_from >= spec.range_to) {
     // A count-only order: the robots are picked by the selection matrix (SPEC 9.10); the order
     // goes out with their ids. Nothing is picked from a swarm the dispatcher has not heard yet.
-    const std::string why = PickRobotsByCount(&spec, IdleRobots(), params_.selection);
+    std::string why = PickRobotsByCount(&spec, IdleRobots(), params_.selection);
+    if (!why.empty() && !has_swarm_) {
+      why += " (no robot positions heard yet: a dispatcher just started; submit it again soon)";
+    }
     if (!why.empty()) return Refuse(std::move(spec), source, why);
     Log(false, "mission %u from %s: robot_count picked robots %s", spec.id, source.c_str(),
         DescribeMission(spec).c_str());

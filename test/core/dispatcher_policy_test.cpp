@@ -105,8 +105,10 @@ TEST_F(PolicyTest, ACountOnlyOrderIsSentWithTheIdleRobotsItPicked) {
   MissionSpec count = Thesis(3);
   count.range_from = count.range_to = 0;
   count.robot_count = 2;
-  // No swarm heard yet: nothing to pick from.
-  EXPECT_FALSE(policy.Submit(count, "service", false, true).accepted);
+  // No swarm heard yet: nothing to pick from, and the reason says so.
+  const auto early = policy.Submit(count, "service", false, true);
+  EXPECT_FALSE(early.accepted);
+  EXPECT_NE(early.reason.find("no robot positions heard yet"), std::string::npos) << early.reason;
   EXPECT_TRUE(outlet.orders.empty());
   policy.SetSwarm(4, Row(6));
   ASSERT_TRUE(policy.Submit(Thesis(1), "service", false, true).accepted);  // robots 0 .. 2
