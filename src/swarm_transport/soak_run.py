@@ -264,19 +264,18 @@ class Run(object):
         self.watch.sample(now)
         hung = set(self.missions.hung(now, self.a.hung_s))
         for mission_id in sorted(hung - self.hung):
-            self.describe_hung(mission_id)
+            self.describe(mission_id, 'hung (no progress for %.0f s)' % self.a.hung_s)
         self.hung.update(hung)
 
-    def describe_hung(self, mission_id):
-        """A mission found hung: its last status, where its robots are, and what each says of
-        itself (its ~describe). A hung mission's cause is read from there."""
+    def describe(self, mission_id, what):
+        """A mission found hung, or still live at the end: its last status, where its robots
+        are, and what each says of itself (its ~describe). Its cause is read from there."""
         import rospy
         from std_srvs.srv import Trigger
         with self.missions.lock:
             robots = list(self.missions.robots.get(mission_id, []))
             last = self.missions.last.get(mission_id)
-        self.log('mission %d hung (no progress for %.0f s); its robots %s say:'
-                 % (mission_id, self.a.hung_s, robots))
+        self.log('mission %d %s; its robots %s say:' % (mission_id, what, robots))
         if last is not None:
             self.log('  its last status: %s, tick %d, object at (%.2f, %.2f), %.2f m to its '
                      'target, %d of %d robots inside, lost %s'
@@ -336,6 +335,8 @@ class Run(object):
         if lost:
             self.log('missions ended without a row in %s/missions.csv: %s' % (self.run_dir, lost))
         self.hung.update(m.hung(time.time(), self.a.hung_s))
+        for mission_id in sorted(set(m.live()) - self.hung):
+            self.describe(mission_id, 'still live after the drain (unfinished)')
         return {
             'ok': True, 'missions': len(m.states), 'done': m.count(DONE),
             'aborted': m.count(ABORTED), 'rejected': m.count(REJECTED),
