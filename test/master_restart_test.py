@@ -79,6 +79,16 @@ class MasterRestart(unittest.TestCase):
                 names.update(members)
         return names
 
+    def ticked(self):
+        """True when the swarm published a tick (rostopic on the test's own master)."""
+        try:
+            out = subprocess.run(['rostopic', 'echo', '-n', '1', '/flock/world_poses/tick'],
+                                 env=self.env, capture_output=True, text=True, timeout=10)
+        except subprocess.TimeoutExpired:
+            return False
+        return out.returncode == 0 and out.stdout.split()[:1] != [] and \
+            out.stdout.split()[0].isdigit()
+
     def master_up(self):
         try:
             return self.master().getPid('/test')[0] == 1
@@ -100,6 +110,11 @@ class MasterRestart(unittest.TestCase):
             'lockstep:=true', 'seed:=%d' % g('seed'))
         self.assertTrue(st.wait_for(lambda: wanted <= self.nodes(), g('timeout_s')),
                         'the swarm did not come up')
+        # Listed is not yet up: a node still registering when the master goes blocks in
+        # roscpp's retry loop and registers with the new master, which then knows it (the
+        # simulator ran on once, 2026-11-28). A tick needs every node's answer: all are up.
+        self.assertTrue(st.wait_for(self.ticked, g('timeout_s'), period=0.5),
+                        'the swarm never ticked')
         pids = {name: self.pid_of(name) for name in wanted}
         # The master goes (SIGKILL: no goodbye; roscore starts rosmaster and rosout in sessions
         # of their own, so each by its pid) and comes back on the same port.
