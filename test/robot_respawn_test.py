@@ -19,7 +19,7 @@ from swarm_transport.srv import Kill, Spawn
 
 import swarm_testing as st
 
-GATHERING, TRANSPORT = 1, 3
+QUEUED, GATHERING, TRANSPORT = 0, 1, 3
 
 
 def describe(robot):
@@ -90,6 +90,9 @@ class RobotRespawn(unittest.TestCase):
         pub.publish(st.mission(5, 6, 8, 1, (2.0, 9.0, 1.0, 1.0), (5.0, 9.5)))
         self.assertTrue(st.wait_for(lambda: status.first(5, GATHERING) is not None, timeout),
                         'mission 5 never started; states %s' % status.states(5))
+        # Its first leader's QUEUED and mission 5's GATHERING come from two robots: in any order.
+        self.assertTrue(st.wait_for(lambda: status.first(4, QUEUED) is not None, timeout),
+                        'mission 4 never QUEUED; states %s' % status.states(4))
         self.assertEqual(status.states(4), ['QUEUED'], 'mission 4 must wait for robots 2 and 3')
         os.kill(st.node_pid('/robot_5/robot'), signal.SIGKILL)
         time.sleep(g('respawn_after_s'))
