@@ -39,9 +39,16 @@ class Missions(object):
         with self.lock:
             if msg.mission_id not in self.states:
                 return
+            seen = self.states[msg.mission_id]
+            # Phases only go forward. Statuses and progress reports come over separate
+            # connections (a thread each in rospy), so an older phase's report can be taken
+            # after a newer one: it is no step back (a slice took a late UNLOADING after the
+            # DONE and counted its mission hung, 2026-11-28).
+            if seen and (seen[-1][1] not in LIVE or
+                         (msg.state in LIVE and msg.state < seen[-1][1])):
+                return
             now = time.time()
             self.last[msg.mission_id] = msg
-            seen = self.states[msg.mission_id]
             moved = False
             if not seen or seen[-1][1] != msg.state:
                 seen.append((now, msg.state, msg.reason))

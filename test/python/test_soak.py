@@ -89,6 +89,22 @@ class Hung(unittest.TestCase):
         self.assertEqual(sorted(m.live()), [1, 2])
 
 
+class LateReports(unittest.TestCase):
+
+    def test_an_older_phase_heard_late_is_no_step_back(self):
+        m = soak_missions.Missions()
+        m.states[1] = []
+        m.submitted[1] = 0.0
+        m.on_status(Status(1, 4, 0.1))   # UNLOADING (a progress report)
+        m.on_status(Status(1, 3, 0.5))   # TRANSPORT, taken late: ignored
+        self.assertEqual(m.final(1), 4)
+        m.on_status(Status(1, 5, 0.0))   # DONE (the status)
+        m.on_status(Status(1, 4, 0.0))   # UNLOADING, taken after the DONE: ignored
+        self.assertEqual(m.final(1), 5)
+        self.assertEqual(m.live(), [])
+        self.assertEqual([s for _, s, _ in m.states[1]], [4, 5])
+
+
 class Checks(unittest.TestCase):
 
     def failures(self, r):
