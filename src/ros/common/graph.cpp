@@ -47,4 +47,15 @@ bool QueryTopicNodeCounts(TopicNodeCounts* out, bool wait_for_master) {
   return true;
 }
 
+bool AwaitSubscribers(const ros::Publisher& pub, double wait_s, double poll_s) {
+  const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(wait_s);
+  while (ros::ok()) {
+    TopicNodeCounts graph;
+    if (!QueryTopicNodeCounts(&graph) || graph.AllConnected(pub)) return true;
+    if (ros::WallTime::now() >= until) return false;
+    ros::WallDuration(poll_s).sleep();
+  }
+  return true;
+}
+
 }  // namespace swarm_transport

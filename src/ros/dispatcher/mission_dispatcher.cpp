@@ -2,17 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iterator>
-#include <optional>
 
 #include "swarm_transport/Delete_Object.h"
 #include "swarm_transport/Delete_Robot.h"
 #include "swarm_transport/Dispatcher_Answer.h"
 #include "swarm_transport/Mission_Event.h"
-#include "swarm_transport/Mission_Resend_Request.h"
 #include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/ros/common/conversions.h"
-#include "swarm_transport/ros/common/graph.h"
 #include "swarm_transport/ros/common/mission_resend.h"
 #include "swarm_transport/ros/common/names.h"
 
@@ -22,25 +18,8 @@ namespace {
 using core::MissionPhase;
 
 constexpr char kNode[] = "mission_dispatcher";
-// Before publishing a new order or an event, wait at most this long (wall) for every node the
-// master lists as a subscriber of its topic to be connected.
-constexpr double kListenerWaitS = 1.0;
-constexpr std::uint32_t kOrderQueue = 256;
 constexpr std::uint32_t kStatusQueue = 4096;
 constexpr double kSilentWallGraceS = 1.0;
-constexpr double kListenerPollS = 0.005;
-// A restart: how long (wall) it takes re-sent statuses before anything else, and how often it
-// asks again meanwhile (a first leader whose connection came late answers the next request).
-constexpr double kRebuildWaitS = 1.5;
-constexpr double kRequestPeriodS = 0.5;
-// ... and longer, up to this, until every first leader's /flock/mission/resent is connected to
-// it and it to every robot's request subscription (the master asked every kConnectedPollS):
-// an answer sent before that connection is lost (seen in restart.test, 2026-11-28: 1 of 3
-// missions rebuilt after 1.5 s).
-constexpr double kRebuildMaxS = 5.0;
-constexpr double kConnectedPollS = 0.1;
-constexpr std::uint32_t kResentQueue = 1000;
-constexpr double kAskAgainS = 1.0;
 
 const char* EventName(core::MissionEventKind kind) {
   return kind == core::MissionEventKind::kLoaded ? "LOADED" : "UNLOADED";
@@ -66,17 +45,13 @@ bool MissionDispatcher::Initialize() {
   core::DispatcherOutlet* outlet = this;
   policy_ = std::make_unique<core::DispatcherPolicy>(std::move(params), outlet);
   policy_->SetFileMissions(std::move(file_missions), std::move(file_ticks));
-  // A robot (or `rostopic echo`) connecting later still gets an order while its mission waits
-  // to start: lock-step latches the last one (its robots take orders from their rounds), real
-  // time sends every order still QUEUED to each subscriber as it connects (OnOrderListener).
-  // Its queue holds a whole table of live orders published at once (a flood's admitted ones).
-  if (lockstep_) {
-    new_pub_ = nh_.advertise<New_Mission>(names::kMissionNew, kOrderQueue, true);
-  } else {
-    new_pub_ = nh_.advertise<New_Mission>(
-        names::kMissionNew, kOrderQueue,
-        [this](const ros::SingleSubscriberPublisher& listener) { OnOrderListener(listener); });
-  }
+  orders_ = std::make_unique<OrderPublisher>(
+      nh_, lockstep_,
+      [this](std::uint16_t id) {
+        const core::MissionBook::Entry* entry = policy_->book().Find(id);
+        return entry != nullptr && entry->phase == MissionPhase::kQueued;
+      },
+      kNode);
   status_pub_ = nh_.advertise<Mission_Status>(names::kMissionStatus, 100);
   event_pub_ = nh_.advertise<Mission_Event>(names::kMissionEvent, 10);
   delete_pub_ = nh_.advertise<Delete_Object>(names::kObjectDelete, 10);
@@ -129,7 +104,8 @@ bool MissionDispatcher::Initialize() {
           "docs/reliability.md)",
           kNode);
     } else {
-      RebuildFromRobots();
+      rebuild_ = std::make_unique<DispatcherRebuild>(nh_, policy_.get(), kNode);
+      rebuild_->Run();
     }
   }
 
@@ -145,96 +121,9 @@ bool MissionDispatcher::Initialize() {
   return true;
 }
 
-void MissionDispatcher::RebuildFromRobots() {
-  ros::NodeHandle resent_nh(nh_);
-  resent_nh.setCallbackQueue(&resent_queue_);
-  resent_sub_ =
-      resent_nh.subscribe(names::kMissionResent, kResentQueue, &MissionDispatcher::OnResent, this);
-  request_pub_ = nh_.advertise<Mission_Resend_Request>(names::kMissionResendRequest, 1, true);
-  request_.requester = ros::this_node::getName();
-  const ros::WallTime start = ros::WallTime::now();
-  const ros::WallTime latest = start + ros::WallDuration(kRebuildMaxS);
-  ros::WallTime until = start + ros::WallDuration(kRebuildWaitS);
-  ros::WallTime next_request = start;
-  ros::WallTime next_check = start;
-  bool connected = false;
-  while (ros::ok()) {
-    const ros::WallTime now = ros::WallTime::now();
-    if (!connected && now >= next_check) {
-      TopicNodeCounts graph;
-      connected = QueryTopicNodeCounts(&graph) && graph.AllConnected(resent_sub_) &&
-                  graph.AllConnected(request_pub_);
-      next_check = now + ros::WallDuration(kConnectedPollS);
-      if (connected) {  // one more request, answered over connections that all exist now
-        next_request = now;
-        until = std::max(until, now + ros::WallDuration(kRequestPeriodS));
-      }
-    }
-    if (now >= (connected ? until : latest)) break;
-    if (now >= next_request) {
-      ++request_.request;
-      request_pub_.publish(request_);
-      next_request = now + ros::WallDuration(kRequestPeriodS);
-    }
-    resent_queue_.callAvailable(ros::WallDuration(kListenerPollS));
-  }
-  if (!connected) {
-    ROS_WARN(
-        "%s: restarted: not every robot's /flock/mission/resent and request subscription is "
-        "connected after %.1f s; a mission whose answer is lost is asked for again when its "
-        "progress is heard",
-        kNode, kRebuildMaxS);
-  }
-  ROS_INFO(
-      "%s: restarted: %d live mission(s) rebuilt from the first leaders' re-sent statuses (%zu "
-      "known, %.1f s); orders, submissions and statuses held meanwhile are taken now",
-      kNode, policy_->book().LiveCount(), policy_->book().entries().size(),
-      (ros::WallTime::now() - start).toSec());
-  // Later answers (a restarted recorder's request) are taken in the spin thread too.
-  resent_timer_ = nh_.createWallTimer(ros::WallDuration(0.1), [this](const ros::WallTimerEvent&) {
-    resent_queue_.callAvailable();
-  });
-}
-
-void MissionDispatcher::OnResent(const ros::MessageEvent<Mission_Resent const>& event) {
-  const Mission_Resent& msg = *event.getMessage();
-  const std::string problem = StatusProblem(msg.status);
-  std::optional<core::MissionSpec> order;
-  if (msg.has_order && msg.order.mission_id == msg.status.mission_id) {
-    order = ToMissionSpec(msg.order);
-  }
-  // Only a robot of the mission may re-send its status (its order names them).
-  const core::MissionBook::Entry* entry = policy_->book().Find(msg.status.mission_id);
-  const core::MissionSpec* spec = entry != nullptr && entry->has_spec ? &entry->spec
-                                  : order                             ? &*order
-                                                                      : nullptr;
-  if (!problem.empty() || !core::MayReport(spec, SenderOf(event.getPublisherName()))) {
-    if (foreign_report_warning_.Due()) {
-      ROS_WARN("%s: ignored a re-sent status of mission %u from %s: %s%s", kNode,
-               msg.status.mission_id, event.getPublisherName().c_str(),
-               problem.empty() ? "only the mission's robots may send it" : problem.c_str(),
-               foreign_report_warning_.AndMore("such reports").c_str());
-    }
-    return;
-  }
-  policy_->OnResent(ToMissionReport(msg.status), order ? &*order : nullptr,
-                    event.getPublisherName());
-}
-
-void MissionDispatcher::AskAgain(std::uint16_t mission_id) {
-  if (!request_pub_ || ros::WallTime::now() < next_ask_) return;
-  next_ask_ = ros::WallTime::now() + ros::WallDuration(kAskAgainS);
-  ++request_.request;
-  request_pub_.publish(request_);
-  ROS_INFO(
-      "%s: heard of live mission %u, which it has not rebuilt: asks the first leaders to "
-      "re-send their statuses again (request %u)",
-      kNode, mission_id, request_.request);
-}
-
 void MissionDispatcher::Shutdown() {
   ForgetInstance(private_nh_);
-  resent_timer_.stop();
+  if (rebuild_) rebuild_->Stop();
   for (ros::Timer& timer : start_timers_) timer.stop();
   watchdog_timer_.stop();
   status_timer_.stop();
@@ -259,31 +148,7 @@ void MissionDispatcher::PublishStatus(const core::MissionSpec& spec, MissionPhas
 }
 
 void MissionDispatcher::Order(const core::MissionSpec& spec, std::uint64_t start_tick) {
-  AwaitListeners(new_pub_);
-  New_Mission order = ToNewMission(spec);
-  order.start_tick = start_tick;
-  new_pub_.publish(order);
-  if (!lockstep_) queued_orders_[spec.id] = order;
-}
-
-void MissionDispatcher::OnOrderListener(const ros::SingleSubscriberPublisher& listener) {
-  ForgetStartedOrders();
-  for (const auto& kv : queued_orders_) listener.publish(kv.second);
-  if (!queued_orders_.empty()) {
-    ROS_INFO("%s: sent the %zu order(s) still QUEUED to %s, which connected after them", kNode,
-             queued_orders_.size(), listener.getSubscriberName().c_str());
-  }
-}
-
-void MissionDispatcher::ForgetStartedOrders() {
-  // A robot that connects from now on is too late for a started mission: quiet on the radio
-  // until its order topic is connected (OwnTopicsTransport), it is lost for the mission's
-  // members after lost_after_s, and the mission goes on without it.
-  for (auto it = queued_orders_.begin(); it != queued_orders_.end();) {
-    const core::MissionBook::Entry* entry = policy_->book().Find(it->first);
-    const bool queued = entry != nullptr && entry->phase == MissionPhase::kQueued;
-    it = queued ? std::next(it) : queued_orders_.erase(it);
-  }
+  orders_->Publish(spec, start_tick);
 }
 
 void MissionDispatcher::Rejected(const core::MissionSpec& spec, const std::string& reason) {
@@ -302,7 +167,7 @@ void MissionDispatcher::Event(const core::Signal& signal, const char* why) {
   // Not latched: a restarted dispatcher sends the owed LOADED/UNLOADED of its rebuilt missions
   // within a second of advertising the topic, before the robots' connections are made (the
   // soak lost it at every restart, and the mission stood in UNLOADING for good).
-  AwaitListeners(event_pub_);
+  AwaitListeners(event_pub_, kNode);
   event_pub_.publish(ToMsg(signal));
   ROS_INFO("%s: sent %s for mission %u (%s; from tick %llu)", kNode, EventName(signal.kind),
            signal.mission_id, why, static_cast<unsigned long long>(signal.not_before_tick));
@@ -385,7 +250,7 @@ void MissionDispatcher::OnStatus(const ros::MessageEvent<Mission_Status const>& 
   }
   const core::MissionBook::StatusOutcome outcome =
       policy_->OnStatus(ToMissionReport(msg), event.getPublisherName());
-  ForgetStartedOrders();
+  orders_->ForgetStarted();
   if (outcome.ignored == "too many live missions" && untracked_warning_.Due()) {
     ROS_WARN("%s: not tracking mission %u: too many live missions%s", kNode, msg.mission_id,
              untracked_warning_.AndMore("missions").c_str());
@@ -396,26 +261,10 @@ void MissionDispatcher::OnProgress(const ros::MessageEvent<Mission_Status const>
   const Mission_Status::ConstPtr& msg = event.getMessage();
   if (!MayReport("progress", msg->mission_id, event.getPublisherName())) return;
   if (!std::isfinite(msg->distance_to_target)) return;
-  if (policy_->book().Find(msg->mission_id) == nullptr) AskAgain(msg->mission_id);
-  policy_->OnProgress(ToMissionReport(*msg));
-}
-
-void MissionDispatcher::AwaitListeners(const ros::Publisher& pub) {
-  // A node that subscribed but is not connected yet (start-up, a loaded machine) would get
-  // the latched order late: a lock-step run would not repeat. Connections are made by roscpp's
-  // own thread, so waiting here (briefly, in a service call) lets them complete.
-  const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(kListenerWaitS);
-  while (ros::ok()) {
-    TopicNodeCounts graph;
-    if (!QueryTopicNodeCounts(&graph)) return;
-    if (graph.AllConnected(pub)) return;
-    if (ros::WallTime::now() >= until) {
-      ROS_WARN("%s: not every subscriber of %s is connected after %.1f s; publishing anyway", kNode,
-               pub.getTopic().c_str(), kListenerWaitS);
-      return;
-    }
-    ros::WallDuration(kListenerPollS).sleep();
+  if (rebuild_ && policy_->book().Find(msg->mission_id) == nullptr) {
+    rebuild_->AskAgain(msg->mission_id);
   }
+  policy_->OnProgress(ToMissionReport(*msg));
 }
 
 bool MissionDispatcher::OnSubmit(Submit_Mission::Request& req, Submit_Mission::Response& res) {

@@ -28,6 +28,12 @@ struct TopicNodeCounts {
 // until the master answers.
 bool QueryTopicNodeCounts(TopicNodeCounts* out, bool wait_for_master = false);
 
+// Waits (wall time, polling the master every poll_s) at most wait_s until every node registered
+// as a subscriber of pub's topic is connected to it: a message published before a connection is
+// made never reaches that node. Connections are made by roscpp's own threads, so a callback may
+// wait here. False after wait_s (or when the master cannot be asked at all: then true).
+bool AwaitSubscribers(const ros::Publisher& pub, double wait_s, double poll_s = 0.005);
+
 }  // namespace swarm_transport
 
 #endif  // SWARM_TRANSPORT_ROS_GRAPH_H_

@@ -3,20 +3,15 @@
 #ifndef SWARM_TRANSPORT_ROS_MISSION_DISPATCHER_H_
 #define SWARM_TRANSPORT_ROS_MISSION_DISPATCHER_H_
 
-#include <ros/callback_queue.h>
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
 #include <xmlrpcpp/XmlRpcValue.h>
 
 #include <cstdint>
-#include <map>
 #include <memory>
-#include <optional>
 #include <string>
 #include <vector>
 
-#include "swarm_transport/Mission_Resend_Request.h"
-#include "swarm_transport/Mission_Resent.h"
 #include "swarm_transport/Mission_Signal.h"
 #include "swarm_transport/Mission_Status.h"
 #include "swarm_transport/New_Mission.h"
@@ -29,6 +24,8 @@
 #include "swarm_transport/ros/common/params.h"
 #include "swarm_transport/ros/common/wall_throttle.h"
 #include "swarm_transport/ros/dispatcher/dispatcher_options.h"
+#include "swarm_transport/ros/dispatcher/dispatcher_rebuild.h"
+#include "swarm_transport/ros/dispatcher/order_publisher.h"
 
 namespace swarm_transport {
 
@@ -41,8 +38,8 @@ namespace swarm_transport {
 // /use_sim_time) or on request through ~signal. ~status answers a text table. All callbacks
 // run in the one ros::spin thread.
 // Restarted on the same master in real time, it first rebuilds its table from the first
-// leaders' re-sent statuses (RebuildFromRobots) and only then takes orders, submissions and
-// statuses, held in their queues meanwhile (docs/reliability.md).
+// leaders' re-sent statuses and only then takes orders, submissions and
+// statuses, held in their queues meanwhile (DispatcherRebuild, docs/reliability.md).
 // Its policy (what it accepts, picks, recruits, schedules and sends) is the pure
 // core::DispatcherPolicy; this node moves bytes between ROS and it.
 class MissionDispatcher : private core::DispatcherOutlet {
@@ -67,32 +64,9 @@ class MissionDispatcher : private core::DispatcherOutlet {
 
   void PublishStatus(const core::MissionSpec& spec, core::MissionPhase phase,
                      const std::string& reason, std::uint64_t tick = 0);
-  // Before a new order or an event: waits (at most kListenerWaitS) until every registered
-  // subscriber of pub's topic is connected.
-  void AwaitListeners(const ros::Publisher& pub);
-  // Real time: the orders published whose missions are still QUEUED go to each subscriber that
-  // connects to the order topic (a robot process started late or again, the recorder): a robot
-  // that connects after its order missed it while audible on the radio, so its mission's
-  // members never lost it and their GATHERING waited for it for good (the soak). The order of
-  // a mission that has started does not go (a process killed and started again under a member's
-  // id must not run it from QUEUED beside the robots that carry it).
-  void OnOrderListener(const ros::SingleSubscriberPublisher& listener);
-  // Forgets the published orders whose missions left QUEUED.
-  void ForgetStartedOrders();
   bool FromSelf(const std::string& publisher) const {
     return publisher == ros::this_node::getName();
   }
-
-  // A restart (real time): asks the first leaders to re-send their missions' latest statuses
-  // and takes the answers for kRebuildWaitS of wall time before anything else; later answers
-  // (to a restarted recorder's request) are taken as they come.
-  void RebuildFromRobots();
-  void OnResent(const ros::MessageEvent<Mission_Resent const>& event);
-  // A restarted dispatcher hears of a live mission it did not rebuild (its first leader's answer
-  // was lost while the connections to the first leaders were still being made, on a loaded
-  // machine): it asks the first leaders again, at most once a second. Without it, such a
-  // mission never got its UNLOADED and stood in UNLOADING for good.
-  void AskAgain(std::uint16_t mission_id);
 
   void OnPositions(const Robot_Positions::ConstPtr& msg);
   void OnNewMission(const ros::MessageEvent<New_Mission const>& event);
@@ -112,8 +86,8 @@ class MissionDispatcher : private core::DispatcherOutlet {
   std::unique_ptr<core::DispatcherPolicy> policy_;  // made by Initialize
   bool lockstep_ = false;  // /use_sim_time: the simulator's lock-step clock
 
-  ros::Publisher new_pub_;  // lock-step: latched; real time: OnOrderListener
-  std::map<std::uint16_t, New_Mission> queued_orders_;  // real time: published, still QUEUED
+  std::unique_ptr<OrderPublisher> orders_;     // /flock/mission/new
+  std::unique_ptr<DispatcherRebuild> rebuild_;  // a restart's (real time)
   ros::Publisher status_pub_;
   ros::Publisher event_pub_;
   ros::Publisher delete_pub_;
@@ -127,12 +101,6 @@ class MissionDispatcher : private core::DispatcherOutlet {
   ros::ServiceServer submit_srv_;
   ros::ServiceServer signal_srv_;
   ros::ServiceServer status_srv_;
-  ros::CallbackQueue resent_queue_;  // a restart's re-sent statuses, taken first
-  ros::Subscriber resent_sub_;
-  ros::Publisher request_pub_;      // a restart's: the latched Mission_Resend_Request
-  Mission_Resend_Request request_;  // ... its latest (numbered from 1)
-  ros::WallTime next_ask_;          // AskAgain: not before
-  ros::WallTimer resent_timer_;
   std::vector<ros::Timer> start_timers_;
   ros::Timer watchdog_timer_;
   ros::WallTimer status_timer_;          // its diagnostic status, once a wall second

@@ -1,0 +1,53 @@
+// The dispatcher's orders on /flock/mission/new, and who gets them when.
+#ifndef SWARM_TRANSPORT_ROS_ORDER_PUBLISHER_H_
+#define SWARM_TRANSPORT_ROS_ORDER_PUBLISHER_H_
+
+#include <ros/ros.h>
+
+#include <cstdint>
+#include <functional>
+#include <map>
+
+#include "swarm_transport/New_Mission.h"
+#include "swarm_transport/core/mission.h"
+
+namespace swarm_transport {
+
+// A robot (or `rostopic echo`) connecting later still gets an order while its mission waits
+// to start. Lock-step latches the last one (its robots take orders from their rounds). Real
+// time sends every order whose mission is still QUEUED to each subscriber as it connects (a
+// robot process started late or again, the recorder): a robot that connects after its order
+// missed it while audible on the radio, so its mission's members never lost it and their
+// GATHERING waited for it for good (the soak). The order of a mission that has started does not
+// go (a process killed and started again under a member's id must not run it from QUEUED beside
+// the robots that carry it).
+class OrderPublisher {
+ public:
+  // `queued(id)`: mission `id` is still QUEUED. `node`: the name in log lines.
+  OrderPublisher(ros::NodeHandle nh, bool lockstep, std::function<bool(std::uint16_t)> queued,
+                 const char* node);
+  // Waits (at most kListenerWaitS) until every registered subscriber is connected, then
+  // publishes.
+  void Publish(const core::MissionSpec& spec, std::uint64_t start_tick);
+  // Forgets the published orders whose missions left QUEUED: a robot that connects from now on
+  // is too late for them (quiet on the radio until its order topic is connected, it is lost for
+  // the mission's members after lost_after_s, and the mission goes on without it).
+  void ForgetStarted();
+
+ private:
+  void OnListener(const ros::SingleSubscriberPublisher& listener);
+
+  bool lockstep_;
+  std::function<bool(std::uint16_t)> queued_;
+  const char* node_;
+  ros::Publisher pub_;
+  std::map<std::uint16_t, New_Mission> published_;  // real time: published, still QUEUED
+};
+
+// Before a new order or an event: waits (at most kListenerWaitS) until every registered
+// subscriber of pub's topic is connected; a warning when not.
+void AwaitListeners(const ros::Publisher& pub, const char* node);
+
+}  // namespace swarm_transport
+
+#endif  // SWARM_TRANSPORT_ROS_ORDER_PUBLISHER_H_
