@@ -142,11 +142,13 @@ def run_batch(a, log):
     job_path = write_job(a, run_dir)
     env = os.environ.copy()
     if a.batch_binary:
-        # Another build's binary finds its libraries beside it (its RUNPATH names its own
-        # workspace).
+        # Another build's binary must load its own build's libraries: beside it, or (a catkin
+        # devel or install space) one folder up. Its RUNPATH names them, but a sourced
+        # workspace's LD_LIBRARY_PATH comes first and would give it this build's libraries (the
+        # comparison was then this build against itself; found 2026-11-28).
+        own = [os.path.dirname(binary), os.path.dirname(os.path.dirname(binary))]
         env['LD_LIBRARY_PATH'] = os.pathsep.join(
-            [os.path.dirname(binary)] + [p for p in env.get('LD_LIBRARY_PATH', '').split(
-                os.pathsep) if p])
+            own + [p for p in env.get('LD_LIBRARY_PATH', '').split(os.pathsep) if p])
     out['background_cpu_pct'] = background_cpu_pct()
     with open(os.path.join(run_dir, 'batch.log'), 'w') as err:
         p = subprocess.Popen([binary, '--base-config',
