@@ -126,13 +126,9 @@ class Restart(unittest.TestCase):
             start_new_session=True)
         self.addCleanup(st.stop_process_groups, [fake])
 
-        def fake_listens():
-            import rosgraph
-            _, subs, _ = rosgraph.Master(rospy.get_name()).getSystemState()
-            return any(topic == '/flock/mission/resend_request' and '/robot_4/robot' in nodes
-                       for topic, nodes in subs)
-
-        self.assertTrue(st.wait_for(fake_listens, timeout), 'the stand-in never subscribed')
+        self.assertTrue(st.wait_for(
+            lambda: st.subscribes('/robot_4/robot', '/flock/mission/resend_request'), timeout),
+            'the stand-in never subscribed')
         config = os.path.join(rospkg.RosPack().get_path('swarm_transport'), 'config',
                               'swarm.yaml')
         dispatcher = st.launch_file('dispatcher.launch', config=config, unloaded_delay_s=0.5,
@@ -145,15 +141,7 @@ class Restart(unittest.TestCase):
         self.assertTrue(st.wait_for(lambda: asked_again, 5.0),
                         'the dispatcher learnt of mission %d without asking again' % mission_id)
 
-        def done_in_table():
-            try:
-                table = rospy.ServiceProxy('/mission_dispatcher/status', Trigger)().message
-            except (rospy.ServiceException, rospy.ROSException):
-                return False
-            return any(line.split()[:2] == [str(mission_id), 'DONE']
-                       for line in table.splitlines())
-
-        self.assertTrue(st.wait_for(done_in_table, timeout),
+        self.assertTrue(st.wait_for(lambda: st.dispatcher_tracks(mission_id, 'DONE'), timeout),
                         'mission %d not DONE in the dispatcher\'s table' % mission_id)
 
     def test_dispatcher_and_recorder_restart_during_missions(self):

@@ -42,6 +42,13 @@ def service_names():
     return {name for name, _ in services}
 
 
+def subscribes(node, topic):
+    """True when the master lists `node` (e.g. '/robot_4/robot') as a subscriber of `topic`."""
+    import rosgraph
+    _, subs, _ = rosgraph.Master(rospy.get_name()).getSystemState()
+    return any(name == topic and node in nodes for name, nodes in subs)
+
+
 def stop_process_groups(procs, timeout=15):
     """Stops processes started with start_new_session=True (subprocess.Popen), last first, by
     their process group: SIGINT, then SIGKILL after `timeout` s."""
@@ -171,14 +178,16 @@ def subscribers_of(node, topic):
     return {c[1] for c in info if c[2] == 'o' and c[4] == topic and c[5]}
 
 
-def dispatcher_tracks(mission_id):
-    """True when the dispatcher's ~status table lists the mission."""
+def dispatcher_tracks(mission_id, state=None):
+    """True when the dispatcher's ~status table lists the mission (in `state`, e.g. 'DONE',
+    when given)."""
     from std_srvs.srv import Trigger
     try:
         table = rospy.ServiceProxy('/mission_dispatcher/status', Trigger)().message
     except (rospy.ServiceException, rospy.ROSException):
         return False
-    return any(line.split()[:1] == [str(mission_id)] for line in table.splitlines()[1:])
+    want = [str(mission_id)] + ([state] if state else [])
+    return any(line.split()[:len(want)] == want for line in table.splitlines()[1:])
 
 
 def dispatcher_positions_tick():

@@ -86,7 +86,7 @@ class MissionDispatcher : private core::DispatcherOutlet {
   std::unique_ptr<core::DispatcherPolicy> policy_;  // made by Initialize
   bool lockstep_ = false;  // /use_sim_time: the simulator's lock-step clock
 
-  std::unique_ptr<OrderPublisher> orders_;     // /flock/mission/new
+  std::unique_ptr<OrderPublisher> orders_;      // /flock/mission/new
   std::unique_ptr<DispatcherRebuild> rebuild_;  // a restart's (real time)
   ros::Publisher status_pub_;
   ros::Publisher event_pub_;
