@@ -52,6 +52,20 @@ class RobotStop(unittest.TestCase):
         timeout = g('timeout_s')
         status = st.StatusLog()
         senders = Senders()
+        last_progress = {}
+        progress_sub = rospy.Subscriber(
+            '/flock/mission/progress', Mission_Status,
+            lambda m: last_progress.__setitem__(m.mission_id, m), queue_size=100)
+        self.addCleanup(progress_sub.unregister)
+
+        def progress_of(mission_id):
+            m = last_progress.get(mission_id)
+            if m is None:
+                return 'none heard'
+            return ('%s, tick %d, %d of %d robots inside, lost %s, object at (%.2f, %.2f)'
+                    % (st.NAMES.get(m.state, m.state), m.tick, m.robots_inside,
+                       m.robots_assigned, list(m.lost), m.object_position_x,
+                       m.object_position_y))
         pub, _ = st.realtime_swarm_for(self, g('robots'), g('seed'), timeout)
         leader = 0
         for mission_id, phase, obj, target in ((1, GATHERING, (7.0, 7.0), (3.0, 3.0)),
@@ -68,11 +82,12 @@ class RobotStop(unittest.TestCase):
             finally:
                 os.kill(pid, signal.SIGCONT)
             continued_s = time.time()
-            self.assertTrue(
-                st.wait_for(lambda: status.final(mission_id), g('end_within_s')),
-                'mission %d (first leader stopped %.0f s in %s) never ended within %d s; '
-                'states %s' % (mission_id, g('stop_s'), st.NAMES[phase], g('end_within_s'),
-                               status.states(mission_id)))
+            if not st.wait_for(lambda: status.final(mission_id), g('end_within_s')):
+                self.fail('mission %d (first leader stopped %.0f s in %s) never ended within %d '
+                          's; states %s; its last progress: %s; its robots:\n%s'
+                          % (mission_id, g('stop_s'), st.NAMES[phase], g('end_within_s'),
+                             status.states(mission_id), progress_of(mission_id),
+                             st.describe_robots(range(g('group')))))
             ended = [m for m in status.of(mission_id) if m.state in (5, 6)]
             self.assertEqual(st.NAMES[ended[0].state], 'DONE',
                              'mission %d: %s' % (mission_id, ended[0].reason))
