@@ -5,6 +5,7 @@ namespaces are deleted at the end. Needs root (CAP_NET_ADMIN) for `ip netns`: wi
 NetHosts raises Unavailable."""
 
 import os
+import re
 import subprocess
 
 import swarm_testing as st
@@ -83,6 +84,16 @@ class NetHosts:
             with open(name) as f:
                 out.append('--- %s\n%s' % (name, f.read()[-tail:]))
         return '\n'.join(out)
+
+    def grep(self, pattern, per_log):
+        """The last `per_log` lines of each process's log that match `pattern` (a regex),
+        each after its log's name."""
+        out = []
+        for _, name in self.procs:
+            with open(name, errors='replace') as f:
+                hits = [l.rstrip() for l in f if re.search(pattern, l)]
+            out += ['%s: %s' % (os.path.basename(name), l) for l in hits[-per_log:]]
+        return out
 
     def limit(self, host, to_host, rate):
         """What `host` sends to `to_host` at most `rate` (tc, e.g. '250kbit'): a token bucket
