@@ -55,6 +55,9 @@ bool MissionAgent::OnObjectUpdate(std::uint16_t mission_id, Vec2 centre, std::st
   }
   live.centre = centre;
   live.centre_tick = tick_ + 1;
+  // In transport the object is its robots' centroid plus the offset each anchored; the first
+  // leader's is the mission's (it reports and publishes it): UpdateCentre takes it.
+  if (live.anchored && !LeadsFirst(live)) live.leader_centre = centre;
   return true;
 }
 

@@ -12,6 +12,12 @@
 
 namespace swarm_transport {
 namespace core {
+namespace {
+// Two views of a transport's object closer than this are the same object (updates are sent
+// as float32: ~5e-7 m apart at 11 m).
+constexpr double kSameObjectM = 1e-5;
+}  // namespace
+
 bool MissionAgent::Group::OneChain(double range) const {
   std::vector<Vec2> left;
   for (const auto& kv : where) left.push_back(kv.second);
@@ -60,8 +66,22 @@ void MissionAgent::UpdateCentre(Live* live, const Pose2& self, Group* group) con
       // A member was lost: the object stays where it is and moves with the robots left.
       live->offset = live->centre - group->centroid;
     }
+    if (live->leader_centre && live->last_centroid) {
+      // The first leader's object (of its tick before this one) is the mission's. A robot whose
+      // own drifted from it takes it, as of its own centroid then: one that anchored late (its
+      // TRANSPORT came after the others moved off) or heard other robots than the first leader
+      // carried an object of its own, chased it from outside and led the others astray (a
+      // soak's transport wandered for minutes without getting nearer its target). In lock-step
+      // every robot's view is the first leader's and nothing changes.
+      const Vec2 own = live->offset + *live->last_centroid;
+      if (Distance(own, *live->leader_centre) > kSameObjectM) {
+        live->offset = *live->leader_centre - *live->last_centroid;
+      }
+    }
+    live->leader_centre.reset();
     live->reanchor = false;
     live->centre = live->offset + group->centroid;
+    live->last_centroid = group->centroid;
     // The arena's walls hold the object: robots that drive on along a wall leave it behind (it
     // slips from them, its offset to them changes) instead of carrying it through. Robots outside
     // an object held beyond the wall would chase its centre into the wall for good (a soak's
@@ -226,6 +246,18 @@ MissionPlan MissionAgent::Tick(const Pose2& self, const std::vector<Neighbour>& 
                                std::uint64_t tick, MissionOutbox* outbox) {
   tick_ = tick;
   MissionPlan plan;
+  // A robot its mission counts lost (its first leader's status named it, or it missed its
+  // ticks) is no member of it any more: the others go on without it, so it leaves, and its
+  // object is a danger zone for it as any other mission's. Carrying on beside them, it kept an
+  // object of its own making (rejecting the first leader's updates as jumps) and stood in
+  // their way, and it held its next mission back until the lost one ended (a partition of its
+  // host during TRANSPORT).
+  queue_.erase(std::remove_if(queue_.begin(), queue_.end(),
+                              [this](std::uint16_t id) {
+                                const Live& live = live_.at(id);
+                                return !live.spec.LeaderOnly() && live.lost.count(self_id_) > 0;
+                              }),
+               queue_.end());
   if (!queue_.empty()) plan.active = queue_.front();
   if (plan.active) {
     Live& live = live_.at(*plan.active);

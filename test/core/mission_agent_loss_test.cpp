@@ -445,9 +445,13 @@ TEST(MissionAgentTest, EveryRobotOfAMissionCountsLostWhomItsFirstLeaderCountsLos
   out = MissionOutbox();
   MissionPlan plan = robot0.Tick(PoseAt(7.0, 7.0), heard, 2, &out);
   EXPECT_TRUE(out.empty());  // it says nothing more of the mission
-  ASSERT_TRUE(plan.carry.has_value());
-  EXPECT_FALSE(plan.carry->leader);
-  EXPECT_EQ(plan.carry->leaders, (std::vector<std::uint16_t>{1}));
+  // It is no member any more: it leaves the mission (no carry), and the object is a danger
+  // zone for it, as any other mission's.
+  EXPECT_FALSE(plan.active.has_value());
+  EXPECT_FALSE(plan.carry.has_value());
+  ASSERT_EQ(plan.zones.size(), 1u);
+  EXPECT_EQ(plan.zones[0].id, 7);
+  EXPECT_FALSE(plan.zones[0].inverted);
   // Robots of other missions and unknown ones in the list change nothing.
   robot0.OnStatus(7, MissionPhase::kGathering, {0, 40});
   EXPECT_EQ(robot0.LostOf(7), (std::set<std::uint16_t>{0}));

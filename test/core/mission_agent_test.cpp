@@ -218,6 +218,33 @@ TEST(MissionAgentTest, EveryMemberAnchorsTheObjectToTheSameCentroid) {
   EXPECT_NEAR(plan.carry->centre.y, 7.0, 1e-9);
 }
 
+TEST(MissionAgentTest, AMemberWhoseObjectDriftedTakesTheFirstLeaders) {
+  // A passive member anchored late: the robots had moved off by (-0.4, 0) when its TRANSPORT
+  // came (real time under load), so its object is 0.4 m east of the first leader's.
+  MissionAgent passive(1, MissionAgentParams());
+  std::string why;
+  ASSERT_TRUE(passive.OnNewMission(Thesis(), &why));
+  passive.OnStatus(7, MissionPhase::kTransport);
+  MissionPlan plan = passive.Tick(PoseAt(6.9, 7.2), {At(0, 6.6, 7.4), At(2, 5.8, 6.9)}, 11,
+                                  nullptr);  // centroid (6.433, 7.167): object there + (0.567,
+                                             // -0.167), i.e. (7, 7)
+  ASSERT_TRUE(plan.carry.has_value() && plan.carry->transport);
+  EXPECT_NEAR(plan.carry->centre.x, 7.0, 1e-9);
+  // The first leader's update of that tick: its object is at (6.6, 7.0).
+  ASSERT_TRUE(passive.OnObjectUpdate(7, {6.6, 7.0}, &why)) << why;
+  // All move by (-0.1, 0): its object is the first leader's, moved with them.
+  plan = passive.Tick(PoseAt(6.8, 7.2), {At(0, 6.5, 7.4), At(2, 5.7, 6.9)}, 12, nullptr);
+  EXPECT_NEAR(plan.carry->centre.x, 6.5, 1e-9);
+  EXPECT_NEAR(plan.carry->centre.y, 7.0, 1e-9);
+  // Without an update it keeps that offset; an update that agrees changes nothing.
+  plan = passive.Tick(PoseAt(6.7, 7.2), {At(0, 6.4, 7.4), At(2, 5.6, 6.9)}, 13, nullptr);
+  EXPECT_NEAR(plan.carry->centre.x, 6.4, 1e-9);
+  ASSERT_TRUE(passive.OnObjectUpdate(7, {6.4, 7.0}, &why)) << why;
+  plan = passive.Tick(PoseAt(6.7, 7.2), {At(0, 6.4, 7.4), At(2, 5.6, 6.9)}, 14, nullptr);
+  EXPECT_NEAR(plan.carry->centre.x, 6.4, 1e-9);
+  EXPECT_NEAR(plan.carry->centre.y, 7.0, 1e-9);
+}
+
 TEST(MissionAgentTest, GatheringEndsWhenEveryoneIsInsideAndTheGroupIsOneChain) {
   // All three inside, but robot 2 stopped at the rim 1.34 from the others (local range 1.0):
   // starting now would leave it out of its group's reach, so gathering goes on.

@@ -231,6 +231,10 @@ class MissionAgent {
     std::map<std::uint16_t, Vec2> last_seen;            // ... and where
     std::set<std::uint16_t> lost;                       // members lost for the mission (for good)
     bool reanchor = false;          // a member was lost in transport: anchor the object anew
+    // Transport, not its first leader: the first leader's object of an update taken since the
+    // last tick, and this robot's centroid of the mission's robots at its last tick.
+    std::optional<Vec2> leader_centre;
+    std::optional<Vec2> last_centroid;
     std::uint64_t first_since = 0;  // tick it became first leader by promotion (0: none)
     bool promoted = false;          // it leads as first leader because the first leader was lost
     bool announced = false;         // ... and said so
