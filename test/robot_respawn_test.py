@@ -5,7 +5,8 @@ item 5): the mission still ends, DONE, within the test's bound - whether the rob
 leader or a passive member - and nobody runs it again from QUEUED (the fresh process got the
 dispatcher's latched order of the running mission and led it a second time, from GATHERING:
 its LOADING froze the robots in TRANSPORT, which then stood for good). A robot started again
-while a mission that names it is still QUEUED gets that order and carries the mission."""
+while a mission that names it is still QUEUED gets that order and carries the mission. A robot
+whose process is gone is picked by no order until a process of it connects again."""
 
 import os
 import signal
@@ -13,9 +14,13 @@ import sys
 import time
 import unittest
 
+import re
+
 import rospy
 import rostest
-from swarm_transport.srv import Kill, Spawn
+from swarm_transport.msg import New_Mission
+from swarm_transport.robot_views import ask_describe
+from swarm_transport.srv import Kill, Spawn, Submit_Mission
 
 import swarm_testing as st
 
@@ -24,11 +29,7 @@ QUEUED, GATHERING, TRANSPORT = 0, 1, 3
 
 def describe(robot):
     """What the robot says of itself (its ~describe), or why it cannot say."""
-    try:
-        from std_srvs.srv import Trigger
-        return rospy.ServiceProxy('/robot_%d/robot/describe' % robot, Trigger)().message
-    except Exception as e:  # noqa: BLE001 - a test's diagnostic only
-        return 'no answer (%s)' % e
+    return ask_describe('/robot_%d/robot' % robot, 5.0)
 
 
 def g(key):
@@ -113,6 +114,50 @@ class RobotRespawn(unittest.TestCase):
         self.assertEqual(st.NAMES[ended[0].state], 'DONE', ended[0].reason)
         named = sorted({r for m in status.of(4) for r in m.lost})
         self.assertNotIn(5, named, 'robot 5 was lost to mission 4 (lost %s)' % named)
+
+    def test_a_robot_whose_process_is_gone_is_not_picked(self):
+        """Robot 3's process is killed; its body stays in the world, heard on the radio. A
+        robot_count order of the whole swarm is refused naming it, one of the others does not
+        pick it; once a fresh process of it is connected, an order of one robot picks it. (The
+        soak: a robot picked while its process was gone never got the order, yet was heard, so
+        its mission's GATHERING waited for it for good; session 23, mission 107.)"""
+        timeout, robots = g('timeout_s'), g('robots')
+        st.realtime_swarm_for(self, robots, g('seed'), timeout)
+        rospy.wait_for_service('/mission_dispatcher/submit', timeout)
+        submit = rospy.ServiceProxy('/mission_dispatcher/submit', Submit_Mission)
+
+        def order(mission_id, count):
+            m = New_Mission()
+            m.mission_id, m.robot_count, m.leader_number = mission_id, count, 1
+            m.object_position_x = m.object_position_y = 8.0
+            m.object_size_x = m.object_size_y = 1.0
+            m.target_x, m.target_y = 8.0, 3.0
+            answer = submit(m)
+            picked = re.search(r'robots? \{([0-9, ]+)\}', answer.message)
+            return answer, [int(r) for r in picked.group(1).split(',')] if picked else []
+
+        os.kill(st.node_pid('/robot_3/robot'), signal.SIGKILL)
+        # The dispatcher sees the connection drop at once; a second is slack.
+        time.sleep(1.0)
+        everyone, _ = order(10, robots)
+        self.assertNotEqual(everyone.code, 0, 'all %d robots picked, robot 3 without a process: '
+                            '%s' % (robots, everyone.message))
+        self.assertIn('robot(s) 3, whose process is not connected', everyone.message)
+        others, picked = order(11, robots - 1)
+        self.assertEqual(others.code, 0, others.message)
+        self.assertEqual(sorted(picked), [r for r in range(robots) if r != 3], others.message)
+        fresh = st.launch_file('robot.launch', id=3)
+        self.addCleanup(fresh.shutdown)
+        answer, picked = None, []
+        deadline = time.time() + timeout
+        while time.time() < deadline:
+            answer, picked = order(12, 1)
+            if answer.code == 0:
+                break
+            time.sleep(1.0)
+        self.assertEqual(answer.code, 0, 'robot 3 never picked again after its process was '
+                         'started again: %s' % answer.message)
+        self.assertEqual(picked, [3], answer.message)
 
     def test_a_respawned_first_leader(self):
         self.respawn_in_transport(1, 0)

@@ -231,34 +231,10 @@ def robot_state(rid, timeout):
 
 
 def describe_robots(robot_ids, timeout=2.0):
-    """Where each robot stands (one /flock/world_poses) and what it says of itself (its
-    ~describe), one line each: for the message of a failed assertion."""
-    import threading
-    from std_srvs.srv import Trigger
-    from swarm_transport.msg import Robot_Positions
-    try:
-        world = rospy.wait_for_message('/flock/world_poses', Robot_Positions, timeout=timeout)
-        poses = {p.robot_id: p for p in world.robots if p.sub_id == 0}
-    except rospy.ROSException:
-        poses = {}
-    lines = []
-    for rid in robot_ids:
-        said = ['no answer within %.0f s' % timeout]
-
-        def ask(name='/robot_%d/robot/describe' % rid, out=said):
-            try:
-                out[0] = rospy.ServiceProxy(name, Trigger)().message
-            except (rospy.ServiceException, rospy.ROSException) as e:
-                out[0] = 'no answer (%s)' % type(e).__name__
-
-        # A stopped robot accepts the call and never answers: it does not hold the test.
-        asking = threading.Thread(target=ask, daemon=True)
-        asking.start()
-        asking.join(timeout)
-        p = poses.get(rid)
-        at = '(%.2f, %.2f, %.0f deg)' % (p.pos_x, p.pos_y, p.angle) if p else '(not listed)'
-        lines.append('robot %d at %s: %s' % (rid, at, said[0]))
-    return '\n'.join(lines)
+    """Where each robot stands and what it says of itself, one line each: for the message of a
+    failed assertion (swarm_transport.robot_views, which the soak uses too)."""
+    from swarm_transport.robot_views import describe_robots as describe
+    return describe(robot_ids, timeout)
 
 
 def node_pid(name):

@@ -42,7 +42,7 @@ std::map<std::uint16_t, PlannerRobot> DispatcherPolicy::IdleRobots() const {
   }
   std::map<std::uint16_t, PlannerRobot> idle;
   for (const auto& kv : swarm_) {
-    if (busy.count(kv.first) == 0) idle.insert(kv);
+    if (busy.count(kv.first) == 0 && unreachable_.count(kv.first) == 0) idle.insert(kv);
   }
   return idle;
 }
@@ -75,6 +75,11 @@ MissionBook::Verdict DispatcherPolicy::Submit(MissionSpec spec, const std::strin
     std::string why = PickRobotsByCount(&spec, IdleRobots(), params_.selection);
     if (!why.empty() && !has_swarm_) {
       why += " (no robot positions heard yet: a dispatcher just started; submit it again soon)";
+    }
+    if (!why.empty() && !unreachable_.empty()) {
+      std::string ids;
+      for (std::uint16_t id : unreachable_) ids += (ids.empty() ? "" : ", ") + std::to_string(id);
+      why += " (not counted: robot(s) " + ids + ", whose process is not connected to the orders)";
     }
     if (!why.empty()) return Refuse(std::move(spec), source, why);
     Log(false, "mission %u from %s: robot_count picked robots %s", spec.id, source.c_str(),

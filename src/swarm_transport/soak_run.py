@@ -5,10 +5,10 @@ what each did, and the figures of the RESULT line."""
 import os
 import random
 import signal
-import threading
 import time
 
 from swarm_transport import soak_faults as sf
+from swarm_transport.robot_views import ask_describe, pose_text, world_poses
 from swarm_transport.soak_missions import (ABORTED, DONE, REJECTED, STATE, Missions,
                                            recorded_rows, submit)
 
@@ -270,8 +270,6 @@ class Run(object):
     def describe(self, mission_id, what):
         """A mission found hung, or still live at the end: its last status, where its robots
         are, and what each says of itself (its ~describe). Its cause is read from there."""
-        import rospy
-        from std_srvs.srv import Trigger
         with self.missions.lock:
             robots = list(self.missions.robots.get(mission_id, []))
             last = self.missions.last.get(mission_id)
@@ -287,33 +285,17 @@ class Run(object):
         if self.a.deploy != 'process':
             return
         for r in robots:
-            said = ['no answer within 2 s']
-
-            def ask(name=sf.robot_node(r, 'process') + '/describe', out=said):
-                try:
-                    out[0] = rospy.ServiceProxy(name, Trigger)().message
-                except Exception as e:  # noqa: BLE001 - dead or restarting: say so
-                    out[0] = 'no answer (%s)' % type(e).__name__
-
-            # A stopped robot accepts the call and never answers: it does not hold the soak.
-            asking = threading.Thread(target=ask, daemon=True)
-            asking.start()
-            asking.join(2.0)
-            self.log('  robot %d: %s' % (r, said[0]))
+            self.log('  robot %d: %s' % (r, ask_describe(sf.robot_node(r, 'process'))))
 
     @staticmethod
     def poses_of(robots):
         """The robots' poses in the simulator's world (one /flock/world_poses message)."""
-        import rospy
-        from swarm_transport.msg import Robot_Positions
         try:
-            world = rospy.wait_for_message('/flock/world_poses', Robot_Positions, timeout=2.0)
+            poses = world_poses()
         except Exception as e:  # noqa: BLE001 - a stopped simulator: say so
             return 'unknown (%s)' % type(e).__name__
-        wanted = set(robots)
-        return ', '.join('%d (%.2f, %.2f, %.0f deg)' % (p.robot_id, p.pos_x, p.pos_y, p.angle)
-                         for p in world.robots
-                         if p.robot_id in wanted and p.sub_id == 0) or 'none of them listed'
+        return ', '.join('%d %s' % (r, pose_text(poses[r]))
+                         for r in sorted(poses) if r in set(robots)) or 'none of them listed'
 
     def progress(self, now):
         m = self.missions

@@ -125,6 +125,50 @@ TEST_F(PolicyTest, ACountOnlyOrderIsSentWithTheIdleRobotsItPicked) {
   EXPECT_FALSE(policy.Submit(count, "service", false, true).accepted);
 }
 
+TEST_F(PolicyTest, NoRobotWhoseProcessIsNotConnectedIsPickedOrRecruited) {
+  // Robot 1's process was killed (its body still stands in the world and is heard): a robot
+  // picked then would never get its order, and its mission's GATHERING would wait for it.
+  DispatcherPolicy policy(Params(false), &outlet);
+  policy.SetSwarm(0, Row(3));
+  policy.SetUnreachable({1});
+  MissionSpec count = Thesis(3);
+  count.range_from = count.range_to = 0;
+  count.robot_count = 3;
+  const auto all = policy.Submit(count, "service", false, true);
+  EXPECT_FALSE(all.accepted);
+  EXPECT_NE(all.reason.find("robot(s) 1, whose process is not connected"), std::string::npos)
+      << all.reason;
+  count.robot_count = 2;
+  const auto two = policy.Submit(count, "service", false, true);
+  ASSERT_TRUE(two.accepted) << two.message;
+  ASSERT_EQ(outlet.orders.size(), 1u);
+  EXPECT_EQ(outlet.orders[0].first.robot_ids, (std::vector<std::uint16_t>{0, 2}));
+  // Connected again: it may be picked (robots 0 and 2 are busy now).
+  policy.SetUnreachable({});
+  MissionSpec one = count;
+  one.id = 4;
+  one.robot_count = 1;
+  ASSERT_TRUE(policy.Submit(one, "service", false, true).accepted);
+  EXPECT_EQ(outlet.orders[1].first.robot_ids, (std::vector<std::uint16_t>{1}));
+  // A recruit does not take it either while it is unreachable.
+  DispatcherPolicy recruiting(Params(false), &outlet);
+  auto robots = Row(2);
+  robots[1].position = {5.0, 5.0};  // inside the recruit's object from the start
+  recruiting.OnSwarm(0, robots);
+  recruiting.SetUnreachable({1});
+  MissionSpec recruit;
+  recruit.id = 5;
+  recruit.recruit = true;
+  recruit.robot_count = 1;
+  recruit.leader_number = 1;
+  recruit.object_centre = {5.0, 5.0};
+  recruit.object_size = {2.0, 2.0};
+  recruit.target = {2.0, 5.0};
+  ASSERT_TRUE(recruiting.Submit(recruit, "service", false, true).accepted);
+  recruiting.OnSwarm(9, robots);
+  EXPECT_EQ(outlet.orders.size(), 2u) << "robot 1 was recruited while unreachable";
+}
+
 TEST_F(PolicyTest, LockstepFileMissionsAreStampedAndAnsweredAtTheFirstSwarm) {
   DispatcherPolicy policy(Params(true), &outlet);
   MissionSpec late = Thesis(0);

@@ -98,6 +98,12 @@ class DispatcherPolicy {
   void SetSwarm(std::uint64_t tick, std::map<std::uint16_t, PlannerRobot> robots);
   // Real time: the file missions of this at_tick (0: those of start_delay_s).
   void SubmitFileMissions(std::uint64_t at_tick);
+  // Real time: the robots whose own process is not connected to the orders now (killed, or
+  // started again and not connected yet). Their bodies may still stand in the world and be
+  // heard, but an order would not reach them: robot_count and recruiting pick none of them (a
+  // member that never got its order but was heard held its mission's GATHERING for good).
+  void SetUnreachable(std::set<std::uint16_t> robots) { unreachable_ = std::move(robots); }
+  const std::set<std::uint16_t>& unreachable() const { return unreachable_; }
 
   // A first leader's phase report (its fields checked) from `from`: the LOADED / UNLOADED now
   // due go out (lock-step: and an answer naming the status and them).
@@ -161,6 +167,7 @@ class DispatcherPolicy {
   bool file_missions_scheduled_ = false;
   std::map<std::uint16_t, Recruiting> recruiting_;
   std::map<std::uint16_t, double> silent_since_;  // silent missions: since when (wall s)
+  std::set<std::uint16_t> unreachable_;           // SetUnreachable
 };
 
 }  // namespace core

@@ -51,7 +51,8 @@ bool MissionDispatcher::Initialize() {
         const core::MissionBook::Entry* entry = policy_->book().Find(id);
         return entry != nullptr && entry->phase == MissionPhase::kQueued;
       },
-      kNode);
+      kNode,
+      [this](const std::set<std::uint16_t>& unreachable) { policy_->SetUnreachable(unreachable); });
   status_pub_ = nh_.advertise<Mission_Status>(names::kMissionStatus, 100);
   event_pub_ = nh_.advertise<Mission_Event>(names::kMissionEvent, 10);
   delete_pub_ = nh_.advertise<Delete_Object>(names::kObjectDelete, 10);

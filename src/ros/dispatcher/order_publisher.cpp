@@ -1,5 +1,6 @@
 #include "swarm_transport/ros/dispatcher/order_publisher.h"
 
+#include <algorithm>
 #include <iterator>
 #include <utility>
 
@@ -28,14 +29,19 @@ void AwaitListeners(const ros::Publisher& pub, const char* node) {
 }
 
 OrderPublisher::OrderPublisher(ros::NodeHandle nh, bool lockstep,
-                               std::function<bool(std::uint16_t)> queued, const char* node)
-    : lockstep_(lockstep), queued_(std::move(queued)), node_(node) {
+                               std::function<bool(std::uint16_t)> queued, const char* node,
+                               Unreachable unreachable)
+    : lockstep_(lockstep),
+      queued_(std::move(queued)),
+      node_(node),
+      unreachable_changed_(std::move(unreachable)) {
   if (lockstep_) {
     pub_ = nh.advertise<New_Mission>(names::kMissionNew, kOrderQueue, true);
   } else {
     pub_ = nh.advertise<New_Mission>(
         names::kMissionNew, kOrderQueue,
-        [this](const ros::SingleSubscriberPublisher& listener) { OnListener(listener); });
+        [this](const ros::SingleSubscriberPublisher& listener) { OnListener(listener); },
+        [this](const ros::SingleSubscriberPublisher& listener) { OnListenerGone(listener); });
   }
 }
 
@@ -48,11 +54,32 @@ void OrderPublisher::Publish(const core::MissionSpec& spec, std::uint64_t start_
 }
 
 void OrderPublisher::OnListener(const ros::SingleSubscriberPublisher& listener) {
+  const core::Sender sender = SenderOf(listener.getSubscriberName());
+  if (sender.kind == core::SenderKind::kRobot) {
+    ++connections_[sender.robot_id];
+    if (unreachable_.erase(sender.robot_id) > 0) {
+      ROS_INFO("%s: robot %u's process is connected again: it may be picked", node_,
+               sender.robot_id);
+      if (unreachable_changed_) unreachable_changed_(unreachable_);
+    }
+  }
   ForgetStarted();
   for (const auto& kv : published_) listener.publish(kv.second);
   if (!published_.empty()) {
     ROS_INFO("%s: sent the %zu order(s) still QUEUED to %s, which connected after them", node_,
              published_.size(), listener.getSubscriberName().c_str());
+  }
+}
+
+void OrderPublisher::OnListenerGone(const ros::SingleSubscriberPublisher& listener) {
+  const core::Sender sender = SenderOf(listener.getSubscriberName());
+  if (sender.kind != core::SenderKind::kRobot) return;
+  int& count = connections_[sender.robot_id];
+  count = std::max(0, count - 1);
+  if (count == 0 && unreachable_.insert(sender.robot_id).second) {
+    ROS_INFO("%s: robot %u's process is gone from %s: no order picks it until it connects again",
+             node_, sender.robot_id, pub_.getTopic().c_str());
+    if (unreachable_changed_) unreachable_changed_(unreachable_);
   }
 }
 

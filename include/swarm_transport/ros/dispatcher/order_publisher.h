@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <set>
 
 #include "swarm_transport/New_Mission.h"
 #include "swarm_transport/core/mission.h"
@@ -21,11 +22,19 @@ namespace swarm_transport {
 // GATHERING waited for it for good (the soak). The order of a mission that has started does not
 // go (a process killed and started again under a member's id must not run it from QUEUED beside
 // the robots that carry it).
+//
+// Real time, it also keeps which robots' own processes (nodes /robot_<id>/robot) are connected:
+// a robot whose process was connected once and is not now (killed; started again and not
+// connected yet) is unreachable until its process connects again, and `unreachable` is called
+// with the set at every change (the dispatcher picks no robot among them: DispatcherPolicy::
+// SetUnreachable). Robots without a process of their own (a robot host's, lock-step) are never
+// counted unreachable.
 class OrderPublisher {
  public:
+  using Unreachable = std::function<void(const std::set<std::uint16_t>&)>;
   // `queued(id)`: mission `id` is still QUEUED. `node`: the name in log lines.
   OrderPublisher(ros::NodeHandle nh, bool lockstep, std::function<bool(std::uint16_t)> queued,
-                 const char* node);
+                 const char* node, Unreachable unreachable = nullptr);
   // Waits (at most kListenerWaitS) until every registered subscriber is connected, then
   // publishes.
   void Publish(const core::MissionSpec& spec, std::uint64_t start_tick);
@@ -36,12 +45,16 @@ class OrderPublisher {
 
  private:
   void OnListener(const ros::SingleSubscriberPublisher& listener);
+  void OnListenerGone(const ros::SingleSubscriberPublisher& listener);
 
   bool lockstep_;
   std::function<bool(std::uint16_t)> queued_;
   const char* node_;
   ros::Publisher pub_;
   std::map<std::uint16_t, New_Mission> published_;  // real time: published, still QUEUED
+  Unreachable unreachable_changed_;
+  std::map<std::uint16_t, int> connections_;  // a robot's own process: its connections now
+  std::set<std::uint16_t> unreachable_;
 };
 
 // Before a new order or an event: waits (at most kListenerWaitS) until every registered
