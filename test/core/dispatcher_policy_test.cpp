@@ -55,6 +55,17 @@ std::map<std::uint16_t, PlannerRobot> Row(int n) {
   return robots;
 }
 
+// A recruiting order for one robot: Thesis's mission, a 2 x 2 object at (5, 5) to (2, 5).
+MissionSpec OneRecruit(std::uint16_t id) {
+  MissionSpec recruit = Thesis(id);
+  recruit.range_from = recruit.range_to = 0;
+  recruit.recruit = true;
+  recruit.robot_count = 1;
+  recruit.object_centre = {5.0, 5.0};
+  recruit.target = {2.0, 5.0};
+  return recruit;
+}
+
 struct PolicyTest : ::testing::Test {
   double now_s = 0.0;
   Outlet outlet;
@@ -156,14 +167,7 @@ TEST_F(PolicyTest, NoRobotWhoseProcessIsNotConnectedIsPickedOrRecruited) {
   robots[1].position = {5.0, 5.0};  // inside the recruit's object from the start
   recruiting.OnSwarm(0, robots);
   recruiting.SetUnreachable({1});
-  MissionSpec recruit;
-  recruit.id = 5;
-  recruit.recruit = true;
-  recruit.robot_count = 1;
-  recruit.leader_number = 1;
-  recruit.object_centre = {5.0, 5.0};
-  recruit.object_size = {2.0, 2.0};
-  recruit.target = {2.0, 5.0};
+  const MissionSpec recruit = OneRecruit(5);
   ASSERT_TRUE(recruiting.Submit(recruit, "service", false, true).accepted);
   recruiting.OnSwarm(9, robots);
   EXPECT_EQ(outlet.orders.size(), 2u) << "robot 1 was recruited while unreachable";
@@ -211,13 +215,8 @@ TEST_F(PolicyTest, RealTimeFileMissionsAreLeftToTheCallersTimers) {
 TEST_F(PolicyTest, ARecruitSendsItsOrderTheTickAfterEnoughRobotsEntered) {
   DispatcherPolicy policy(Params(true), &outlet);
   policy.OnSwarm(0, Row(4));
-  MissionSpec recruit;
-  recruit.recruit = true;
+  MissionSpec recruit = OneRecruit(0);
   recruit.robot_count = 2;
-  recruit.leader_number = 1;
-  recruit.object_centre = {5.0, 5.0};
-  recruit.object_size = {2.0, 2.0};
-  recruit.target = {2.0, 5.0};
   const auto verdict = policy.Submit(recruit, "service", true, true);
   ASSERT_TRUE(verdict.accepted) << verdict.message;
   ASSERT_EQ(outlet.answers.size(), 2u);
@@ -250,14 +249,7 @@ TEST_F(PolicyTest, ARecruitSendsItsOrderTheTickAfterEnoughRobotsEntered) {
 TEST_F(PolicyTest, RealTimeRecruitPlacesAndRemovesItsStatist) {
   DispatcherPolicy policy(Params(false), &outlet);
   policy.OnSwarm(0, Row(4));
-  MissionSpec recruit;
-  recruit.id = 5;
-  recruit.recruit = true;
-  recruit.robot_count = 1;
-  recruit.leader_number = 1;
-  recruit.object_centre = {5.0, 5.0};
-  recruit.object_size = {2.0, 2.0};
-  recruit.target = {2.0, 5.0};
+  const MissionSpec recruit = OneRecruit(5);
   ASSERT_TRUE(policy.Submit(recruit, "service", false, true).accepted);
   EXPECT_EQ(outlet.statists_up, (std::vector<std::uint16_t>{kRecruitStatistId}));
   auto robots = Row(4);

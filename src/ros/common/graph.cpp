@@ -47,6 +47,21 @@ bool QueryTopicNodeCounts(TopicNodeCounts* out, bool wait_for_master) {
   return true;
 }
 
+bool QuerySubscriberNodes(const std::string& topic, std::vector<std::string>* nodes) {
+  XmlRpc::XmlRpcValue request, response, payload;
+  request[0] = ros::this_node::getName();
+  if (!ros::master::execute("getSystemState", request, response, payload, false)) return false;
+  nodes->clear();
+  XmlRpc::XmlRpcValue& subscribed = payload[1];
+  for (int i = 0; i < subscribed.size(); ++i) {
+    if (static_cast<std::string>(subscribed[i][0]) != topic) continue;
+    for (int j = 0; j < subscribed[i][1].size(); ++j) {
+      nodes->push_back(static_cast<std::string>(subscribed[i][1][j]));
+    }
+  }
+  return true;
+}
+
 bool AwaitSubscribers(const ros::Publisher& pub, double wait_s, double poll_s) {
   const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(wait_s);
   while (ros::ok()) {

@@ -217,6 +217,7 @@ void MissionDispatcher::OnNewMission(const ros::MessageEvent<New_Mission const>&
   // With admission by the dispatcher the robots take only what it publishes: an order it
   // admits from the topic it publishes itself (one decision for dispatcher and robots).
   const bool admit = config_.admission == core::Admission::kDispatcher;
+  orders_->RefreshUnreachable();
   policy_->Submit(ToMissionSpec(*event.getMessage()), "topic (" + event.getPublisherName() + ")",
                   false, admit, event.getMessage()->start_tick);
 }
@@ -269,6 +270,7 @@ void MissionDispatcher::OnProgress(const ros::MessageEvent<Mission_Status const>
 }
 
 bool MissionDispatcher::OnSubmit(Submit_Mission::Request& req, Submit_Mission::Response& res) {
+  orders_->RefreshUnreachable();
   const core::MissionBook::Verdict verdict =
       policy_->Submit(ToMissionSpec(req.mission), "service", true, true);
   res.code = verdict.accepted ? Submit_Mission::Response::OK : Submit_Mission::Response::REJECTED;

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <iterator>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "swarm_transport/ros/common/conversions.h"
 #include "swarm_transport/ros/common/graph.h"
@@ -57,10 +59,11 @@ void OrderPublisher::OnListener(const ros::SingleSubscriberPublisher& listener) 
   const core::Sender sender = SenderOf(listener.getSubscriberName());
   if (sender.kind == core::SenderKind::kRobot) {
     ++connections_[sender.robot_id];
-    if (unreachable_.erase(sender.robot_id) > 0) {
-      ROS_INFO("%s: robot %u's process is connected again: it may be picked", node_,
-               sender.robot_id);
-      if (unreachable_changed_) unreachable_changed_(unreachable_);
+    registered_.erase(sender.robot_id);
+    std::set<std::uint16_t> unreachable = unreachable_;
+    if (unreachable.erase(sender.robot_id) > 0) {
+      ROS_INFO("%s: robot %u's process is connected: it may be picked", node_, sender.robot_id);
+      SetUnreachable(std::move(unreachable));
     }
   }
   ForgetStarted();
@@ -76,11 +79,44 @@ void OrderPublisher::OnListenerGone(const ros::SingleSubscriberPublisher& listen
   if (sender.kind != core::SenderKind::kRobot) return;
   int& count = connections_[sender.robot_id];
   count = std::max(0, count - 1);
-  if (count == 0 && unreachable_.insert(sender.robot_id).second) {
+  if (count == 0 && unreachable_.count(sender.robot_id) == 0) {
     ROS_INFO("%s: robot %u's process is gone from %s: no order picks it until it connects again",
              node_, sender.robot_id, pub_.getTopic().c_str());
-    if (unreachable_changed_) unreachable_changed_(unreachable_);
+    std::set<std::uint16_t> unreachable = unreachable_;
+    unreachable.insert(sender.robot_id);
+    SetUnreachable(std::move(unreachable));
   }
+}
+
+void OrderPublisher::RefreshUnreachable() {
+  std::vector<std::string> nodes;
+  if (lockstep_ || !QuerySubscriberNodes(pub_.getTopic(), &nodes)) return;
+  registered_.clear();
+  for (const std::string& name : nodes) {
+    const core::Sender sender = SenderOf(name);
+    if (sender.kind != core::SenderKind::kRobot) continue;
+    const auto it = connections_.find(sender.robot_id);
+    if (it == connections_.end() || it->second == 0) registered_.insert(sender.robot_id);
+  }
+  // Gone (connected once, not now) or registered and not connected yet.
+  std::set<std::uint16_t> unreachable = registered_;
+  for (const auto& kv : connections_) {
+    if (kv.second == 0) unreachable.insert(kv.first);
+  }
+  if (unreachable != unreachable_) {
+    std::string ids;
+    for (std::uint16_t id : registered_) ids += (ids.empty() ? "" : ", ") + std::to_string(id);
+    if (!ids.empty()) {
+      ROS_INFO("%s: robot process(es) %s subscribe %s but are not connected yet: not picked", node_,
+               ids.c_str(), pub_.getTopic().c_str());
+    }
+    SetUnreachable(std::move(unreachable));
+  }
+}
+
+void OrderPublisher::SetUnreachable(std::set<std::uint16_t> unreachable) {
+  unreachable_ = std::move(unreachable);
+  if (unreachable_changed_) unreachable_changed_(unreachable_);
 }
 
 void OrderPublisher::ForgetStarted() {

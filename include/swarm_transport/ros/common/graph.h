@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <vector>
 
 namespace swarm_transport {
 
@@ -27,6 +28,10 @@ struct TopicNodeCounts {
 // Asks the master (getSystemState); false when it cannot be asked. `wait_for_master`: block
 // until the master answers.
 bool QueryTopicNodeCounts(TopicNodeCounts* out, bool wait_for_master = false);
+
+// The nodes the master lists as subscribers of `topic` (getSystemState); false when it cannot
+// be asked.
+bool QuerySubscriberNodes(const std::string& topic, std::vector<std::string>* nodes);
 
 // Waits (wall time, polling the master every poll_s) at most wait_s until every node registered
 // as a subscriber of pub's topic is connected to it: a message published before a connection is

@@ -25,10 +25,11 @@ namespace swarm_transport {
 //
 // Real time, it also keeps which robots' own processes (nodes /robot_<id>/robot) are connected:
 // a robot whose process was connected once and is not now (killed; started again and not
-// connected yet) is unreachable until its process connects again, and `unreachable` is called
-// with the set at every change (the dispatcher picks no robot among them: DispatcherPolicy::
-// SetUnreachable). Robots without a process of their own (a robot host's, lock-step) are never
-// counted unreachable.
+// connected yet), or whose process the master lists as a subscriber but is not connected yet
+// (start-up on a loaded machine: a robot picked then missed its order, yet was heard), is
+// unreachable until its process connects, and `unreachable` is called with the set at every
+// change (the dispatcher picks no robot among them: DispatcherPolicy::SetUnreachable). Robots
+// without a process of their own (a robot host's, lock-step) are never counted unreachable.
 class OrderPublisher {
  public:
   using Unreachable = std::function<void(const std::set<std::uint16_t>&)>;
@@ -42,6 +43,9 @@ class OrderPublisher {
   // is too late for them (quiet on the radio until its order topic is connected, it is lost for
   // the mission's members after lost_after_s, and the mission goes on without it).
   void ForgetStarted();
+  // Real time: asks the master which robot processes subscribe the orders, so that one not
+  // connected yet counts as unreachable (before a submission picks robots).
+  void RefreshUnreachable();
 
  private:
   void OnListener(const ros::SingleSubscriberPublisher& listener);
@@ -53,7 +57,10 @@ class OrderPublisher {
   ros::Publisher pub_;
   std::map<std::uint16_t, New_Mission> published_;  // real time: published, still QUEUED
   Unreachable unreachable_changed_;
+  void SetUnreachable(std::set<std::uint16_t> unreachable);
+
   std::map<std::uint16_t, int> connections_;  // a robot's own process: its connections now
+  std::set<std::uint16_t> registered_;        // ... listed by the master, not connected (yet)
   std::set<std::uint16_t> unreachable_;
 };
 
