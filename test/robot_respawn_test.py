@@ -136,9 +136,18 @@ class RobotRespawn(unittest.TestCase):
             picked = re.search(r'robots? \{([0-9, ]+)\}', answer.message)
             return answer, [int(r) for r in picked.group(1).split(',')] if picked else []
 
+        # Every robot process connected to the orders first (else one still connecting is not
+        # counted either), then robot 3's gone from them.
+        nodes = {'/robot_%d/robot' % r for r in range(robots)}
+
+        def connected():
+            return st.subscribers_of('/mission_dispatcher', '/flock/mission/new') & nodes
+
+        self.assertTrue(st.wait_for(lambda: connected() == nodes, timeout),
+                        'not connected to the orders: %s' % sorted(nodes - connected()))
         os.kill(st.node_pid('/robot_3/robot'), signal.SIGKILL)
-        # The dispatcher sees the connection drop at once; a second is slack.
-        time.sleep(1.0)
+        self.assertTrue(st.wait_for(lambda: '/robot_3/robot' not in connected(), timeout),
+                        'the dispatcher still sends orders to the killed robot 3')
         everyone, _ = order(10, robots)
         self.assertNotEqual(everyone.code, 0, 'all %d robots picked, robot 3 without a process: '
                             '%s' % (robots, everyone.message))

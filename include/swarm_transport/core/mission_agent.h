@@ -230,7 +230,7 @@ class MissionAgent {
     std::map<std::uint16_t, std::uint64_t> heard_tick;  // each member's last tick heard
     std::map<std::uint16_t, Vec2> last_seen;            // ... and where
     std::set<std::uint16_t> lost;                       // members lost for the mission (for good)
-    bool reanchor = false;          // a member was lost in transport: anchor the object anew
+    bool reanchor = false;  // a member was lost in transport: anchor the object anew
     // Transport, not its first leader: the first leader's object of an update taken since the
     // last tick, and this robot's centroid of the mission's robots at its last tick.
     std::optional<Vec2> leader_centre;
