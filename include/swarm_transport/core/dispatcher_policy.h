@@ -103,7 +103,6 @@ class DispatcherPolicy {
   // heard, but an order would not reach them: robot_count and recruiting pick none of them (a
   // member that never got its order but was heard held its mission's GATHERING for good).
   void SetUnreachable(std::set<std::uint16_t> robots) { unreachable_ = std::move(robots); }
-  const std::set<std::uint16_t>& unreachable() const { return unreachable_; }
 
   // A first leader's phase report (its fields checked) from `from`: the LOADED / UNLOADED now
   // due go out (lock-step: and an answer naming the status and them).

@@ -59,7 +59,6 @@ void OrderPublisher::OnListener(const ros::SingleSubscriberPublisher& listener) 
   const core::Sender sender = SenderOf(listener.getSubscriberName());
   if (sender.kind == core::SenderKind::kRobot) {
     ++connections_[sender.robot_id];
-    registered_.erase(sender.robot_id);
     std::set<std::uint16_t> unreachable = unreachable_;
     if (unreachable.erase(sender.robot_id) > 0) {
       ROS_INFO("%s: robot %u's process is connected: it may be picked", node_, sender.robot_id);
@@ -91,21 +90,21 @@ void OrderPublisher::OnListenerGone(const ros::SingleSubscriberPublisher& listen
 void OrderPublisher::RefreshUnreachable() {
   std::vector<std::string> nodes;
   if (lockstep_ || !QuerySubscriberNodes(pub_.getTopic(), &nodes)) return;
-  registered_.clear();
+  std::set<std::uint16_t> registered;  // listed by the master, not connected (yet)
   for (const std::string& name : nodes) {
     const core::Sender sender = SenderOf(name);
     if (sender.kind != core::SenderKind::kRobot) continue;
     const auto it = connections_.find(sender.robot_id);
-    if (it == connections_.end() || it->second == 0) registered_.insert(sender.robot_id);
+    if (it == connections_.end() || it->second == 0) registered.insert(sender.robot_id);
   }
   // Gone (connected once, not now) or registered and not connected yet.
-  std::set<std::uint16_t> unreachable = registered_;
+  std::set<std::uint16_t> unreachable = registered;
   for (const auto& kv : connections_) {
     if (kv.second == 0) unreachable.insert(kv.first);
   }
   if (unreachable != unreachable_) {
     std::string ids;
-    for (std::uint16_t id : registered_) ids += (ids.empty() ? "" : ", ") + std::to_string(id);
+    for (std::uint16_t id : registered) ids += (ids.empty() ? "" : ", ") + std::to_string(id);
     if (!ids.empty()) {
       ROS_INFO("%s: robot process(es) %s subscribe %s but are not connected yet: not picked", node_,
                ids.c_str(), pub_.getTopic().c_str());

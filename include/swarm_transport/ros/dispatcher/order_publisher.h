@@ -60,7 +60,6 @@ class OrderPublisher {
   void SetUnreachable(std::set<std::uint16_t> unreachable);
 
   std::map<std::uint16_t, int> connections_;  // a robot's own process: its connections now
-  std::set<std::uint16_t> registered_;        // ... listed by the master, not connected (yet)
   std::set<std::uint16_t> unreachable_;
 };
 
