@@ -55,11 +55,12 @@ def fd_count(pid):
 
 
 class Schedule(object):
-    """Faults drawn from the seed: the kinds in shuffled rounds (so a short soak still sees each
-    kind), gaps uniform in [gap_min_s, gap_max_s], the robots and loss levels drawn alongside."""
+    """Faults drawn from the seed: the kinds (all of KINDS, or those asked for) in shuffled
+    rounds (so a short soak still sees each kind), gaps uniform in [gap_min_s, gap_max_s], the robots and loss levels drawn alongside."""
 
-    def __init__(self, seed, robots, gap_min_s, gap_max_s, first_s):
+    def __init__(self, seed, robots, gap_min_s, gap_max_s, first_s, kinds=KINDS):
         self.rng = random.Random(seed)
+        self.kinds = tuple(kinds)
         self.robots = robots
         self.gap = (gap_min_s, gap_max_s)
         self.next_s = first_s
@@ -68,7 +69,7 @@ class Schedule(object):
     def draw(self):
         """(at_s, kind, robot, loss) of the next fault."""
         if not self.queue:
-            self.queue = list(KINDS)
+            self.queue = list(self.kinds)
             self.rng.shuffle(self.queue)
         kind = self.queue.pop(0)
         at = self.next_s

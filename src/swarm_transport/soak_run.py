@@ -33,7 +33,7 @@ class Run(object):
         self.missions = Missions()
         self.watch = sf.Watch(a.warmup_s)
         self.schedule = sf.Schedule(a.seed, a.robots, a.gap_s[0], a.gap_s[1],
-                                    first_s=a.first_fault_s)
+                                    first_s=a.first_fault_s, kinds=a.faults)
         self.pending = []    # (at, what, callable)
         self.faults = []     # dicts: kind, at_s, what, effect
         self.launches = {}   # role -> Popen of its roslaunch
@@ -327,5 +327,6 @@ class Run(object):
             'crashes': len(self.watch.crashes), 'rss_growth_pct': round(rss, 1),
             'rss_growth_node': rss_node, 'fd_growth': fds, 'fd_growth_node': fds_node,
             'faults': len(self.faults), 'fault_log': self.faults,
+            'fault_kinds': list(self.a.faults),
             'minutes': self.a.minutes, 'seed': self.a.seed, 'robots': self.a.robots,
             'deploy': self.a.deploy}

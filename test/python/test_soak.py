@@ -35,6 +35,22 @@ class Schedule(unittest.TestCase):
         self.assertNotEqual(first, [soak_faults.Schedule(8, 12, 10.0, 20.0, 30.0).draw()
                                     for _ in range(12)])
 
+    def test_only_the_kinds_asked_for(self):
+        quiet = ('robot_stop', 'radio_loss', 'flood')
+        s = soak_faults.Schedule(7, 12, 10.0, 20.0, first_s=30.0, kinds=quiet)
+        drawn = [s.draw()[1] for _ in range(9)]
+        for r in range(3):
+            self.assertEqual(sorted(drawn[r * 3:(r + 1) * 3]), sorted(quiet))
+
+    def test_the_faults_option(self):
+        a = soak.parse_args(['--faults', 'flood, robot_stop', '--out', '/nonexistent/a'])
+        self.assertEqual(a.faults, ('robot_stop', 'flood'))
+        self.assertEqual(soak.parse_args(['--out', '/nonexistent/b']).faults,
+                         soak_faults.KINDS)
+        for bad in ('robot_kil', 'flood,flood', ','):
+            with self.assertRaises(SystemExit, msg=bad):
+                soak.parse_args(['--faults', bad, '--out', '/nonexistent/c'])
+
 
 class Rows(unittest.TestCase):
 
@@ -128,6 +144,11 @@ class Checks(unittest.TestCase):
         self.assertIn('soak_ran', self.failures(result(ok=False, error='no master')))
         log = result()['fault_log'][:3]
         self.assertIn('every_fault_kind_injected', self.failures(result(fault_log=log)))
+        asked = [f['kind'] for f in log]
+        self.assertNotIn('every_fault_kind_injected',
+                         self.failures(result(fault_log=log, fault_kinds=asked)))
+        self.assertIn('every_fault_kind_injected',
+                      self.failures(result(fault_log=log[:2], fault_kinds=asked)))
         log = result()['fault_log']
         log[2] = dict(log[2], effect='/recorder NOT back; live missions: none')
         self.assertIn('every_fault_had_its_effect', self.failures(result(fault_log=log)))
