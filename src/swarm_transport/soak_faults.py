@@ -132,18 +132,21 @@ class Watch(object):
                 continue
             inc['samples'].append((now, status_kb(pid, 'VmRSS'), fd_count(pid)))
 
-    def growth(self):
+    def growth(self, by_node=None):
         """(max RSS growth %, its node, max fd growth, its node) over the incarnations that
-        lived past twice the warm-up: from the first sample after the warm-up to the last."""
+        lived past twice the warm-up: from the first sample after the warm-up to the last.
+        `by_node`, a dict, gets each judged incarnation's 'name (pid)': [RSS kB first, last]."""
         rss = (0.0, '')
         fds = (0, '')
-        for inc in self.incarnations.values():
+        for pid, inc in self.incarnations.items():
             after = [s for s in inc['samples'] if s[0] - inc['start'] >= self.warmup_s]
             if len(after) < 2 or after[-1][0] - inc['start'] < 2 * self.warmup_s:
                 continue
             first, last = after[0], after[-1]
             if first[1] and last[1] is not None:
                 pct = 100.0 * (last[1] - first[1]) / first[1]
+                if by_node is not None:
+                    by_node['%s (%d)' % (inc['name'], pid)] = [first[1], last[1]]
                 if pct > rss[0] or not rss[1]:
                     rss = (pct, inc['name'])
             if first[2] is not None and last[2] is not None:

@@ -311,7 +311,8 @@ class Run(object):
             ended = [i for i in m.states if m.final(i) in (DONE, ABORTED)]
         lost = sorted(i for i in ended if i not in rows)
         duplicate = sum(n - 1 for i, n in rows.items() if n > 1)
-        rss, rss_node, fds, fds_node = self.watch.growth()
+        by_node = {}
+        rss, rss_node, fds, fds_node = self.watch.growth(by_node)
         for t, name, pid in self.watch.crashes:
             self.log('CRASH %s (pid %d) at %.0f s' % (name, pid, t - (self.t0 or t)))
         if lost:
@@ -325,7 +326,8 @@ class Run(object):
             'unfinished': len(m.live()),
             'hung': len(self.hung), 'lost_rows': len(lost), 'duplicate_rows': duplicate,
             'crashes': len(self.watch.crashes), 'rss_growth_pct': round(rss, 1),
-            'rss_growth_node': rss_node, 'fd_growth': fds, 'fd_growth_node': fds_node,
+            'rss_growth_node': rss_node, 'rss_kb_by_node': by_node,
+            'fd_growth': fds, 'fd_growth_node': fds_node,
             'faults': len(self.faults), 'fault_log': self.faults,
             'fault_kinds': list(self.a.faults),
             'minutes': self.a.minutes, 'seed': self.a.seed, 'robots': self.a.robots,

@@ -74,9 +74,11 @@ class Growth(unittest.TestCase):
             2: {'name': '/b', 'start': 0.0, 'end': None,
                 'samples': [(10.0, 100, 10), (15.0, 500, 90)]},
         }
-        rss, rss_node, fds, fds_node = w.growth()
+        by_node = {}
+        rss, rss_node, fds, fds_node = w.growth(by_node)
         self.assertAlmostEqual(rss, 20.0)
         self.assertEqual((rss_node, fds, fds_node), ('/a', 1, '/a'))
+        self.assertEqual(by_node, {'/a (1)': [100, 120]})
 
 
 class Status(object):
