@@ -10,10 +10,12 @@
 #include <string>
 
 #include "swarm_transport/core/metrics_query.h"
+#include "swarm_transport/ros/common/crash_trace.h"
 #include "swarm_transport/ros/common/params.h"
 #include "swarm_transport/ros/engine/batch_run.h"
 
 int main(int argc, char** argv) {
+  swarm_transport::InstallCrashTrace("experiment_batch");
   std::string base_path;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];

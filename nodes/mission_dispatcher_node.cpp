@@ -4,6 +4,7 @@
 
 #include <csignal>
 
+#include "swarm_transport/ros/common/crash_trace.h"
 #include "swarm_transport/ros/common/master_watch.h"
 #include "swarm_transport/ros/dispatcher/mission_dispatcher.h"
 
@@ -14,6 +15,7 @@ volatile std::sig_atomic_t stop_requested = 0;
 }  // namespace
 
 int main(int argc, char** argv) {
+  swarm_transport::InstallCrashTrace("mission_dispatcher");
   // Our own SIGINT / SIGTERM handler: roscpp's would shut down before the dispatcher deletes its
   // ~instance parameter (a clean stop is no restart for the next start on this master).
   ros::init(argc, argv, "mission_dispatcher", ros::init_options::NoSigintHandler);

@@ -2,9 +2,11 @@
 #include <ros/ros.h>
 
 #include "swarm_transport/ros/bases/positions_relay.h"
+#include "swarm_transport/ros/common/crash_trace.h"
 #include "swarm_transport/ros/common/master_watch.h"
 
 int main(int argc, char** argv) {
+  swarm_transport::InstallCrashTrace("positions");
   ros::init(argc, argv, "positions");
   ros::NodeHandle nh;
   ros::NodeHandle private_nh("~");

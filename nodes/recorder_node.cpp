@@ -3,10 +3,12 @@
 
 #include <csignal>
 
+#include "swarm_transport/ros/common/crash_trace.h"
 #include "swarm_transport/ros/common/master_watch.h"
 #include "swarm_transport/ros/recorder/recorder.h"
 
 int main(int argc, char** argv) {
+  swarm_transport::InstallCrashTrace("recorder");
   // Our own SIGINT / SIGTERM handler: roscpp's would shut down before the files are closed.
   ros::init(argc, argv, "recorder", ros::init_options::NoSigintHandler);
   std::signal(SIGINT, [](int) { swarm_transport::Recorder::RequestStop(); });

@@ -1,10 +1,12 @@
 // Many robots in one process (ids [~from, ~to)), each as if it were its own robot node.
 #include <ros/ros.h>
 
+#include "swarm_transport/ros/common/crash_trace.h"
 #include "swarm_transport/ros/common/master_watch.h"
 #include "swarm_transport/ros/robot/robot_host.h"
 
 int main(int argc, char** argv) {
+  swarm_transport::InstallCrashTrace("robot_host");
   ros::init(argc, argv, "robot_host");
   ros::NodeHandle nh;
   ros::NodeHandle private_nh("~");

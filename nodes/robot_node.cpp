@@ -4,9 +4,11 @@
 
 #include <ros/ros.h>
 
+#include "swarm_transport/ros/common/crash_trace.h"
 #include "swarm_transport/ros/common/master_watch.h"
 
 int main(int argc, char** argv) {
+  swarm_transport::InstallCrashTrace("robot");
   ros::init(argc, argv, "robot");
   ros::NodeHandle nh;
   ros::NodeHandle private_nh("~");

@@ -3,10 +3,12 @@
 
 #include <csignal>
 
+#include "swarm_transport/ros/common/crash_trace.h"
 #include "swarm_transport/ros/common/master_watch.h"
 #include "swarm_transport/ros/simulator/simulator.h"
 
 int main(int argc, char** argv) {
+  swarm_transport::InstallCrashTrace("simulator");
   // Our own SIGINT handler: roscpp's would silence rosconsole before the final summary.
   ros::init(argc, argv, "simulator", ros::init_options::NoSigintHandler);
   std::signal(SIGINT, [](int) { swarm_transport::Simulator::RequestStop(); });
