@@ -107,11 +107,20 @@ class Watch(object):
             pid = node_pid(name)
         if pid is None:
             return None
+        if not process_alive(pid):
+            # Killed by an earlier fault and not back yet (faults closer together than a
+            # respawn): its pid is stale. The node as registered now, if it is back.
+            pid = node_pid(name)
+            if pid is None or not process_alive(pid):
+                return None
         if sig == signal.SIGKILL:
             self.killed.add(pid)
         elif sig == signal.SIGSTOP:
             self.stopped.add(pid)
-        os.kill(pid, sig)
+        try:
+            os.kill(pid, sig)
+        except ProcessLookupError:  # died between the look and the signal
+            return None
         return pid
 
     def resume(self, pid):

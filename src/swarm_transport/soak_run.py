@@ -122,7 +122,9 @@ class Run(object):
                 self.respawn(rid, fault, launch=False)
             else:
                 pid = self.watch.kill(node)
-                fault['what'] = 'SIGKILL robot %d (pid %s)' % (rid, pid)
+                fault['what'] = ('SIGKILL robot %d (pid %s)' % (rid, pid) if pid else
+                                 'robot %d not running (killed by an earlier fault and not back '
+                                 'yet): respawned' % rid)
                 self.later(RESPAWN_S, 'respawn robot %d' % rid,
                            lambda: self.respawn(rid, fault, launch=True))
         elif kind == 'robot_stop':

@@ -52,6 +52,25 @@ class Schedule(unittest.TestCase):
                 soak.parse_args(['--faults', bad, '--out', '/nonexistent/c'])
 
 
+class Kill(unittest.TestCase):
+
+    def test_a_node_killed_before_and_not_back_is_not_signalled(self):
+        with open('/proc/sys/kernel/pid_max') as f:
+            gone = int(f.read()) + 1  # no process has it: the pid of a robot killed before
+        w = soak_faults.Watch(warmup_s=10.0)
+        w.current['/robot_3/robot'] = gone
+        before = os.environ.get('ROS_MASTER_URI')
+        os.environ['ROS_MASTER_URI'] = 'http://127.0.0.1:9'  # nothing there: not registered
+        try:
+            self.assertIsNone(w.kill('/robot_3/robot'))
+        finally:
+            if before is None:
+                del os.environ['ROS_MASTER_URI']
+            else:
+                os.environ['ROS_MASTER_URI'] = before
+        self.assertNotIn(gone, w.killed)
+
+
 class Rows(unittest.TestCase):
 
     def test_rows_per_mission_skip_the_header_and_comments(self):
