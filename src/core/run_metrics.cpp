@@ -73,7 +73,12 @@ bool RunMetrics::AddFrame(MetricsFrame frame, std::optional<SwarmSample>* sample
   if (!history_.empty() && frame.tick <= history_.back().tick) return false;
   history_.push_back(std::move(frame));
   const std::size_t capacity = HistoryCapacity(history_.back().positions.size());
-  while (history_.size() > capacity) {
+  const double newest_wall_s = history_.back().wall_s;
+  const auto too_old = [this, newest_wall_s](const MetricsFrame& oldest) {
+    return params_.history_wall_s > 0.0 && newest_wall_s > 0.0 && oldest.wall_s > 0.0 &&
+           newest_wall_s - oldest.wall_s > params_.history_wall_s;
+  };
+  while (history_.size() > capacity || (history_.size() > 1 && too_old(history_.front()))) {
     // The oldest frame leaves: windows whose end is not known yet take it in now.
     FeedMissions(false, history_.front().tick);
     history_.pop_front();

@@ -340,6 +340,39 @@ TEST(RunMetricsTest, AFrameLeavingTheHistoryFeedsAMissionWhoseEndIsNotKnown) {
               "start there"));
 }
 
+// A long-lived recorder in real time: frames leave the history by wall time as well (statuses
+// come seconds late, not 33 minutes), so its memory stops growing.
+TEST(RunMetricsTest, FramesOlderThanTheWallWindowLeaveTheHistory) {
+  for (const double window_s : {0.0, 10.05}) {
+    LogLines log;
+    RunMetricsParams params = Params();
+    params.history_wall_s = window_s;
+    RunMetrics metrics(params, log.Log());
+    metrics.AddOrder(fixtures::Thesis(8), 0);
+    // 300 frames at 10 Hz (of 3 robots: the tick count alone keeps 20,000 frames).
+    for (std::uint64_t tick = 0; tick < 300; ++tick) {
+      MetricsFrame frame = Frame(tick, Carriers(tick));
+      frame.wall_s = 1000.0 + 0.1 * static_cast<double>(tick);
+      ASSERT_TRUE(metrics.AddFrame(std::move(frame), nullptr));
+    }
+    metrics.AddStatus(8, MissionPhase::kTransport, 10, {7.0, 7.0});  // late
+    metrics.AddStatus(8, MissionPhase::kUnloading, 250, {3.0, 3.0});
+    metrics.AddStatus(8, MissionPhase::kDone, 251, {3.0, 3.0});
+    const std::vector<std::string> rows = metrics.TakeMissionRows();
+    ASSERT_EQ(rows.size(), 1u) << window_s;
+    if (window_s == 0.0) {
+      EXPECT_EQ(Field(rows[0], 11), "240");  // ticks 10..250: every frame kept
+      for (const std::string& line : log.lines) EXPECT_NE(line.rfind("W ", 0), 0u) << line;
+    } else {
+      // Kept: the frames within 10.05 s of the newest (tick 299 at 1029.9 s): 199..299.
+      EXPECT_EQ(Field(rows[0], 11), "51");
+      EXPECT_TRUE(log.Has(
+          "W mission 8 began at tick 10, before the oldest kept frame (tick 199); its metrics "
+          "start there"));
+    }
+  }
+}
+
 TEST(RunMetricsTest, DrainWritesFinishedMissionsStillWaitingForFrames) {
   RunMetrics metrics(Params());
   metrics.AddOrder(fixtures::Thesis(7), 0);

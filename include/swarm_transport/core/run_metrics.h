@@ -28,6 +28,7 @@ namespace core {
 struct MetricsFrame {
   std::uint64_t tick = 0;
   double sim_time_s = 0.0;
+  double wall_s = 0.0;  // wall clock when it was taken (0: not known; the batch runs)
   std::vector<std::uint16_t> ids;
   std::vector<Vec2> positions;
   // Index of robot `id`, or -1.
@@ -53,6 +54,10 @@ struct RunMetricsParams {
   double world_size_m = 11.088889;
   double coverage_radius_m = 1.0;
   double coverage_cell_m = 0.1;
+  // > 0: frames taken (wall_s) longer ago than this before the newest also leave the history.
+  // Statuses come late by wall time (messages queued), not by ticks: in real time 20,000 frames
+  // are 33 minutes, and a long-lived recorder held them all (~11 MB at 25 robots).
+  double history_wall_s = 0.0;
 };
 
 class RunMetrics {
@@ -67,7 +72,8 @@ class RunMetrics {
   static const char kRunHeader[];
 
   // Frames kept for missions whose status arrives late: as many as hold kHistoryPositions
-  // robot positions, within [kMinHistoryFrames, kMaxHistoryFrames].
+  // robot positions, within [kMinHistoryFrames, kMaxHistoryFrames] (and no older than
+  // RunMetricsParams::history_wall_s).
   static constexpr std::size_t kHistoryPositions = 4000000;
   static constexpr std::size_t kMinHistoryFrames = 256;
   static constexpr std::size_t kMaxHistoryFrames = 20000;
