@@ -169,7 +169,12 @@ class Run(object):
             return
         if launch:
             role = 'robot_%d' % rid
-            self.stop_launch(role)  # an earlier respawn's launch of this id
+            # An earlier respawn's launch of this id (a fault on it again, sooner than its next
+            # respawn): the robot it started ends with it, stopped by the soak, no crash.
+            earlier = self.watch.current.get(sf.robot_node(rid, self.a.deploy))
+            if earlier is not None and role in self.launches:
+                self.watch.killed.add(earlier)
+            self.stop_launch(role)
             self.launches[role] = self.ros.launch(
                 'robot.launch', {'id': rid, 'output': 'log'}, name=self.log_name(role))
         node = sf.robot_node(rid, self.a.deploy)
