@@ -212,6 +212,7 @@ BrainTick RobotBrain::Tick(Perception in, std::uint64_t tick, bool publish) {
   }
   last_move_ = out.move;
   last_heard_ = in.others.size();
+  last_self_ = in.self;
   // A frozen robot keeps computing (its random sequence stays aligned) but does not drive; a
   // leader under its object may still turn in place to face its course.
   if (!frozen_) {

@@ -75,6 +75,8 @@ class RobotBrain {
   const MissionPlan& last_plan() const { return last_plan_; }
   const MoveDecision& last_move() const { return last_move_; }
   std::size_t last_heard() const { return last_heard_; }
+  // Its own pose as its last tick knew it (what it planned from; the world may differ).
+  const Pose2& last_self() const { return last_self_; }
   // Its balloon's radius (m): the robot's radius unless it is in balloon standby.
   double balloon_radius_m() const { return balloon_radius_m_; }
   // The flocking parameters it uses now (its configuration's until a tuning came).
@@ -106,6 +108,7 @@ class RobotBrain {
   MissionPlan last_plan_;
   MoveDecision last_move_;
   std::size_t last_heard_ = 0;
+  Pose2 last_self_;
   // Balloon standby (SPEC 9.5): its balloon's radius, reset whenever it is not in standby.
   double balloon_radius_m_ = 0.0;
 };

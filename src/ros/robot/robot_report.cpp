@@ -29,6 +29,18 @@ Robot_State::Response StateOf(const core::RobotSession& session, std::uint64_t t
   state.heading_deg = move.heading.degrees();
   state.distance_m = move.distance_m;
   state.fleeing = move.fleeing;
+  const core::Pose2& self = brain.last_self();
+  state.x = self.position.x;
+  state.y = self.position.y;
+  state.theta_deg = self.heading.degrees();
+  if (plan.carry) {
+    state.carrying = true;
+    state.object_x = plan.carry->centre.x;
+    state.object_y = plan.carry->centre.y;
+    state.target_x = plan.carry->target.x;
+    state.target_y = plan.carry->target.y;
+    state.inside = plan.carry->object.Contains(self.position);
+  }
   state.tuning_generation = session.tuning_generation();
   state.tuning_tick = session.tuning_tick();
   const core::FlockingTuning tuning = brain.tuning();
@@ -59,9 +71,15 @@ std::string Describe(const Robot_State::Response& s) {
   }
   os << "] heard=" << s.heard << " desired=" << s.desired_heading_deg
      << " heading=" << s.heading_deg << " distance=" << s.distance_m
-     << " fleeing=" << (s.fleeing ? 1 : 0) << " free_will=" << s.free_will_deg
-     << " cohesion=" << s.cohesion << " range=" << s.local_range_m
-     << " speed=" << s.speed_m_per_tick << " tuning=" << s.tuning_generation;
+     << " fleeing=" << (s.fleeing ? 1 : 0) << " at=(" << s.x << ", " << s.y << ", " << s.theta_deg
+     << ")";
+  if (s.carrying) {
+    os << " object=(" << s.object_x << ", " << s.object_y << ")->(" << s.target_x << ", "
+       << s.target_y << ") inside=" << (s.inside ? 1 : 0);
+  }
+  os << " free_will=" << s.free_will_deg << " cohesion=" << s.cohesion
+     << " range=" << s.local_range_m << " speed=" << s.speed_m_per_tick
+     << " tuning=" << s.tuning_generation;
   return os.str();
 }
 
