@@ -293,6 +293,9 @@ class Run(object):
             return
         for r in robots:
             self.log('  robot %d: %s' % (r, ask_describe(sf.robot_node(r, 'process'))))
+        # Whether they move at all (a robot that plans a move the world does not make).
+        time.sleep(2.0)
+        self.log('  2 s later: %s' % self.poses_of(robots))
 
     @staticmethod
     def poses_of(robots):
