@@ -4,17 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <utility>
 #include <variant>
 
+#include "swarm_transport/core/hardware.h"
 #include "swarm_transport/core/kinematics.h"
 #include "swarm_transport/ros/common/conversions.h"
 #include "swarm_transport/ros/common/names.h"
-#include "swarm_transport/ros/common/params.h"
-#include "swarm_transport/ros/robot/hardware_transport.h"
-#include "swarm_transport/ros/robot/own_topics_transport.h"
-#include "swarm_transport/ros/robot/robot_report.h"
 
 namespace swarm_transport {
 namespace {
@@ -22,48 +18,11 @@ namespace {
 // Broadcast comm: every robot publishes once per tick, so the queue must hold a whole swarm's
 // tick (as the simulator's).
 constexpr std::uint32_t kBroadcastQueue = 10000;
-// A robot logs one line per kind of rejected message per this many wall seconds (a flood of bad
-// messages must not flood the log; issue 11).
-constexpr double kRejectLogPeriodS = 10.0;
 
 }  // namespace
 
-std::string RobotNodeOptions::Validate() const {
-  std::ostringstream os;
-  if (id < 0 || id > 65535) {
-    os << "~id must be set to an integer in [0, 65535] but is " << id;
-  } else if (hardware && clock != core::Clock::kRealtime) {
-    os << "~hardware needs ~clock realtime (a robot on hardware ticks on the wall clock)";
-  } else if (hardware && comm != core::Comm::kLocal) {
-    os << "~hardware needs ~comm local (its own radio decides whom it hears)";
-  }
-  return os.str();
-}
-
 RobotNode::RobotNode(ros::NodeHandle nh, ros::NodeHandle private_nh)
     : nh_(nh), private_nh_(private_nh) {}
-
-bool RobotNode::Initialize() {
-  RobotNodeOptions options;
-  std::string error;
-  if (!ReadPrivate(private_nh_, "id", &options.id, &error) ||
-      !ReadPrivate(private_nh_, "clock", &options.clock, &error) ||
-      !ReadPrivate(private_nh_, "comm", &options.comm, &error) ||
-      !ReadPrivate(private_nh_, "diagnostics", &options.diagnostics, &error) ||
-      !ReadPrivate(private_nh_, "hardware", &options.hardware, &error)) {
-    ROS_FATAL("robot: invalid parameters: %s", error.c_str());
-    return false;
-  }
-  if (!options.hardware) {
-    return Initialize(options, std::make_unique<OwnTopicsTransport>(options.clock));
-  }
-  core::HardwareOptions hardware;
-  if (!ReadHardwareOptions(private_nh_, &hardware, &error)) {
-    ROS_FATAL("robot: invalid parameters: %s", error.c_str());
-    return false;
-  }
-  return Initialize(options, std::make_unique<HardwareTransport>(hardware));
-}
 
 bool RobotNode::Initialize(const RobotNodeOptions& options,
                            std::unique_ptr<RobotTransport> transport, const SwarmConfig* swarm) {
@@ -84,6 +43,7 @@ bool RobotNode::Initialize(const RobotNodeOptions& options,
   }
   id_ = static_cast<std::uint16_t>(options_.id);
   session_.emplace(id_, config_);
+  round_watch_ = core::PoseWatch(config_.lost_after_s);
   // A real-time simulation relays its pose from the simulator's world while its process misses
   // ticks; lock-step makes it quiet, and a robot that announces its own position falls silent.
   session_->set_heard_while_hung(!lockstep() && !transport_->AnnouncesPosition() &&
@@ -170,6 +130,7 @@ void RobotNode::TakeRound(const Neighbors::ConstPtr& msg, double arrival_s) {
     return;
   }
   perception_ = msg;
+  round_watch_.Took(arrival_s);
   // Lock-step: the round carries its tick's simulated time, so a robot process needs no /clock
   // (robot.launch remaps it away: one message less per robot and tick); its log lines and
   // anything else on ros::Time see the tick it is in.
@@ -197,7 +158,27 @@ void RobotNode::TakeRound(const Neighbors::ConstPtr& msg, double arrival_s) {
 }
 
 void RobotNode::TimerTick() {
-  if (perception_) Tick();
+  if (!perception_) return;
+  // No round for as long as its peers would take to count a robot lost: it would act on where
+  // it and they were then, turning the same turn again and again (a soak's robot drove into the
+  // arena's corner so, and its mission's object after it). It stands until rounds return, as a
+  // robot on hardware without poses does.
+  core::PoseWatch::Change change = core::PoseWatch::Change::kNone;
+  const double now_s = ros::WallTime::now().toSec();
+  const bool fresh = round_watch_.Check(now_s, &change);
+  if (change == core::PoseWatch::Change::kStale) {
+    ROS_WARN(
+        "robot %u: no radio round for %.2f s (/swarm/lost_after_s %.2f): it stands until "
+        "rounds return",
+        id_, round_watch_.AgeS(now_s), config_.lost_after_s);
+  } else if (change == core::PoseWatch::Change::kFresh) {
+    ROS_INFO("robot %u: radio rounds are back: it moves again", id_);
+  }
+  if (!fresh) {
+    transport_->SendCommand(geometry_msgs::Twist());
+    return;
+  }
+  Tick();
 }
 
 void RobotNode::CountDelivered(std::size_t expected, std::size_t delivered) {
@@ -241,41 +222,6 @@ void RobotNode::Hand(const core::MissionMessage& message, const core::Sender& fr
     }
   }
   Say(taken);
-}
-
-void RobotNode::Say(const core::RobotSession::Taken& taken) {
-  switch (taken.say) {
-    case core::RobotSession::Taken::Say::kNothing:
-      return;
-    case core::RobotSession::Taken::Say::kDebug:
-      ROS_DEBUG("robot %u: ignored: %s", id_, taken.why.c_str());
-      return;
-    case core::RobotSession::Taken::Say::kWarn: {
-      WarnThrottle& throttle = rejected_.try_emplace(taken.kind, kRejectLogPeriodS).first->second;
-      if (!throttle.Due()) return;
-      ROS_WARN("robot %u: rejected %s%s", id_, taken.why.c_str(),
-               throttle.AndMore(taken.kind).c_str());
-      return;
-    }
-  }
-}
-
-void RobotNode::PublishStatusIfDue() {
-  if (!diagnostics_) return;
-  diagnostics_->PublishIfDue([this](NodeStatus* s) {
-    FillStatus(StateOf(*session_, ticks_, listed_), perception_ ? perception_->tick : 0, s);
-  });
-}
-
-bool RobotNode::OnState(Robot_State::Request& /*req*/, Robot_State::Response& res) {
-  res = StateOf(*session_, ticks_, listed_);
-  return true;
-}
-
-bool RobotNode::OnDescribe(std_srvs::Trigger::Request& /*req*/, std_srvs::Trigger::Response& res) {
-  res.success = true;
-  res.message = Describe(StateOf(*session_, ticks_, listed_));
-  return true;
 }
 
 void RobotNode::Tick() {

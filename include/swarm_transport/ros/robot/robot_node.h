@@ -16,6 +16,7 @@
 
 #include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/Robot_State.h"
+#include "swarm_transport/core/hardware.h"
 #include "swarm_transport/core/modes.h"
 #include "swarm_transport/core/robot_session.h"
 #include "swarm_transport/ros/common/diagnostics.h"
@@ -121,6 +122,8 @@ class RobotNode : public RobotInbox {
   bool listed_ = false;         // it has been in the robot list
   bool said_unlisted_ = false;  // it said once that it is not
   Neighbors::ConstPtr perception_;
+  // Real time: the age of its latest round (a stale one stops it; constructed in Initialize).
+  core::PoseWatch round_watch_{0.5};
   std::uint64_t ticks_ = 0;
 };
 

@@ -1,0 +1,105 @@
+#!/usr/bin/env python3
+"""A real-time robot whose radio rounds stop stands (issue 29): it must not act on its last
+round again and again. A soak's robot that did (session 25, mission 96) turned the same turn
+every tick, drove into the arena's corner and pulled its mission's object after it.
+
+The test plays the simulator: rounds at 10 Hz, a pause longer than /swarm/lost_after_s, rounds
+again. While rounds come, the robot commands moves and ticks; in the pause every command it sends
+is zero and its tick count stands; once rounds return it moves and ticks again."""
+
+import sys
+import threading
+import time
+import unittest
+
+import rospy
+import rostest
+from geometry_msgs.msg import Twist
+from swarm_transport.msg import Neighbors, Robot_Position, Robot_Positions
+
+import swarm_testing as st
+
+
+def g(key):
+    return rospy.get_param('~' + key)
+
+
+class RoundsStop(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        cls.rid = g('robot_id')
+        cls.timeout = g('timeout_s')
+        cls.lock = threading.Lock()
+        cls.commands = []  # (wall time, linear, angular)
+        cls.sub = rospy.Subscriber('/robot_%d/cmd_vel' % cls.rid, Twist, cls.on_command,
+                                   queue_size=100)
+        cls.rounds = rospy.Publisher('/robot_%d/neighbors' % cls.rid, Neighbors, queue_size=10)
+        cls.robots = rospy.Publisher('/flock/robots', Robot_Positions, queue_size=1, latch=True)
+        listed = Robot_Positions()
+        listed.robots = [Robot_Position(robot_id=i, pos_x=1.0 + i, pos_y=1.0) for i in range(2)]
+        cls.robots.publish(listed)
+        # It joins the radio once it gave up waiting for a dispatcher (none here: 10 s).
+        assert st.wait_connected(cls.rounds, cls.timeout), 'the robot never subscribed'
+        assert st.wait_for(lambda: st.robot_state(cls.rid, cls.timeout).listed, cls.timeout)
+        cls.tick = 0
+
+    @classmethod
+    def on_command(cls, msg):
+        with cls.lock:
+            cls.commands.append((time.time(), msg.linear.x, msg.angular.z))
+
+    def send_rounds(self, seconds):
+        """Rounds at 10 Hz for `seconds`, the robot at (5, 5) with a peer 0.4 m ahead."""
+        end = time.time() + seconds
+        while time.time() < end and not rospy.is_shutdown():
+            msg = Neighbors()
+            msg.tick = type(self).tick
+            msg.sim_time = 0.1 * msg.tick
+            msg.pose.x, msg.pose.y, msg.pose.theta = 5.0, 5.0, 0.0
+            msg.robots = [Robot_Position(robot_id=1, pos_x=5.4, pos_y=5.0)]
+            self.rounds.publish(msg)
+            type(self).tick += 1
+            time.sleep(0.1)
+
+    def commands_between(self, t0, t1):
+        with self.lock:
+            return [c for c in self.commands if t0 <= c[0] < t1]
+
+    def ticks(self):
+        return st.robot_state(self.rid, self.timeout).ticks
+
+    def test_a_robot_without_rounds_stands_and_moves_again_when_they_return(self):
+        lost_after = rospy.get_param('/swarm/lost_after_s')
+        settle = g('settle_s')
+        t0 = time.time()
+        self.send_rounds(2.0)
+        moving = self.commands_between(t0, time.time())
+        self.assertTrue(any(abs(c[1]) > 1e-6 for c in moving),
+                        'no move while rounds came: %s' % moving[-5:])
+        # The pause: after lost_after_s (and settle_s for delivery) it sends only zero commands
+        # and ticks no more.
+        paused = time.time()
+        time.sleep(lost_after + settle)
+        ticks_before = self.ticks()
+        quiet_from = time.time()
+        time.sleep(g('pause_s'))
+        quiet = self.commands_between(quiet_from, time.time())
+        ticks_after = self.ticks()
+        self.assertTrue(quiet, 'no command at all in the pause (it should say zero)')
+        self.assertTrue(all(abs(c[1]) < 1e-9 and abs(c[2]) < 1e-9 for c in quiet),
+                        'it moved on a stale round %.1f s after the last one: %s'
+                        % (quiet[-1][0] - paused, quiet[-5:]))
+        self.assertEqual(ticks_after, ticks_before, 'it ticked without rounds')
+        # Rounds again: it moves and ticks.
+        back = time.time()
+        self.send_rounds(2.0)
+        again = self.commands_between(back, time.time())
+        self.assertTrue(any(abs(c[1]) > 1e-6 for c in again),
+                        'no move after rounds returned: %s' % again[-5:])
+        self.assertGreater(self.ticks(), ticks_after)
+
+
+if __name__ == '__main__':
+    rospy.init_node('robot_rounds_stop_test')
+    rostest.rosrun('swarm_transport', 'robot_rounds_stop', RoundsStop, sys.argv)
