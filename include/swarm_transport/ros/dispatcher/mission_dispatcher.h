@@ -52,7 +52,13 @@ class MissionDispatcher : private core::DispatcherOutlet {
   void Shutdown();
 
  private:
-  // core::DispatcherOutlet: what the policy decided, carried out over ROS.
+  static constexpr char kNode[] = "mission_dispatcher";
+  static const char* SignalName(core::MissionEventKind kind) {
+    return kind == core::MissionEventKind::kLoaded ? "LOADED" : "UNLOADED";
+  }
+
+  // core::DispatcherOutlet: what the policy decided, carried out over ROS
+  // (dispatcher_outlets.cpp).
   void Order(const core::MissionSpec& spec, std::uint64_t start_tick) override;
   void Rejected(const core::MissionSpec& spec, const std::string& reason) override;
   void Aborted(const core::MissionSpec& spec, const std::string& reason) override;
