@@ -24,22 +24,23 @@ class RoscppProbe(unittest.TestCase):
         result = [line for line in out.splitlines() if line.startswith('RESULT ')]
         self.assertEqual(len(result), 1, out)
         fields = dict(kv.split('=', 1) for kv in result[0].split()[1:])
-        self.assertEqual((fields['side'], fields['restarts'], fields['topics']),
-                         ('subscriber', '6', '2'), result)
+        self.assertEqual((fields['side'], fields['trim'], fields['restarts'], fields['topics']),
+                         ('subscriber', 'False', '6', '2'), result)
         # A live listener's heap: hundreds of KB, read from its smaps (not a made-up zero).
         self.assertGreater(int(fields['heap_kb_after_warmup']), 100, result)
         self.assertGreater(int(fields['heap_kb_end']), 100, result)
         for key in ('heap_kb_per_restart', 'heap_kb_per_restart_per_topic', 'rss_growth_pct'):
             self.assertRegex(fields[key], r'^-?[0-9]+\.[0-9]+$', result)
 
-    def test_the_publisher_side(self):
+    def test_the_publisher_side_with_the_heap_trimmed(self):
         code, out = run('--restarts', '6', '--topics', '2', '--dead-s', '0.5', '--side',
-                        'publisher')
+                        'publisher', '--trim')
         self.assertEqual(code, 0, out)
         result = [line for line in out.splitlines() if line.startswith('RESULT ')]
         self.assertEqual(len(result), 1, out)
         fields = dict(kv.split('=', 1) for kv in result[0].split()[1:])
-        self.assertEqual((fields['side'], fields['restarts']), ('publisher', '6'), result)
+        self.assertEqual((fields['side'], fields['trim'], fields['restarts']),
+                         ('publisher', 'True', '6'), result)
         self.assertGreater(int(fields['heap_kb_end']), 100, result)
 
     def test_bad_arguments_are_refused(self):
