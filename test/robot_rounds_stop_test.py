@@ -91,6 +91,10 @@ class RoundsStop(unittest.TestCase):
                         'it moved on a stale round %.1f s after the last one: %s'
                         % (quiet[-1][0] - paused, quiet[-5:]))
         self.assertEqual(ticks_after, ticks_before, 'it ticked without rounds')
+        # Its ~state says why: its round is old; its command reaches one node (this test).
+        state = st.robot_state(self.rid, self.timeout)
+        self.assertGreater(state.round_age_s, lost_after, state)
+        self.assertEqual(state.command_listeners, 1, state)
         # Rounds again: it moves and ticks.
         back = time.time()
         self.send_rounds(2.0)
@@ -98,6 +102,7 @@ class RoundsStop(unittest.TestCase):
         self.assertTrue(any(abs(c[1]) > 1e-6 for c in again),
                         'no move after rounds returned: %s' % again[-5:])
         self.assertGreater(self.ticks(), ticks_after)
+        self.assertLess(st.robot_state(self.rid, self.timeout).round_age_s, lost_after)
 
 
 if __name__ == '__main__':

@@ -34,7 +34,17 @@ TEST(RobotReportTest, AFlockingRobotSaysThePoseItPlannedFromAndNoObject) {
   EXPECT_DOUBLE_EQ(s.y, 2.25);
   EXPECT_NEAR(s.theta_deg, 30.0, 1e-9);
   EXPECT_FALSE(s.carrying);
-  const std::string text = Describe(s);
+  // What only the node knows (its round's age, its command's listeners) is unknown here.
+  EXPECT_DOUBLE_EQ(s.round_age_s, -1.0);
+  EXPECT_EQ(s.command_listeners, -1);
+  std::string text = Describe(s);
+  EXPECT_EQ(text.find("round_age="), std::string::npos) << text;
+  Robot_State::Response known = s;
+  known.round_age_s = 0.25;
+  known.command_listeners = 1;
+  EXPECT_NE(Describe(known).find(" round_age=0.25 cmd_listeners=1"), std::string::npos)
+      << Describe(known);
+  text = Describe(s);
   EXPECT_NE(text.find(" at=(1.5, 2.25, 30)"), std::string::npos) << text;
   EXPECT_EQ(text.find("object="), std::string::npos) << text;
 }

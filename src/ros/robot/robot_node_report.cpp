@@ -33,19 +33,28 @@ void RobotNode::Say(const core::RobotSession::Taken& taken) {
 
 void RobotNode::PublishStatusIfDue() {
   if (!diagnostics_) return;
-  diagnostics_->PublishIfDue([this](NodeStatus* s) {
-    FillStatus(StateOf(*session_, ticks_, listed_), perception_ ? perception_->tick : 0, s);
-  });
+  diagnostics_->PublishIfDue(
+      [this](NodeStatus* s) { FillStatus(State(), perception_ ? perception_->tick : 0, s); });
+}
+
+Robot_State::Response RobotNode::State() const {
+  Robot_State::Response state = StateOf(*session_, ticks_, listed_);
+  state.round_age_s = -1.0;
+  if (!lockstep() && perception_) {
+    state.round_age_s = round_watch_.AgeS(ros::WallTime::now().toSec());
+  }
+  state.command_listeners = transport_->CommandListeners();
+  return state;
 }
 
 bool RobotNode::OnState(Robot_State::Request& /*req*/, Robot_State::Response& res) {
-  res = StateOf(*session_, ticks_, listed_);
+  res = State();
   return true;
 }
 
 bool RobotNode::OnDescribe(std_srvs::Trigger::Request& /*req*/, std_srvs::Trigger::Response& res) {
   res.success = true;
-  res.message = Describe(StateOf(*session_, ticks_, listed_));
+  res.message = Describe(State());
   return true;
 }
 

@@ -12,6 +12,8 @@ Robot_State::Response StateOf(const core::RobotSession& session, std::uint64_t t
   state.robot_id = session.id();
   state.ticks = ticks;
   state.listed = listed;
+  state.round_age_s = -1.0;  // the node knows these (RobotNode::State)
+  state.command_listeners = -1;
   state.frozen = brain.frozen();
   state.leader = plan.lead || (plan.carry && plan.carry->leader);  // alone or of a transport
   state.has_active = plan.active.has_value();
@@ -77,6 +79,8 @@ std::string Describe(const Robot_State::Response& s) {
     os << " object=(" << s.object_x << ", " << s.object_y << ")->(" << s.target_x << ", "
        << s.target_y << ") inside=" << (s.inside ? 1 : 0);
   }
+  if (s.round_age_s >= 0.0) os << " round_age=" << s.round_age_s;
+  if (s.command_listeners >= 0) os << " cmd_listeners=" << s.command_listeners;
   os << " free_will=" << s.free_will_deg << " cohesion=" << s.cohesion
      << " range=" << s.local_range_m << " speed=" << s.speed_m_per_tick
      << " tuning=" << s.tuning_generation;

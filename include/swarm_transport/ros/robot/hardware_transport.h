@@ -49,6 +49,9 @@ class HardwareTransport : public RobotTransport {
   void Stop() override { ticker_.Stop(); }
   bool OwnProcess() const override { return true; }
   bool AnnouncesPosition() const override { return true; }
+  int CommandListeners() const override {
+    return cmd_pub_ ? static_cast<int>(cmd_pub_.getNumSubscribers()) : -1;
+  }
 
  private:
   void OnOdometry(const nav_msgs::Odometry::ConstPtr& msg);

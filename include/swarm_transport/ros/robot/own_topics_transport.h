@@ -32,6 +32,9 @@ class OwnTopicsTransport : public RobotTransport {
   bool Spin(double tick_period_s) override;
   void Stop() override { ticker_.Stop(); }
   bool OwnProcess() const override { return true; }
+  int CommandListeners() const override {
+    return cmd_pub_ ? static_cast<int>(cmd_pub_.getNumSubscribers()) : -1;
+  }
 
  private:
   bool realtime() const { return clock_ == core::Clock::kRealtime; }

@@ -92,6 +92,8 @@ class RobotNode : public RobotInbox {
   // Computes and executes one tick on `perception_` (the session decides, the node sends).
   void Tick();
   void PublishStatusIfDue();
+  // Its ~state: the session's (StateOf) and the age of its round and its command's listeners.
+  Robot_State::Response State() const;
   bool OnState(Robot_State::Request& req, Robot_State::Response& res);
   bool OnDescribe(std_srvs::Trigger::Request& req, std_srvs::Trigger::Response& res);
 

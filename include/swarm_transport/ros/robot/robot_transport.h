@@ -83,6 +83,9 @@ class RobotTransport {
   virtual bool AnnouncesPosition() const { return false; }
   // It offers ~describe and ~state (a host of many robots may ask for none).
   virtual bool OffersServices() const { return true; }
+  // Real time: how many nodes its cmd_vel reaches now (the simulator or its base: 1); -1 where
+  // its commands take no topic of its own (lock-step, a robot host's direct link).
+  virtual int CommandListeners() const { return -1; }
 };
 
 }  // namespace swarm_transport
