@@ -19,7 +19,7 @@ import unittest
 import rospy
 import rostest
 from swarm_transport.msg import (Neighbors, Robot_Continue, Robot_Freeze, Robot_Position,
-                                 Robot_Positions, Tick_Answer)
+                                 Tick_Answer)
 
 import swarm_testing as st
 
@@ -38,13 +38,7 @@ class RobotInterface(unittest.TestCase):
         cls.answers = []
         cls.sub = rospy.Subscriber('/robot_%d/answer' % cls.rid, Tick_Answer, cls.on_answer,
                                    queue_size=100)
-        cls.rounds = rospy.Publisher('/robot_%d/neighbors' % cls.rid, Neighbors, queue_size=10)
-        cls.robots = rospy.Publisher('/flock/robots', Robot_Positions, queue_size=1, latch=True)
-        listed = Robot_Positions()
-        listed.robots = [Robot_Position(robot_id=i, pos_x=1.0 + i, pos_y=1.0) for i in range(4)]
-        cls.robots.publish(listed)
-        assert st.wait_connected(cls.rounds, cls.timeout), 'the robot never subscribed'
-        assert st.wait_for(lambda: st.robot_state(cls.rid, cls.timeout).listed, cls.timeout)
+        cls.rounds, cls.robots = st.play_simulator_for(cls.rid, 4, cls.timeout)
         cls.tick = 0
 
     @classmethod

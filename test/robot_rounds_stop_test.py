@@ -15,7 +15,7 @@ import unittest
 import rospy
 import rostest
 from geometry_msgs.msg import Twist
-from swarm_transport.msg import Neighbors, Robot_Position, Robot_Positions
+from swarm_transport.msg import Neighbors, Robot_Position
 
 import swarm_testing as st
 
@@ -34,14 +34,8 @@ class RoundsStop(unittest.TestCase):
         cls.commands = []  # (wall time, linear, angular)
         cls.sub = rospy.Subscriber('/robot_%d/cmd_vel' % cls.rid, Twist, cls.on_command,
                                    queue_size=100)
-        cls.rounds = rospy.Publisher('/robot_%d/neighbors' % cls.rid, Neighbors, queue_size=10)
-        cls.robots = rospy.Publisher('/flock/robots', Robot_Positions, queue_size=1, latch=True)
-        listed = Robot_Positions()
-        listed.robots = [Robot_Position(robot_id=i, pos_x=1.0 + i, pos_y=1.0) for i in range(2)]
-        cls.robots.publish(listed)
         # It joins the radio once it gave up waiting for a dispatcher (none here: 10 s).
-        assert st.wait_connected(cls.rounds, cls.timeout), 'the robot never subscribed'
-        assert st.wait_for(lambda: st.robot_state(cls.rid, cls.timeout).listed, cls.timeout)
+        cls.rounds, cls.robots = st.play_simulator_for(cls.rid, 2, cls.timeout)
         cls.tick = 0
 
     @classmethod

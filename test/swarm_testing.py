@@ -230,6 +230,22 @@ def robot_state(rid, timeout):
     return srv()
 
 
+def play_simulator_for(rid, listed, timeout):
+    """The test plays the simulator for a robot node alone: a publisher of its rounds
+    (robot_<rid>/neighbors) and a latched /flock/robots naming robots [0, listed), returned once
+    the robot subscribed to its rounds and says it is listed."""
+    from swarm_transport.msg import Neighbors, Robot_Position
+    rounds = rospy.Publisher('/robot_%d/neighbors' % rid, Neighbors, queue_size=10)
+    robots = rospy.Publisher('/flock/robots', Robot_Positions, queue_size=1, latch=True)
+    msg = Robot_Positions()
+    msg.robots = [Robot_Position(robot_id=i, pos_x=1.0 + i, pos_y=1.0) for i in range(listed)]
+    robots.publish(msg)
+    assert wait_connected(rounds, timeout), 'robot %d never subscribed to its rounds' % rid
+    assert wait_for(lambda: robot_state(rid, timeout).listed, timeout), \
+        'robot %d never said it is listed' % rid
+    return rounds, robots
+
+
 def describe_robots(robot_ids, timeout=2.0):
     """Where each robot stands and what it says of itself, one line each: for the message of a
     failed assertion (swarm_transport.robot_views, which the soak uses too)."""
