@@ -66,7 +66,12 @@ class VirtualCopies(unittest.TestCase):
             self.assertIsNotNone(done, 'mission ended %s' % status.states(MISSION))
             end = log.latest_tick() + g('~after_ticks')
             self.assertTrue(log.wait_tick(end + 1, timeout))
-            self.assertTrue(st.wait_for(lambda: any(t >= end for t, _, _ in heard), timeout))
+            # Proof of delivery for "no copies after": a round after DONE in which a robot hears
+            # robot 0 (the others may be out of its range for a while after it arrived: seen
+            # once beside two busy loops, the rounds of the 10 ticks after DONE had none).
+            self.assertTrue(st.wait_for(
+                lambda: any(t >= end and c == 0 for t, _, c in heard), timeout),
+                'no robot heard robot 0 within %.0f s after tick %d' % (timeout, end))
         finally:
             swarm.shutdown()
             for s in subs:

@@ -130,7 +130,9 @@ void RobotNode::TakeRound(const Neighbors::ConstPtr& msg, double arrival_s) {
     return;
   }
   perception_ = msg;
-  round_watch_.Took(arrival_s);
+  // Wall time when taken (at most a tick after it arrived): a transport's `arrival_s` may be on
+  // another clock (a robot on hardware stamps its rounds with ros::Time, simulated under a bag).
+  round_watch_.Took(ros::WallTime::now().toSec());
   // Lock-step: the round carries its tick's simulated time, so a robot process needs no /clock
   // (robot.launch remaps it away: one message less per robot and tick); its log lines and
   // anything else on ros::Time see the tick it is in.
