@@ -58,6 +58,8 @@ class RobotLoss(unittest.TestCase):
             # the simulator mirrors it: an order sent before either subscribed is lost (on a
             # busy machine they come up after tick 3). The robots, the simulator, the dispatcher.
             self.assertTrue(st.wait_connected(pub, timeout, at_least=g('robots') + 2))
+            self.assertTrue(st.wait_on_radio(range(g('robots')), timeout),
+                            'not every robot hears its rounds')
             pub.publish(order)
         # Their pids first, then the kills back to back: a lock-step run notices a dead robot
         # at once (its connections close), so a lookup between two kills let the second robot

@@ -118,7 +118,25 @@ def realtime_swarm_for(case, robots, seed, timeout):
     case.assertTrue(log.wait_tick(3, timeout), 'the swarm never ticked')
     # Every robot, the simulator and the dispatcher.
     case.assertTrue(wait_connected(pub, timeout, at_least=robots + 2))
+    case.assertTrue(wait_on_radio(range(robots), timeout), 'not every robot hears its rounds')
     return pub, log
+
+
+def wait_on_radio(robot_ids, timeout):
+    """Waits until the simulator sends each robot its rounds (its own bus information): a
+    real-time robot joins the radio only once it heard the dispatcher, up to 10 s after it is
+    connected to the orders, and a robot not on the radio when a mission starts is quiet for its
+    peers, which count it lost (robot_loss: a takeover named robots 0, 2, 3 lost, not 0)."""
+    wanted = {k: '/robot_%d/neighbors' % k for k in robot_ids}
+
+    def on_radio():
+        try:
+            return all('/robot_%d/robot' % k in subscribers_of('/simulator', topic)
+                       for k, topic in wanted.items())
+        except Exception:  # noqa: BLE001 - the simulator not up yet: ask again
+            return False
+
+    return wait_for(on_radio, timeout, period=0.2)
 
 
 def wait_for(predicate, timeout, period=0.02):
