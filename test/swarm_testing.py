@@ -131,10 +131,10 @@ def wait_on_radio(robot_ids, timeout):
 
     def on_radio():
         try:
-            return all('/robot_%d/robot' % k in subscribers_of('/simulator', topic)
-                       for k, topic in wanted.items())
+            sent = outbound_connections('/simulator')  # one bus query for all the robots
         except Exception:  # noqa: BLE001 - the simulator not up yet: ask again
             return False
+        return all((topic, '/robot_%d/robot' % k) in sent for k, topic in wanted.items())
 
     return wait_for(on_radio, timeout, period=0.2)
 
@@ -182,9 +182,9 @@ def wait_hears(sub, nodes, timeout):
     return wait_for(connected, timeout)
 
 
-def subscribers_of(node, topic):
-    """The nodes `node` (a roscpp or rospy node) sends `topic` to now, from its own bus
-    information (getBusInfo): what it knows, not what the master says."""
+def outbound_connections(node):
+    """(topic, destination node) of every connection `node` (a roscpp or rospy node) sends on
+    now, from its own bus information (getBusInfo): what it knows, not what the master says."""
     import xmlrpc.client
     import rosgraph
     import rosnode
@@ -193,7 +193,12 @@ def subscribers_of(node, topic):
     code, _, info = xmlrpc.client.ServerProxy(api).getBusInfo(caller)
     assert code == 1, 'no bus information of %s' % node
     # [connection id, destination, direction ('o': outbound), transport, topic, connected, ...]
-    return {c[1] for c in info if c[2] == 'o' and c[4] == topic and c[5]}
+    return {(c[4], c[1]) for c in info if c[2] == 'o' and c[5]}
+
+
+def subscribers_of(node, topic):
+    """The nodes `node` sends `topic` to now (outbound_connections)."""
+    return {dest for t, dest in outbound_connections(node) if t == topic}
 
 
 def dispatcher_tracks(mission_id, state=None):

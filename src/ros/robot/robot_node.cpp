@@ -162,9 +162,8 @@ void RobotNode::TakeRound(const Neighbors::ConstPtr& msg, double arrival_s) {
 void RobotNode::TimerTick() {
   if (!perception_) return;
   // No round for as long as its peers would take to count a robot lost: it would act on where
-  // it and they were then, turning the same turn again and again (a soak's robot drove into the
-  // arena's corner so, and its mission's object after it). It stands until rounds return, as a
-  // robot on hardware without poses does.
+  // it and they were then, sending the same relative turn again and again. It stands until
+  // rounds return, as a robot on hardware without poses does.
   core::PoseWatch::Change change = core::PoseWatch::Change::kNone;
   const double now_s = ros::WallTime::now().toSec();
   const bool fresh = round_watch_.Check(now_s, &change);

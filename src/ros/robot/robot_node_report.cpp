@@ -38,8 +38,7 @@ void RobotNode::PublishStatusIfDue() {
 }
 
 Robot_State::Response RobotNode::State() const {
-  Robot_State::Response state = StateOf(*session_, ticks_, listed_);
-  state.round_age_s = -1.0;
+  Robot_State::Response state = StateOf(*session_, ticks_, listed_);  // both -1 there
   if (!lockstep() && perception_) {
     state.round_age_s = round_watch_.AgeS(ros::WallTime::now().toSec());
   }
