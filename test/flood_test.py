@@ -141,12 +141,15 @@ class Flood(unittest.TestCase):
             still = sorted(m for m in orders.snapshot()[0] if not orders.ended(m))
             states = [st.robot_state(r, 5) for r in range(robots)]
             now = log.latest_tick()
-            self.fail('admitted orders still open: %s; robots at tick %d (and 1000 before): %s'
-                      % (still[:20], now, ['%d frozen=%s mission=%s at %s (%s)' % (
-                          r, s.frozen, s.active_mission,
-                          ['%.2f' % v for v in log.at(now).get(r, ())],
-                          ['%.2f' % v for v in log.at(now - 1000).get(r, ())])
-                          for r, s in enumerate(states)]))
+            _, phases, _ = orders.snapshot()
+            self.fail('admitted orders still open: %s; statuses robots said of %d: %s; robot 0 '
+                      'says: %s; robots at tick %d (and 1000 before): %s'
+                      % (still[:20], still[0], phases.get(still[0]),
+                         st.describe_robots([0]), now, ['%d frozen=%s mission=%s at %s (%s)' % (
+                             r, s.frozen, s.active_mission,
+                             ['%.2f' % v for v in log.at(now).get(r, ())],
+                             ['%.2f' % v for v in log.at(now - 1000).get(r, ())])
+                             for r, s in enumerate(states)]))
         admitted, phases, rejected = orders.snapshot()
         rogue = sorted(set(phases) - admitted)
         self.assertEqual(rogue, [], 'robots acted on orders the dispatcher did not admit')

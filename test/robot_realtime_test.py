@@ -3,8 +3,10 @@
 (its node is /simulator):
 - the robot ticks on its own timeline: one robot_<id>/cmd_vel per tick period whether its rounds
   come at the same rate or four times as fast, each command finite; rounds with a non-finite own
-  pose are refused and it keeps ticking;
-- it acts on the latest round it got: the position it announces starts from that round's pose;
+  pose are refused: it does not move on its last good round again, and once that round is older
+  than /swarm/lost_after_s it commands zero every tick;
+- it acts on the latest round it got: the position it announces starts from that round's pose
+  (advanced by its last command, which this simulator never shows);
 - its own /flock/position goes out only while some node other than the simulator listens (here
   `rostopic echo`), and stops again when that observer leaves;
 - a /flock/freeze and a /flock/continue (callbacks of its spinning thread while its ticks run in
@@ -128,8 +130,8 @@ class RobotRealtime(unittest.TestCase):
         # Rounds at the new rate have begun (the round under way waited at the old one).
         self.assertTrue(st.wait_for(lambda: type(self).tick >= changed + 2, self.timeout))
         self.assertTicksOwnPeriod(self.count_over_window(), 'rounds at 4x its rate')
-        # Rounds with a NaN pose: it keeps ticking - and it got them (it says it refused one:
-        # the count alone would be the same if they were lost).
+        # Rounds with a NaN pose: it refuses them (it says so) and does not move on its last good
+        # round again (one move per round); once that round is stale it commands zero.
         refusals = []
         log = rospy.Subscriber('/rosout', Log, lambda m: refusals.append(m.msg)
                                if 'non-finite own pose' in m.msg else None, queue_size=100)
@@ -137,9 +139,19 @@ class RobotRealtime(unittest.TestCase):
         with self.lock:
             type(self).round_hz = 1.0 / self.period
             type(self).bad = True
-        self.assertTicksOwnPeriod(self.count_over_window(), 'rounds with a NaN pose')
+        bad_from = time.time()
+        time.sleep(g('window_s'))
         with self.lock:
             type(self).bad = False
+            got = [(t - bad_from, c) for t, c in self.commands if t >= bad_from]
+        # A good round may be under way when the bad ones begin: two periods for it.
+        moved = [(round(t, 2), c.linear.x) for t, c in got
+                 if t > 2 * self.period and abs(c.linear.x) > 1e-9]
+        self.assertEqual(moved, [], 'it moved on rounds it refused (s after they began, speed)')
+        lost_after = rospy.get_param('/swarm/lost_after_s')
+        stands = [c for t, c in got if t > lost_after + 2 * self.period]
+        self.assertTrue(stands, 'no zero command once its last good round was stale')
+        self.assertTrue(all(abs(c.linear.x) < 1e-9 and abs(c.angular.z) < 1e-9 for c in stands))
         self.assertTrue(st.wait_for(lambda: refusals, self.timeout),
                         'the robot never said it refused a round with a NaN pose')
         log.unregister()
@@ -173,8 +185,11 @@ class RobotRealtime(unittest.TestCase):
         heard = self.since(self.positions, t0)
         self.assertGreater(len(heard), 0, 'the test heard no announced position')
         last = heard[-1]
+        # This simulator executes no command: its rounds never show the last command's turn, so
+        # the robot plans from where that command takes it (core::CommandEcho), one tick's drive
+        # beyond the round's pose, and announces where its new command takes it from there.
         self.assertLessEqual(math.hypot(last.pos_x - 5.0, last.pos_y - 3.0),
-                             self.speed + g('position_tolerance_m'),
+                             2 * self.speed + g('position_tolerance_m'),
                              'announced (%.3f, %.3f), its round said (5, 3)'
                              % (last.pos_x, last.pos_y))
         # The observer's disconnection reached the robot: the simulator is its only listener.

@@ -98,6 +98,27 @@ class RoundsStop(unittest.TestCase):
         self.assertGreater(self.ticks(), ticks_after)
         self.assertLess(st.robot_state(self.rid, self.timeout).round_age_s, lost_after)
 
+    def test_b_one_round_one_move(self):
+        # Rounds at a third of its rate: it moves once per round and waits for the next (a
+        # second move from the same pose would turn the same turn again: the simulator turns at
+        # once on receipt). Every round is fresh: no zero command of a stale round either.
+        lost_after = rospy.get_param('/swarm/lost_after_s')
+        gap = g('slow_round_gap_s')
+        self.assertLess(gap, lost_after)
+        self.send_rounds(1.0)
+        waits_before = st.robot_state(self.rid, self.timeout).round_waits
+        n = g('slow_rounds')
+        t0 = time.time()
+        for _ in range(n):
+            self.send_rounds(0.05)  # one round
+            time.sleep(gap - 0.1)
+        time.sleep(0.2)
+        moves = self.commands_between(t0, time.time())
+        state = st.robot_state(self.rid, self.timeout)
+        self.assertEqual(len(moves), n, 'commands for %d rounds: %s' % (n, moves))
+        self.assertTrue(all(abs(c[1]) > 1e-6 for c in moves), moves)
+        self.assertGreater(state.round_waits, waits_before, state)
+
 
 if __name__ == '__main__':
     rospy.init_node('robot_rounds_stop_test')

@@ -42,7 +42,10 @@ TEST(RobotReportTest, AFlockingRobotSaysThePoseItPlannedFromAndNoObject) {
   Robot_State::Response known = s;
   known.round_age_s = 0.25;
   known.command_listeners = 1;
-  EXPECT_NE(Describe(known).find(" round_age=0.25 cmd_listeners=1"), std::string::npos)
+  known.round_waits = 3;
+  known.late_command_rounds = 2;
+  EXPECT_NE(Describe(known).find(" round_age=0.25 round_waits=3 late_cmd_rounds=2 cmd_listeners=1"),
+            std::string::npos)
       << Describe(known);
   text = Describe(s);
   EXPECT_NE(text.find(" at=(1.5, 2.25, 30)"), std::string::npos) << text;

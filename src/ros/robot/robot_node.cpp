@@ -130,6 +130,7 @@ void RobotNode::TakeRound(const Neighbors::ConstPtr& msg, double arrival_s) {
     return;
   }
   perception_ = msg;
+  round_acted_ = false;
   // Wall time when taken (at most a tick after it arrived): a transport's `arrival_s` may be on
   // another clock (a robot on hardware stamps its rounds with ros::Time, simulated under a bag).
   round_watch_.Took(ros::WallTime::now().toSec());
@@ -157,29 +158,6 @@ void RobotNode::TakeRound(const Neighbors::ConstPtr& msg, double arrival_s) {
   }
   if (stats_) stats_->OnRound(*msg, arrival_s);
   if (lockstep()) Tick();
-}
-
-void RobotNode::TimerTick() {
-  if (!perception_) return;
-  // No round for as long as its peers would take to count a robot lost: it would act on where
-  // it and they were then, sending the same relative turn again and again. It stands until
-  // rounds return, as a robot on hardware without poses does.
-  core::PoseWatch::Change change = core::PoseWatch::Change::kNone;
-  const double now_s = ros::WallTime::now().toSec();
-  const bool fresh = round_watch_.Check(now_s, &change);
-  if (change == core::PoseWatch::Change::kStale) {
-    ROS_WARN(
-        "robot %u: no radio round for %.2f s (/swarm/lost_after_s %.2f): it stands until "
-        "rounds return",
-        id_, round_watch_.AgeS(now_s), config_.lost_after_s);
-  } else if (change == core::PoseWatch::Change::kFresh) {
-    ROS_INFO("robot %u: radio rounds are back: it moves again", id_);
-  }
-  if (!fresh) {
-    transport_->SendCommand(geometry_msgs::Twist());
-    return;
-  }
-  Tick();
 }
 
 void RobotNode::CountDelivered(std::size_t expected, std::size_t delivered) {
@@ -231,6 +209,10 @@ void RobotNode::Tick() {
   // decides whom the swarm runs over, and collisions count everyone.
   core::Perception in =
       heard_ ? heard_->Perceive(id_, *perception_) : ToPerception(id_, *perception_);
+  // Real time with the simulator: a round made before its last command arrived shows the pose
+  // before that command's turn; it plans from where that command takes it (core::CommandEcho).
+  const bool echo = !lockstep() && transport_->SimulatorTurnsOnReceipt();
+  if (echo) in.self = echo_.PlanFrom(in.self);
   const core::Pose2 before = in.self;
   PublishStatusIfDue();
   // Real time: a robot promoted to first leader (its first leader was lost) connects its
@@ -246,6 +228,7 @@ void RobotNode::Tick() {
       std::move(in), perception_->tick, perception_->sim_time, lockstep() || mission_pubs_.Ready());
   const Tick_Answer answer = ToTickAnswer(step.answer, stamp);
   const core::Velocity command = step.brain.command;
+  if (echo) echo_.Sent(before, command, config_.tick_period_s);
   for (const Mission_Status& st : answer.statuses) {
     ROS_INFO("robot %u: mission %u %s", id_, st.mission_id,
              core::PhaseName(static_cast<core::MissionPhase>(st.state)));

@@ -41,6 +41,8 @@ Robot_State::Response RobotNode::State() const {
   Robot_State::Response state = StateOf(*session_, ticks_, listed_);  // both -1 there
   if (!lockstep() && perception_) {
     state.round_age_s = round_watch_.AgeS(ros::WallTime::now().toSec());
+    state.round_waits = round_waits_;
+    state.late_command_rounds = echo_.unseen();
   }
   state.command_listeners = transport_->CommandListeners();
   return state;

@@ -79,7 +79,10 @@ std::string Describe(const Robot_State::Response& s) {
     os << " object=(" << s.object_x << ", " << s.object_y << ")->(" << s.target_x << ", "
        << s.target_y << ") inside=" << (s.inside ? 1 : 0);
   }
-  if (s.round_age_s >= 0.0) os << " round_age=" << s.round_age_s;
+  if (s.round_age_s >= 0.0) {
+    os << " round_age=" << s.round_age_s << " round_waits=" << s.round_waits
+       << " late_cmd_rounds=" << s.late_command_rounds;
+  }
   if (s.command_listeners >= 0) os << " cmd_listeners=" << s.command_listeners;
   os << " free_will=" << s.free_will_deg << " cohesion=" << s.cohesion
      << " range=" << s.local_range_m << " speed=" << s.speed_m_per_tick

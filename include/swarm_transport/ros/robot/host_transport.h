@@ -35,6 +35,7 @@ class HostTransport : public RobotTransport {
   void SendCommand(const geometry_msgs::Twist& command) override;
   void SendStats(const std::string& line) override { stats_(line); }
   bool OffersServices() const override { return services_; }
+  bool SimulatorTurnsOnReceipt() const override { return true; }
 
  private:
   const StatsSink stats_;
@@ -61,6 +62,7 @@ class DirectTransport : public RobotTransport {
   }
   void SendStats(const std::string& line) override { stats_(line); }
   bool OffersServices() const override { return services_; }
+  bool SimulatorTurnsOnReceipt() const override { return true; }
 
  private:
   RobotOutlet* const outlet_;

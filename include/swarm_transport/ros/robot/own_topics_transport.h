@@ -32,6 +32,7 @@ class OwnTopicsTransport : public RobotTransport {
   bool Spin(double tick_period_s) override;
   void Stop() override { ticker_.Stop(); }
   bool OwnProcess() const override { return true; }
+  bool SimulatorTurnsOnReceipt() const override { return true; }
   int CommandListeners() const override {
     return cmd_pub_ ? static_cast<int>(cmd_pub_.getNumSubscribers()) : -1;
   }

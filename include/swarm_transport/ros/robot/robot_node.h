@@ -16,6 +16,7 @@
 
 #include "swarm_transport/Robot_Position.h"
 #include "swarm_transport/Robot_State.h"
+#include "swarm_transport/core/command_echo.h"
 #include "swarm_transport/core/hardware.h"
 #include "swarm_transport/core/modes.h"
 #include "swarm_transport/core/robot_session.h"
@@ -127,6 +128,12 @@ class RobotNode : public RobotInbox {
   // Real time: the age of its latest round (a stale one stops it; constructed in Initialize).
   core::PoseWatch round_watch_{0.5};
   std::uint64_t ticks_ = 0;
+  // Real time: the round perception_ holds was acted on already (TimerTick waits for the next),
+  // and how often a tick found it so.
+  bool round_acted_ = false;
+  std::uint64_t round_waits_ = 0;
+  // Real time with the simulator: whether its round shows its last command yet.
+  core::CommandEcho echo_;
 };
 
 }  // namespace swarm_transport

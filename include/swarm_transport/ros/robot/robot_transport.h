@@ -86,6 +86,10 @@ class RobotTransport {
   // Real time: how many nodes its cmd_vel reaches now (the simulator or its base: 1); -1 where
   // its commands take no topic of its own (lock-step, a robot host's direct link).
   virtual int CommandListeners() const { return -1; }
+  // Real time: its commands go to the simulator, which turns a command's turn at once on receipt
+  // (a round made before the last command arrived shows the pose before it: core::CommandEcho).
+  // Not on hardware, where a base turns over time.
+  virtual bool SimulatorTurnsOnReceipt() const { return false; }
 };
 
 }  // namespace swarm_transport
