@@ -115,7 +115,10 @@ class RoundsStop(unittest.TestCase):
         time.sleep(0.2)
         moves = self.commands_between(t0, time.time())
         state = st.robot_state(self.rid, self.timeout)
-        self.assertEqual(len(moves), n, 'commands for %d rounds: %s' % (n, moves))
+        # At most one command per round; a starved robot may take two rounds in one tick.
+        self.assertLessEqual(len(moves), n, 'commands for %d rounds: %s' % (n, moves))
+        self.assertGreaterEqual(len(moves), n - g('slow_rounds_merged'),
+                                'commands for %d rounds: %s' % (n, moves))
         self.assertTrue(all(abs(c[1]) > 1e-6 for c in moves), moves)
         self.assertGreater(state.round_waits, waits_before, state)
 
