@@ -120,6 +120,7 @@ class Recorder(object):
     def reset(self):
         with self.lock:
             self.positions, self.statuses, self.objects, self.last_tick = {}, [], {}, -1
+            self.unstamped = []
 
     def _positions(self, msg):
         with self.lock:
@@ -130,6 +131,8 @@ class Recorder(object):
     def _status(self, msg):
         with self.lock:
             tick = msg.tick if msg.tick > 0 else max(self.last_tick, 0)
+            if msg.tick <= 0:
+                self.unstamped.append(len(self.statuses))
             self.statuses.append((msg.mission_id, STATE_NAMES.get(msg.state, str(msg.state)),
                                   tick))
 
@@ -141,7 +144,7 @@ class Recorder(object):
     def log(self, metrics, params, robot_states=None):
         with self.lock:
             return checks.RunLog(dict(self.positions), list(self.statuses), dict(self.objects),
-                                 metrics, params, robot_states)
+                                 metrics, params, robot_states, self.unstamped)
 
 
 def robot_states(recorder):

@@ -10,13 +10,16 @@ from swarm_transport.scenario_format import FINAL_STATES
 
 class RunLog(object):
     """What a run did. positions: {tick: {robot id: (x, y, theta_deg)}} of physical robots;
-    statuses: [(mission id, state name, tick)] as the robots reported them; objects: {tick:
+    statuses: [(mission id, state name, tick)] as the robots reported them; unstamped: the
+    indices of statuses that carried no tick of their own (their tick is the observer's latest,
+    which depends on when the status arrived); objects: {tick:
     {mission id: (x, y, size_x, size_y)}}, the live objects as the simulator tracks them
     (/flock/objects); metrics: {mission id: {column: value}} from missions.csv; params:
     world_size_m, robot_radius_m, local_range_m."""
 
     def __init__(self, positions, statuses, objects=None, metrics=None, params=None,
-                 robot_states=None):
+                 robot_states=None, unstamped=()):
+        self.unstamped = set(unstamped)
         self.robot_states = robot_states  # {id: (mission ids, zone ids, frozen)} at the end
         self.positions = positions
         self.statuses = list(statuses)
@@ -166,13 +169,40 @@ def check(e, log, scenario, second=None):
             return False, 'no second run'
         diffs = [t for t in sorted(set(log.positions) | set(second.positions))
                  if log.positions.get(t) != second.positions.get(t)]
-        same_status = log.statuses == second.statuses
+        status_diff = _status_difference(log, second)
+        same_status = not status_diff
         measured = '%d of %d ticks differ%s' % (
             len(diffs), len(set(log.positions) | set(second.positions)),
-            ('' if same_status else '; statuses differ') +
+            ('' if same_status else '; statuses differ: %s' % status_diff) +
             (' (first: tick %d)' % diffs[0] if diffs else ''))
         return not diffs and same_status and bool(log.positions), measured
     raise ValueError('unknown expectation %r' % kind)
+
+
+def _reported(log):
+    """{mission id: [(state, tick)]} in the order the statuses arrived; a status without a tick
+    of its own has None: two runs of one scenario are compared on what their robots and
+    dispatcher said, not on when an observer happened to hear it (statuses of different missions
+    come over different connections, and an unstamped one takes the observer's latest tick)."""
+    per_mission = {}
+    for i, (mission_id, state, tick) in enumerate(log.statuses):
+        per_mission.setdefault(mission_id, []).append(
+            (state, None if i in log.unstamped else tick))
+    return per_mission
+
+
+def _status_difference(log, second):
+    """'' when both runs reported the same statuses per mission, else the first difference."""
+    a, b = _reported(log), _reported(second)
+    for mission_id in sorted(set(a) | set(b)):
+        ours, theirs = a.get(mission_id, []), b.get(mission_id, [])
+        if ours != theirs:
+            at = next((i for i, (x, y) in enumerate(zip(ours, theirs)) if x != y),
+                      min(len(ours), len(theirs)))
+            return 'mission %d, status %d: %s vs %s' % (
+                mission_id, at + 1, ours[at] if at < len(ours) else 'none',
+                theirs[at] if at < len(theirs) else 'none')
+    return ''
 
 
 def _ids(ids):
