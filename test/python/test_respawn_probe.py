@@ -1,18 +1,13 @@
 """scripts/respawn_probe (issue 29, docs/reliability.md): a short run respawns a robot's process
 and prints its RESULT line with robot 1's heap read from its smaps; bad arguments get one clear
 message and exit 2 before anything starts."""
-import os
-import subprocess
 import unittest
 
-SCRIPT = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'scripts',
-                      'respawn_probe')
+import script_runs
 
 
 def run(*args, timeout=240):
-    proc = subprocess.run([SCRIPT] + list(args), stdout=subprocess.PIPE,
-                          stderr=subprocess.STDOUT, timeout=timeout, universal_newlines=True)
-    return proc.returncode, proc.stdout
+    return script_runs.run('respawn_probe', *args, timeout=timeout)
 
 
 class RespawnProbe(unittest.TestCase):
@@ -21,15 +16,13 @@ class RespawnProbe(unittest.TestCase):
         code, out = run('--respawns', '2', '--dead-s', '0.5', '--robots', '3')
         self.assertEqual(code, 0, out)
         self.assertIn('respawns of robot 2', out)
-        result = [line for line in out.splitlines() if line.startswith('RESULT ')]
-        self.assertEqual(len(result), 1, out)
-        fields = dict(kv.split('=', 1) for kv in result[0].split()[1:])
-        self.assertEqual((fields['robots'], fields['respawns']), ('3', '2'), result)
+        fields = script_runs.result_fields(self, out)
+        self.assertEqual((fields['robots'], fields['respawns']), ('3', '2'), fields)
         # A live robot's heap: more than a MB, read from its smaps (not a made-up zero).
-        self.assertGreater(int(fields['robot1_heap_kb_after_warmup']), 500, result)
-        self.assertGreater(int(fields['robot1_heap_kb_end']), 500, result)
+        self.assertGreater(int(fields['robot1_heap_kb_after_warmup']), 500, fields)
+        self.assertGreater(int(fields['robot1_heap_kb_end']), 500, fields)
         for key in ('robot1_heap_kb_per_respawn', 'simulator_heap_kb_per_respawn'):
-            self.assertRegex(fields[key], r'^-?[0-9]+\.[0-9]+$', result)
+            self.assertRegex(fields[key], r'^-?[0-9]+\.[0-9]+$', fields)
 
     def test_bad_arguments_are_refused(self):
         for bad, words in ((['--respawns', '0'], '--respawns'),

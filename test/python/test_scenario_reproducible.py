@@ -5,18 +5,15 @@ one scenario are the same when every tick's poses and every mission's statuses a
 import unittest
 
 from swarm_transport import scenario_checks as checks
-from swarm_transport import scenario_format as fmt
-from test_scenario import MINIMAL, log_of
+import test_scenario
+from test_scenario import log_of
 
 
 class Reproducible(unittest.TestCase):
 
-    def setUp(self):
-        self.s = fmt.parse(MINIMAL, 'm.yaml')
-
-    def run_check(self, text, log, second=None):
-        e = fmt.parse(MINIMAL + text, 'm.yaml')['expect'][-1]
-        return checks.check(e, log, self.s, second)
+    # The scenario tests' own: the minimal scenario, and one expectation checked on run logs.
+    setUp = test_scenario.Checks.setUp
+    run_check = test_scenario.Checks.run_check
 
     def test_reproducible_compares_every_tick_and_status(self):
         a = log_of({0: {0: (1.0, 1.0, 0)}, 1: {0: (1.1, 1.0, 0)}}, [(7, 'DONE', 1)])
