@@ -2,7 +2,10 @@
 import os
 import subprocess
 
-SCRIPTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'scripts')
+# The repository's own scripts (realpath: run from the workspace's links, a script would take
+# .catkin_ws/src/swarm_transport for the repository and miss its workspace).
+SCRIPTS = os.path.realpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..',
+                                        'scripts'))
 
 
 def run(script, *args, timeout=180):

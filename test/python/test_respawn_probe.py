@@ -13,7 +13,7 @@ def run(*args, timeout=240):
 class RespawnProbe(unittest.TestCase):
 
     def test_a_short_run_measures_robot_1_and_the_simulator(self):
-        code, out = run('--respawns', '2', '--dead-s', '0.5', '--robots', '3')
+        code, out = run('--respawns', '2', '--dead-s', '0.5', '--robots', '3', '--no-build')
         self.assertEqual(code, 0, out)
         self.assertIn('respawns of robot 2', out)
         fields = script_runs.result_fields(self, out)
