@@ -1,9 +1,13 @@
 """scripts/roscpp_probe (issue 29, docs/reliability.md): a short run prints its RESULT line with
 the listener's heap before and after the peer's restarts, and bad arguments get one clear
 message and exit 2 before anything starts."""
+import os
+import sys
 import unittest
 
-import script_runs
+# nosetests runs with -P (no path adjustment): this folder's helper module by its path.
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import script_runs  # noqa: E402
 
 
 def run(*args, timeout=180):

@@ -2,11 +2,16 @@
 """Unit tests of the scenario check `reproducible` (swarm_transport.scenario_checks): two runs of
 one scenario are the same when every tick's poses and every mission's statuses are."""
 
+import os
+import sys
 import unittest
 
 from swarm_transport import scenario_checks as checks
-import test_scenario
-from test_scenario import log_of
+
+# nosetests runs with -P (no path adjustment): the scenario tests' module by its path.
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import test_scenario  # noqa: E402
+from test_scenario import log_of  # noqa: E402
 
 
 class Reproducible(unittest.TestCase):
