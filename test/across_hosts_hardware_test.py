@@ -169,7 +169,10 @@ class RateLimited(Swarm):
         self.assertEqual(states, NAMES, '\n'.join(lines))
         self.assertGreater(sent_n, 1000, 'the probes saw too few announcements')
         self.assertGreaterEqual(100.0 * len(delays) / max(1, sent_n), g('min_arrived_pct'))
-        self.assertLessEqual(1e3 * quantile(delays, 0.95), g('max_delay_p95_ms'))
+        # The median, not the tail: under CPU load the tail is TCP's retransmission timing on
+        # a bucket that drops most packets (docs/hardware.md), while a queue of our own that
+        # held announcements would move the median.
+        self.assertLessEqual(1e3 * quantile(delays, 0.5), g('max_delay_median_ms'))
 
 
 class Partition(Swarm):
