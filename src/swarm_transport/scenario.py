@@ -130,8 +130,9 @@ class Recorder(object):
 
     def _status(self, msg):
         with self.lock:
-            tick = msg.tick if msg.tick > 0 else max(self.last_tick, 0)
-            if msg.tick <= 0:
+            stamped = msg.tick > 0
+            tick = msg.tick if stamped else max(self.last_tick, 0)
+            if not stamped:
                 self.unstamped.append(len(self.statuses))
             self.statuses.append((msg.mission_id, STATE_NAMES.get(msg.state, str(msg.state)),
                                   tick))

@@ -19,7 +19,7 @@ import sys
 import time
 
 from swarm_transport import st_ros
-from swarm_transport.soak_faults import KINDS
+from swarm_transport.soak_faults import ALL_KINDS, EXTRA_KINDS, KINDS
 
 
 def parse_args(argv):
@@ -51,8 +51,9 @@ def parse_args(argv):
                         'connections of a dispatcher or recorder restarting at a sample)')
     p.add_argument('--faults', default='',
                    help='the fault kinds to inject, comma-separated (default: all of %s); e.g. '
-                        'robot_stop,radio_loss,flood for an hour without node restarts'
-                        % ', '.join(KINDS))
+                        'robot_stop,radio_loss,flood for an hour without node restarts; also %s '
+                        '(SIGKILL and respawn of the first leader of a mission in GATHERING, the '
+                        'next one to gather if none is)' % (', '.join(KINDS), ', '.join(EXTRA_KINDS)))
     p.add_argument('--first-fault-s', type=float, default=30.0,
                    help='seconds of missions before the first fault (30)')
     p.add_argument('--junit', default='',
@@ -65,12 +66,12 @@ def parse_args(argv):
         p.error('need --minutes > 0, --robots >= --mission-robots >= 2, --live >= 1 and '
                 '0 < gap MIN <= MAX')
     kinds = [k.strip() for k in a.faults.split(',')] if a.faults.strip() else list(KINDS)
-    unknown = [k for k in kinds if k not in KINDS]
+    unknown = [k for k in kinds if k not in ALL_KINDS]
     if unknown or len(set(kinds)) != len(kinds):
         p.error('--faults %r: a comma-separated list of distinct kinds of %s%s'
-                % (a.faults, ', '.join(KINDS),
+                % (a.faults, ', '.join(ALL_KINDS),
                    ' (unknown: %s)' % ', '.join(repr(k) for k in unknown) if unknown else ''))
-    a.faults = tuple(k for k in KINDS if k in kinds)  # the schedule's order is KINDS'
+    a.faults = tuple(k for k in ALL_KINDS if k in kinds)  # the schedule's order is ALL_KINDS'
     a.warmup_s = min(a.warmup_s, a.minutes * 60.0 / 3.0)
     if not a.out:
         a.out = os.path.join(st_ros.WS, 'soak', 'seed%d-%d' % (a.seed, int(time.time())))

@@ -11,6 +11,7 @@ import time
 from swarm_transport import soak_faults as sf
 
 LIVE = (0, 1, 2, 3, 4)  # QUEUED .. UNLOADING
+GATHERING = 1
 DONE, ABORTED, REJECTED = 5, 6, 7
 STATE = ['QUEUED', 'GATHERING', 'LOADING', 'TRANSPORT', 'UNLOADING', 'DONE', 'ABORTED',
          'REJECTED']
@@ -29,6 +30,7 @@ class Missions(object):
         self.slots = {}      # id -> (from slot, to slot)
         self.submitted = {}  # id -> wall time of its submission
         self.robots = {}     # id -> its robots, as the dispatcher picked them
+        self.first_leader = {}  # id -> its first leader, as the dispatcher named it
         self.progress = {}   # id -> (wall of its last progress, least distance, most inside)
         self.last = {}       # id -> the last Mission_Status heard of it
         self.next_id = 1
@@ -78,6 +80,17 @@ class Missions(object):
             used.update(self.slots[m])
         return [i for i in range(len(SLOTS)) if i not in used]
 
+    def leader_target(self, exclude=()):
+        """(mission, its first leader, its state) of the newest mission in GATHERING whose
+        first leader is known, not one of `exclude`, or None."""
+        with self.lock:
+            gathering = [m for m in self.states if self.final(m) == GATHERING
+                         and m in self.first_leader and m not in exclude]
+            if not gathering:
+                return None
+            m = max(gathering)
+            return m, self.first_leader[m], STATE[GATHERING]
+
     def hung(self, now, hung_s):
         """Live missions without progress (a new state, the object nearer its target, more
         robots inside) for longer than `hung_s`."""
@@ -117,6 +130,9 @@ def submit(missions, a, rng, log):
         picked = re.search(r'robots \{([0-9, ]+)\}', answer.message)
         if picked:
             missions.robots[m.mission_id] = [int(r) for r in picked.group(1).split(',')]
+        first = re.search(r'first leader (\d+)', answer.message)
+        if first:
+            missions.first_leader[m.mission_id] = int(first.group(1))
         if answer.code != 0:
             missions.states[m.mission_id].append((time.time(), REJECTED, answer.message))
     log('mission %d: %d robots, slot %d -> %d: %s' % (m.mission_id, a.mission_robots, src, dst,

@@ -19,6 +19,7 @@ RESPAWN_S = 5.0       # a killed robot comes back after this long
 RESTART_S = 3.0       # a killed dispatcher or recorder is started again after this long
 BACK_S = 60.0         # ... and must be registered again within this long
 LOSS_S = 10.0         # a burst of radio loss lasts this long
+LEADER_WAIT_S = 30.0  # leader_kill waits this long at most for a mission to gather
 FLOOD = 500           # invalid orders in a flood
 FLOOD_FIRST_ID = 60000
 
@@ -39,6 +40,7 @@ class Run(object):
         self.launches = {}   # role -> Popen of its roslaunch
         self.starts = {}     # role -> how often it was started
         self.hung = set()
+        self.leader_killed = set()  # missions whose first leader a leader_kill hit
         self.record_dir = os.path.join(a.out, 'record')
         self.run_dir = os.path.join(self.record_dir, 'soak')
         self.t0 = None
@@ -127,6 +129,9 @@ class Run(object):
                                  'yet): respawned' % rid)
                 self.later(RESPAWN_S, 'respawn robot %d' % rid,
                            lambda: self.respawn(rid, fault, launch=True))
+        elif kind == 'leader_kill':
+            fault['what'] = 'waiting for a mission in GATHERING'
+            self.leader_kill(fault, now + LEADER_WAIT_S)
         elif kind == 'robot_stop':
             pid = self.watch.kill(node, signal.SIGSTOP)
             fault['what'] = 'SIGSTOP %s (pid %s) for %.0f s' % (node, pid, STOP_S)
@@ -156,6 +161,33 @@ class Run(object):
             self.later(EFFECT_S, 'effect',
                        lambda: self.effect_alive(fault, sf.DISPATCHER, None))
         self.log('fault %d %s: %s' % (len(self.faults), kind, fault['what']))
+
+    def leader_kill(self, fault, deadline):
+        """SIGKILL of the first leader of the newest mission in GATHERING (polled until one
+        gathers, at most until `deadline`), then its respawn as robot_kill's."""
+        target = self.missions.leader_target(exclude=self.leader_killed)
+        if target is None:
+            if time.time() < deadline:
+                self.later(0.1, 'leader_kill', lambda: self.leader_kill(fault, deadline))
+                return
+            fault['what'] = 'no mission gathered within %.0f s: nothing killed' % LEADER_WAIT_S
+            fault['effect'] = self.mission_line()
+            self.log('fault %s: %s' % (fault['kind'], fault['what']))
+            return
+        mission, rid, state = target
+        self.leader_killed.add(mission)  # once per mission: its leader is gone already
+        fault['at_s'] = round(time.time() - self.t0, 1)
+        if self.a.deploy == 'host':
+            fault['what'] = ('robot %d, first leader of mission %d in %s, removed (/kill) and '
+                             'added again (/spawn)' % (rid, mission, state))
+            self.respawn(rid, fault, launch=False)
+        else:
+            pid = self.watch.kill(sf.robot_node(rid, 'process'))
+            fault['what'] = 'SIGKILL robot %d (pid %s), first leader of mission %d in %s' % (
+                rid, pid, mission, state)
+            self.later(RESPAWN_S, 'respawn robot %d' % rid,
+                       lambda: self.respawn(rid, fault, launch=True))
+        self.log('fault %s: %s' % (fault['kind'], fault['what']))
 
     def respawn(self, rid, fault, launch):
         import rospy

@@ -47,9 +47,27 @@ class Schedule(unittest.TestCase):
         self.assertEqual(a.faults, ('robot_stop', 'flood'))
         self.assertEqual(soak.parse_args(['--out', '/nonexistent/b']).faults,
                          soak_faults.KINDS)
-        for bad in ('robot_kil', 'flood,flood', ','):
+        self.assertEqual(soak.parse_args(['--faults', 'leader_kill,flood', '--out',
+                                          '/nonexistent/d']).faults, ('flood', 'leader_kill'))
+        for bad in ('robot_kil', 'flood,flood', ',', 'leader_kil'):
             with self.assertRaises(SystemExit, msg=bad):
                 soak.parse_args(['--faults', bad, '--out', '/nonexistent/c'])
+
+
+class LeaderTarget(unittest.TestCase):
+
+    def test_the_newest_gathering_mission_with_a_named_first_leader(self):
+        m = soak_missions.Missions()
+        self.assertIsNone(m.leader_target())
+        # 1 gathers, 2 transports, 3 gathers but its first leader was not named, 4 gathers.
+        for mid, state in ((1, 1), (2, 3), (3, 1), (4, 1), (5, 0)):
+            m.states[mid] = [(0.0, state, '')]
+        m.first_leader.update({1: 7, 2: 8, 4: 11, 5: 12})
+        self.assertEqual(m.leader_target(), (4, 11, 'GATHERING'))
+        self.assertEqual(m.leader_target(exclude={4}), (1, 7, 'GATHERING'))
+        self.assertIsNone(m.leader_target(exclude={1, 4}))
+        m.states[4].append((1.0, 2, ''))  # LOADING now
+        self.assertEqual(m.leader_target(), (1, 7, 'GATHERING'))
 
 
 class Kill(unittest.TestCase):
