@@ -53,7 +53,8 @@ def parse_args(argv):
                    help='the fault kinds to inject, comma-separated (default: all of %s); e.g. '
                         'robot_stop,radio_loss,flood for an hour without node restarts; also %s '
                         '(SIGKILL and respawn of the first leader of a mission in GATHERING, the '
-                        'next one to gather if none is)' % (', '.join(KINDS), ', '.join(EXTRA_KINDS)))
+                        'next one to gather if none is)'
+                        % (', '.join(KINDS), ', '.join(EXTRA_KINDS)))
     p.add_argument('--first-fault-s', type=float, default=30.0,
                    help='seconds of missions before the first fault (30)')
     p.add_argument('--junit', default='',
