@@ -119,16 +119,7 @@ class Run(object):
         self.faults.append(fault)
         node = sf.robot_node(rid, self.a.deploy)
         if kind == 'robot_kill':
-            if self.a.deploy == 'host':
-                fault['what'] = 'robot %d removed (/kill) and added again (/spawn)' % rid
-                self.respawn(rid, fault, launch=False)
-            else:
-                pid = self.watch.kill(node)
-                fault['what'] = ('SIGKILL robot %d (pid %s)' % (rid, pid) if pid else
-                                 'robot %d not running (killed by an earlier fault and not back '
-                                 'yet): respawned' % rid)
-                self.later(RESPAWN_S, 'respawn robot %d' % rid,
-                           lambda: self.respawn(rid, fault, launch=True))
+            self.kill_robot(rid, fault)
         elif kind == 'leader_kill':
             fault['what'] = 'waiting for a mission in GATHERING'
             self.leader_kill(fault, now + LEADER_WAIT_S)
@@ -177,17 +168,24 @@ class Run(object):
         mission, rid, state = target
         self.leader_killed.add(mission)  # once per mission: its leader is gone already
         fault['at_s'] = round(time.time() - self.t0, 1)
-        if self.a.deploy == 'host':
-            fault['what'] = ('robot %d, first leader of mission %d in %s, removed (/kill) and '
-                             'added again (/spawn)' % (rid, mission, state))
-            self.respawn(rid, fault, launch=False)
-        else:
-            pid = self.watch.kill(sf.robot_node(rid, 'process'))
-            fault['what'] = 'SIGKILL robot %d (pid %s), first leader of mission %d in %s' % (
-                rid, pid, mission, state)
-            self.later(RESPAWN_S, 'respawn robot %d' % rid,
-                       lambda: self.respawn(rid, fault, launch=True))
+        self.kill_robot(rid, fault, 'first leader of mission %d in %s' % (mission, state))
         self.log('fault %s: %s' % (fault['kind'], fault['what']))
+
+    def kill_robot(self, rid, fault, who=''):
+        """Robot `rid` killed (its process SIGKILLed; in a host, /kill) and back: /spawn and,
+        for a process, robot.launch after RESPAWN_S. `who` (what the robot was) goes into the
+        fault's description."""
+        if self.a.deploy == 'host':
+            fault['what'] = 'robot %d%s removed (/kill) and added again (/spawn)' % (
+                rid, ', %s,' % who if who else '')
+            self.respawn(rid, fault, launch=False)
+            return
+        pid = self.watch.kill(sf.robot_node(rid, 'process'))
+        fault['what'] = ('SIGKILL robot %d (pid %s)' % (rid, pid) if pid else
+                         'robot %d not running (killed by an earlier fault and not back '
+                         'yet): respawned' % rid) + (', %s' % who if who else '')
+        self.later(RESPAWN_S, 'respawn robot %d' % rid,
+                   lambda: self.respawn(rid, fault, launch=True))
 
     def respawn(self, rid, fault, launch):
         import rospy
