@@ -4,6 +4,7 @@
 
 #include <ros/ros.h>
 
+#include "swarm_transport/ros/common/connection_reaper.h"
 #include "swarm_transport/ros/common/crash_trace.h"
 #include "swarm_transport/ros/common/master_watch.h"
 
@@ -14,6 +15,8 @@ int main(int argc, char** argv) {
   ros::NodeHandle private_nh("~");
   // Before the set-up: a master restart stops the node, even one during its set-up.
   swarm_transport::MasterWatch watch;
+  // roscpp keeps connections that dropped while they were set up (connection_reaper.h).
+  swarm_transport::ConnectionReaper reaper;
   swarm_transport::RobotNode node(nh, private_nh);
   if (!node.Initialize()) return watch.ExitCode(1);
   const bool ticked = node.Spin();

@@ -3,6 +3,7 @@
 
 #include <csignal>
 
+#include "swarm_transport/ros/common/connection_reaper.h"
 #include "swarm_transport/ros/common/crash_trace.h"
 #include "swarm_transport/ros/common/master_watch.h"
 #include "swarm_transport/ros/simulator/simulator.h"
@@ -17,6 +18,8 @@ int main(int argc, char** argv) {
   ros::NodeHandle private_nh("~");
   // Before the set-up: a master restart stops the node, even one during its set-up.
   swarm_transport::MasterWatch watch;
+  // roscpp keeps connections that dropped while they were set up (connection_reaper.h).
+  swarm_transport::ConnectionReaper reaper;
   swarm_transport::Simulator simulator(nh, private_nh);
   if (!simulator.Initialize()) return watch.ExitCode(1);
   simulator.Run();

@@ -18,6 +18,7 @@ import re
 
 import rospy
 import rostest
+from diagnostic_msgs.msg import DiagnosticArray
 from swarm_transport.msg import New_Mission
 from swarm_transport.robot_views import ask_describe
 from swarm_transport.srv import Kill, Spawn, Submit_Mission
@@ -73,6 +74,32 @@ class RobotRespawn(unittest.TestCase):
                          'a status of an earlier phase after TRANSPORT: %s' % states)
         rospy.loginfo('mission %d ended %.1f s after robot %d was respawned', mission_id,
                       time.time() - respawned_s, robot)
+        self.assert_no_dropped_connection_kept(robot)
+
+    def assert_no_dropped_connection_kept(self, killed):
+        """After the kill: no node that lived through it keeps a roscpp connection that
+        dropped (each node's ConnectionReaper, src/ros/common/connection_reaper.cpp), and the
+        reapers did take some out - the retries to the killed robot that roscpp 1.15 would have
+        kept until the node exits (docs/reliability.md)."""
+        names = ['swarm_transport: simulator', 'swarm_transport: mission_dispatcher'] + [
+            'swarm_transport: robot %d' % r for r in range(g('robots')) if r != killed]
+        seen = {}
+
+        def take(msg):
+            for status in msg.status:
+                if status.name in names:
+                    seen[status.name] = {v.key: v.value for v in status.values}
+
+        sub = rospy.Subscriber('/diagnostics', DiagnosticArray, take, queue_size=1000)
+        self.addCleanup(sub.unregister)
+        st.wait_for(lambda: len(seen) == len(names), g('diagnostics_within_s'))
+        self.assertEqual(sorted(seen), sorted(names), 'statuses heard on /diagnostics')
+        held = {n: int(v['roscpp dropped connections held']) for n, v in seen.items()}
+        reaped = {n: int(v['roscpp dropped connections reaped']) for n, v in seen.items()}
+        self.assertEqual(set(held.values()), {0}, 'dropped connections still held: %s' % held)
+        self.assertGreater(sum(reaped.values()), 0,
+                           'no node reaped a dropped connection after robot %d was killed (has a '
+                           'roscpp release fixed its leak?): %s' % (killed, reaped))
 
     def test_a_robot_started_again_while_its_next_mission_waits(self):
         """Robot 5 is killed and started again while its mission (4) is QUEUED behind another

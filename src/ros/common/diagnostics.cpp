@@ -4,6 +4,8 @@
 
 #include <sstream>
 
+#include "swarm_transport/ros/common/connection_reaper.h"
+
 namespace swarm_transport {
 namespace {
 
@@ -28,6 +30,12 @@ void NodeDiagnostics::PublishIfDue(const std::function<void(NodeStatus*)>& fill)
   last_ = now;
   NodeStatus status;
   fill(&status);
+  // roscpp's connections (connection_reaper.h): the held dropped ones stay 0 while the node's
+  // ConnectionReaper runs; the reaped ones count what roscpp would have kept.
+  const HeldConnections held = ConnectionReaper::Held();
+  status.Add("roscpp connections", static_cast<std::uint64_t>(held.held));
+  status.Add("roscpp dropped connections held", static_cast<std::uint64_t>(held.dropped));
+  status.Add("roscpp dropped connections reaped", ConnectionReaper::Reaped());
   diagnostic_msgs::DiagnosticArray array;
   array.header.stamp = ros::Time::now();
   diagnostic_msgs::DiagnosticStatus s;
