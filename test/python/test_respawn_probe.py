@@ -27,12 +27,19 @@ class RespawnProbe(unittest.TestCase):
         self.assertGreater(int(fields['robot1_heap_kb_end']), 500, fields)
         for key in ('robot1_heap_kb_per_respawn', 'simulator_heap_kb_per_respawn'):
             self.assertRegex(fields[key], r'^-?[0-9]+\.[0-9]+$', fields)
+        # The nodes' ConnectionReaper: robot 1 and the simulator keep no dropped connection
+        # (their own /diagnostics; roscpp alone keeps a few per respawn, --reaper off).
+        self.assertEqual(fields['reaper'], 'on', fields)
+        for node in ('robot1', 'simulator'):
+            self.assertEqual(fields[node + '_dropped_connections_held'], '0', fields)
+            self.assertRegex(fields[node + '_dropped_connections_reaped'], r'^[0-9]+$', fields)
 
     def test_bad_arguments_are_refused(self):
         for bad, words in ((['--respawns', '0'], '--respawns'),
                            (['--robots', '2'], '--robots'),
                            (['--robots', 'x'], '--robots'),
                            (['--dead-s', '-1'], '--dead-s'),
+                           (['--reaper', 'maybe'], '--reaper'),
                            (['--nonsense'], 'unknown argument')):
             code, out = run(*bad, timeout=60)
             self.assertEqual(code, 2, (bad, out))
