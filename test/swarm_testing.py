@@ -9,6 +9,7 @@ import rospkg
 import rospy
 import roslaunch
 from swarm_transport.msg import Mission_Status, New_Mission, Robot_Positions
+from swarm_transport import st_ros
 from swarm_transport.st_ros import process_alive  # noqa: F401 (the tests' helper)
 
 
@@ -49,21 +50,12 @@ def subscribes(node, topic):
     return any(name == topic and node in nodes for name, nodes in subs)
 
 
-def stop_process_groups(procs, timeout=15):
+def stop_process_groups(procs, timeout=st_ros.STOP_TIMEOUT_S):
     """Stops processes started with start_new_session=True (subprocess.Popen), last first, by
-    their process group: SIGINT, then SIGKILL after `timeout` s."""
-    import os
-    import signal
-    import subprocess
-    for proc in reversed(procs):
-        if proc.poll() is None:
-            os.killpg(proc.pid, signal.SIGINT)
-    for proc in reversed(procs):
-        try:
-            proc.wait(timeout=timeout)
-        except subprocess.TimeoutExpired:
-            os.killpg(proc.pid, signal.SIGKILL)
-            proc.wait()
+    their process group: SIGINT, then SIGKILL after `timeout` s (default: longer than
+    roslaunch's own escalation); then whatever they had started that still runs (a roslaunch's
+    nodes, each in a session of its own): st_ros.stop_process_trees."""
+    return st_ros.stop_process_trees(procs, timeout=timeout)
 
 
 class PositionLog(object):

@@ -94,20 +94,84 @@ class PrivateRos(object):
         return any(p.poll() is None for p, n, _ in self.procs if n == name)
 
     def stop(self):
-        # Newest first: roslaunch before the master, each by its own process group id.
-        for p, name, log in reversed(self.procs):
-            if p.poll() is None:
-                try:
-                    os.killpg(p.pid, signal.SIGINT)
-                    p.wait(timeout=15)
-                except (subprocess.TimeoutExpired, ProcessLookupError):
-                    try:
-                        os.killpg(p.pid, signal.SIGKILL)
-                    except ProcessLookupError:
-                        pass
-                    p.wait()
+        # Newest first: roslaunch before the master, each by its own process group id; the
+        # nodes a roslaunch started too (stop_process_trees).
+        stop_process_trees([p for p, _, _ in self.procs])
+        for _, _, log in self.procs:
             log.close()
         self.procs = []
+
+
+# Longer than roslaunch's own escalation (SIGINT, 15 s, SIGTERM, 2 s, then SIGKILL: roslaunch
+# nodeprocess.py), so that a roslaunch still stops its slow nodes itself.
+STOP_TIMEOUT_S = 20.0
+
+
+def _stat(pid):
+    """(ppid, start time) of process `pid` from /proc/<pid>/stat, or None when it is gone."""
+    try:
+        with open('/proc/%d/stat' % pid) as f:
+            fields = f.read().rsplit(')', 1)[1].split()
+    except (OSError, IndexError):
+        return None
+    return int(fields[1]), int(fields[19])
+
+
+def descendants(pid):
+    """{pid: start time} of every process below `pid` now (children, their children, ...)."""
+    children = {}
+    for name in os.listdir('/proc'):
+        if name.isdigit():
+            st = _stat(int(name))
+            if st:
+                children.setdefault(st[0], []).append((int(name), st[1]))
+    out, todo = {}, [pid]
+    while todo:
+        for child, start in children.get(todo.pop(), []):
+            if child not in out:
+                out[child] = start
+                todo.append(child)
+    return out
+
+
+def stop_process_trees(procs, timeout=STOP_TIMEOUT_S):
+    """Stops subprocess.Popen processes started with start_new_session=True, one after the
+    other, last first: SIGINT to its process group, SIGKILL to the group after `timeout` s.
+    Then SIGKILL to every process that was below one of them when the stop began and still
+    runs (same pid and start time). roslaunch starts each node in a session of its own (os.setsid), out of the
+    group's reach: without the last step a node that outlives its killed roslaunch runs on as
+    an orphan. Returns the pids killed that way."""
+    below = {}
+    for proc in procs:
+        if proc.poll() is None:
+            below.update(descendants(proc.pid))
+    for proc in reversed(procs):
+        if proc.poll() is None:
+            try:
+                os.killpg(proc.pid, signal.SIGINT)
+            except ProcessLookupError:
+                pass
+        try:
+            proc.wait(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            try:
+                os.killpg(proc.pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+            proc.wait()
+    orphans = []
+    for pid, start in sorted(below.items()):
+        st = _stat(pid)
+        if st and st[1] == start and process_alive(pid):
+            try:
+                os.kill(pid, signal.SIGKILL)
+                orphans.append(pid)
+            except ProcessLookupError:
+                pass
+    if orphans:
+        log('[swarm_transport] killed %d process(es) left behind by a stopped parent: %s'
+            % (len(orphans), ' '.join(map(str, orphans))))
+    return orphans
 
 
 def _default_sigint():
