@@ -76,6 +76,11 @@ def parse_args(argv):
                          'output directories (a preset output or a folder of them)')
     rep.add_argument('dirs', nargs='+')
     rep.add_argument('--out', default=DEFAULT_REPORT, help='default docs/results.md')
+    st = sub.add_parser('stability', help='how firmly each trend line stands: judge blocks of '
+                        'the preset\'s run count of an output with many runs per setting')
+    st.add_argument('dir', help='an output of scripts/experiment run PRESET --runs K*N')
+    st.add_argument('--block', type=int,
+                    help='runs per block (default: the preset\'s run count, the thesis\'s)')
     w = sub.add_parser('_worker', help=argparse.SUPPRESS)
     w.add_argument('job')
     a = p.parse_args(argv)
@@ -86,6 +91,8 @@ def parse_args(argv):
             p.error('--jobs must be >= 1')
         if a.retries < 0:
             p.error('--retries must be >= 0')
+    if a.command == 'stability' and a.block is not None and a.block < 2:
+        p.error('--block must be >= 2')
     return a
 
 
@@ -99,6 +106,9 @@ def main(argv):
         if a.command == 'report':
             from swarm_transport import experiment_report as report
             return report.cmd_report(a.dirs, a.out)
+        if a.command == 'stability':
+            from swarm_transport import experiment_stability
+            return experiment_stability.cmd_stability(a.dir, a.block)
         from swarm_transport import experiment_worker
         return experiment_worker.main(a.job)
     except presets.PresetError as e:
