@@ -75,15 +75,21 @@ LeaderDecision LeaderStep(const Perception& in, const FlockingParams& p, const L
     } else {
       const Vec2 centroid = lp.centroid_with_self ? (sum + position) * (1.0 / (swarm_size + 1))
                                                   : sum * (1.0 / swarm_size);
-      const bool far = Distance(position, centroid) > lp.wait_fraction * p.local_range_m;
-      const Angle to_centroid = Bearing(position, centroid);
-      const bool behind =
-          lp.wait_evaluated_angles
-              ? EvaluatedCodeWaits(to_centroid, steer)
-              : !lp.wait_behind || std::fabs(Angle::SignedDifference(to_centroid, steer)) > 90.0;
-      if (far && behind) {
-        ++memory->swarm_waits;
-        return decision;
+      const double to_centroid_m = Distance(position, centroid);
+      if (lp.give_up_beyond_range && to_centroid_m > p.local_range_m) {
+        // Its swarm's centre left its range entirely: it goes on alone [T7.3].
+        memory->gave_up = true;
+      } else {
+        const bool far = to_centroid_m > lp.wait_fraction * p.local_range_m;
+        const Angle to_centroid = Bearing(position, centroid);
+        const bool behind =
+            lp.wait_evaluated_angles
+                ? EvaluatedCodeWaits(to_centroid, steer)
+                : !lp.wait_behind || std::fabs(Angle::SignedDifference(to_centroid, steer)) > 90.0;
+        if (far && behind) {
+          ++memory->swarm_waits;
+          return decision;
+        }
       }
     }
   }

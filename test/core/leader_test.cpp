@@ -209,6 +209,44 @@ TEST(LeaderStepTest, WithCentroidWithSelfTheLeaderCountsInTheCentroidItWaitsFor)
   EXPECT_EQ(d.move.outcome, MoveOutcome::kStand);
 }
 
+TEST(LeaderStepTest, WithGiveUpBeyondRangeALeaderLeavesASwarmWhoseCentreLeftItsRange) {
+  // A chain behind the leader: one robot 0.4 behind (in range 1.0), four 1.4 behind (out of
+  // its range, in the chain through the first): their centroid is 1.2 behind.
+  Perception in = At(5.0, 5.0, 0.0);
+  in.others = {Robot(2, 4.6, 5.0), Robot(3, 3.6, 5.0), Robot(4, 3.6, 5.1), Robot(5, 3.6, 4.9),
+               Robot(6, 3.6, 5.2)};
+  Rng rng(1, 0);
+  // The default (the evaluated code: no give-up while a robot of its swarm is in range): it
+  // waits for the far centroid, tick after tick.
+  LeaderMemory waits;
+  LeaderDecision d =
+      LeaderStep(in, Params(), LeaderParams(), {8.0, 5.0}, Angle(0), rng, kTick, &waits);
+  d = LeaderStep(in, Params(), LeaderParams(), {8.0, 5.0}, Angle(0), rng, kTick, &waits);
+  EXPECT_EQ(d.move.outcome, MoveOutcome::kStand);
+  EXPECT_EQ(waits.swarm_waits, 2u);
+  EXPECT_FALSE(waits.gave_up);
+  // The thesis text's rule: the centre left the range, it goes on alone and never waits again.
+  LeaderParams text;
+  text.give_up_beyond_range = true;
+  LeaderMemory gone;
+  d = LeaderStep(in, Params(), text, {8.0, 5.0}, Angle(0), rng, kTick, &gone);
+  EXPECT_TRUE(gone.gave_up);
+  EXPECT_EQ(gone.swarm_waits, 0u);
+  EXPECT_EQ(d.move.outcome, MoveOutcome::kStraight);
+  EXPECT_NEAR(d.move.distance_m, 0.1, kTolerance);
+  // Even once the swarm is close and behind again.
+  in.others = {Robot(2, 4.3, 5.0)};
+  d = LeaderStep(in, Params(), text, {8.0, 5.0}, Angle(0), rng, kTick, &gone);
+  EXPECT_EQ(d.move.outcome, MoveOutcome::kStraight);
+  EXPECT_EQ(gone.swarm_waits, 0u);
+  // Within the range (0.7 behind: beyond half of it) the rule still waits.
+  LeaderMemory near;
+  d = LeaderStep(in, Params(), text, {8.0, 5.0}, Angle(0), rng, kTick, &near);
+  EXPECT_EQ(d.move.outcome, MoveOutcome::kStand);
+  EXPECT_EQ(near.swarm_waits, 1u);
+  EXPECT_FALSE(near.gave_up);
+}
+
 TEST(LeaderStepTest, WithWaitBehindWaitsOnlyForASwarmBehindIt) {
   // The thesis's leader code meant to wait only while its swarm's centroid was more than 90 deg off
   // its course: a swarm ahead or beside it is led, not waited for.

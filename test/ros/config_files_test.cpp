@@ -146,6 +146,19 @@ TEST(ConfigValidation, LeaderWaitEvaluatedAnglesIsReadAsABool) {
   EXPECT_TRUE(config.leader.wait_evaluated_angles);  // unchanged by the refused dict
 }
 
+TEST(ConfigValidation, LeaderGiveUpBeyondRangeIsReadAsABool) {
+  SwarmConfig config;
+  EXPECT_FALSE(config.leader.give_up_beyond_range);
+  std::string error;
+  XmlRpc::XmlRpcValue on = Dict("leader_give_up_beyond_range", XmlRpc::XmlRpcValue(true));
+  ASSERT_TRUE(ConfigFromXmlRpc(on, &config, &error)) << error;
+  EXPECT_TRUE(config.leader.give_up_beyond_range);
+  XmlRpc::XmlRpcValue bad = Dict("leader_give_up_beyond_range", XmlRpc::XmlRpcValue(1.5));
+  EXPECT_FALSE(ConfigFromXmlRpc(bad, &config, &error));
+  EXPECT_NE(error.find("leader_give_up_beyond_range"), std::string::npos) << error;
+  EXPECT_TRUE(config.leader.give_up_beyond_range);  // unchanged by the refused dict
+}
+
 TEST(ConfigValidation, LeaderCentroidWithSelfIsReadAsABool) {
   SwarmConfig config;
   EXPECT_FALSE(config.leader.centroid_with_self);

@@ -191,6 +191,7 @@ bool ConfigFromXmlRpc(XmlRpc::XmlRpcValue& dict, SwarmConfig* config, std::strin
       ReadBool(dict, "leader_keep_flock", &c.leader.keep_flock, error) &&
       ReadBool(dict, "leader_wait_behind", &c.leader.wait_behind, error) &&
       ReadBool(dict, "leader_wait_evaluated_angles", &c.leader.wait_evaluated_angles, error) &&
+      ReadBool(dict, "leader_give_up_beyond_range", &c.leader.give_up_beyond_range, error) &&
       ReadBool(dict, "leader_centroid_with_self", &c.leader.centroid_with_self, error) &&
       ReadBool(dict, "leader_check_collisions", &c.leader.check_collisions, error) &&
       ReadInt(dict, "leader_swerve_after_blocked_ticks", &c.leader.swerve_after_blocked_ticks,
