@@ -159,10 +159,17 @@ def stop_process_trees(procs, timeout=STOP_TIMEOUT_S):
             except ProcessLookupError:
                 pass
             proc.wait()
+    def still_running(pid, start):
+        st = _stat(pid)
+        return bool(st) and st[1] == start and process_alive(pid)
+
+    # What a SIGKILL to its group just hit may take a moment to go: wait up to 1 s for that.
+    deadline = time.time() + 1.0
+    while any(still_running(p, s) for p, s in below.items()) and time.time() < deadline:
+        time.sleep(0.05)
     orphans = []
     for pid, start in sorted(below.items()):
-        st = _stat(pid)
-        if st and st[1] == start and process_alive(pid):
+        if still_running(pid, start):
             try:
                 os.kill(pid, signal.SIGKILL)
                 orphans.append(pid)
