@@ -36,26 +36,33 @@ constexpr auto kPeriod = std::chrono::seconds(1);
 
 std::atomic<std::uint64_t> reaped{0};
 
+// Calls f(the manager's set) under the manager's own lock.
+template <typename F>
+void WithConnections(F f) {
+  ros::ConnectionManager& manager = *ros::ConnectionManager::instance();
+  boost::mutex::scoped_lock lock(manager.*MemberOf(ConnectionsMutexTag()));
+  f(manager.*MemberOf(ConnectionsTag()));
+}
+
 // Runs in roscpp's poll thread, between its rounds (as removeDroppedConnections does).
 void Reap() {
   static std::chrono::steady_clock::time_point next;  // the poll thread's only
   const auto now = std::chrono::steady_clock::now();
   if (now < next) return;
   next = now + kPeriod;
-  // Destroyed after the lock, as roscpp destroys the ones it removes.
+  // Declared before the lock is taken, so destroyed after it is released, as roscpp destroys
+  // the ones it removes.
   ros::V_Connection gone;
-  ros::ConnectionManager& manager = *ros::ConnectionManager::instance();
-  boost::mutex::scoped_lock lock(manager.*MemberOf(ConnectionsMutexTag()));
-  ros::S_Connection& connections = manager.*MemberOf(ConnectionsTag());
-  for (auto it = connections.begin(); it != connections.end();) {
-    if ((*it)->isDropped()) {
-      gone.push_back(*it);
-      it = connections.erase(it);
-    } else {
-      ++it;
+  WithConnections([&gone](ros::S_Connection& connections) {
+    for (auto it = connections.begin(); it != connections.end();) {
+      if ((*it)->isDropped()) {
+        gone.push_back(*it);
+        it = connections.erase(it);
+      } else {
+        ++it;
+      }
     }
-  }
-  lock.unlock();
+  });
   reaped.fetch_add(gone.size(), std::memory_order_relaxed);
 }
 
@@ -75,13 +82,13 @@ ConnectionReaper::~ConnectionReaper() {
 }
 
 HeldConnections ConnectionReaper::Held() {
-  ros::ConnectionManager& manager = *ros::ConnectionManager::instance();
-  boost::mutex::scoped_lock lock(manager.*MemberOf(ConnectionsMutexTag()));
   HeldConnections held;
-  for (const ros::ConnectionPtr& connection : manager.*MemberOf(ConnectionsTag())) {
-    ++held.held;
-    if (connection->isDropped()) ++held.dropped;
-  }
+  WithConnections([&held](const ros::S_Connection& connections) {
+    for (const ros::ConnectionPtr& connection : connections) {
+      ++held.held;
+      if (connection->isDropped()) ++held.dropped;
+    }
+  });
   return held;
 }
 
