@@ -134,13 +134,18 @@ def descendants(pid):
     return out
 
 
+def _still_running(pid, start):
+    st = _stat(pid)
+    return bool(st) and st[1] == start and process_alive(pid)
+
+
 def stop_process_trees(procs, timeout=STOP_TIMEOUT_S):
     """Stops subprocess.Popen processes started with start_new_session=True, one after the
     other, last first: SIGINT to its process group, SIGKILL to the group after `timeout` s.
     Then SIGKILL to every process that was below one of them when the stop began and still
-    runs (same pid and start time). roslaunch starts each node in a session of its own (os.setsid), out of the
-    group's reach: without the last step a node that outlives its killed roslaunch runs on as
-    an orphan. Returns the pids killed that way."""
+    runs (same pid and start time). roslaunch starts each node in a session of its own
+    (os.setsid), out of the group's reach: without the last step a node that outlives its
+    killed roslaunch runs on as an orphan. Returns the pids killed that way."""
     below = {}
     for proc in procs:
         if proc.poll() is None:
@@ -159,17 +164,13 @@ def stop_process_trees(procs, timeout=STOP_TIMEOUT_S):
             except ProcessLookupError:
                 pass
             proc.wait()
-    def still_running(pid, start):
-        st = _stat(pid)
-        return bool(st) and st[1] == start and process_alive(pid)
-
     # What a SIGKILL to its group just hit may take a moment to go: wait up to 1 s for that.
     deadline = time.time() + 1.0
-    while any(still_running(p, s) for p, s in below.items()) and time.time() < deadline:
+    while any(_still_running(p, s) for p, s in below.items()) and time.time() < deadline:
         time.sleep(0.05)
     orphans = []
     for pid, start in sorted(below.items()):
-        if still_running(pid, start):
+        if _still_running(pid, start):
             try:
                 os.kill(pid, signal.SIGKILL)
                 orphans.append(pid)
