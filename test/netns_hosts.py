@@ -9,6 +9,7 @@ import re
 import subprocess
 
 import swarm_testing as st
+from swarm_transport import st_ros
 
 
 class Unavailable(Exception):
@@ -73,6 +74,8 @@ class NetHosts:
         log = open(os.path.join(self.tmp, '%s-%d.log' % (host, len(self.procs))), 'w')
         popen.setdefault('stdout', log)
         popen.setdefault('stderr', subprocess.STDOUT)
+        # Under nohup SIGINT arrives ignored and would stay so: the stop's SIGINT must count.
+        popen.setdefault('preexec_fn', st_ros.default_sigint)
         proc = subprocess.Popen(self.command(host, *cmd), env=self.env(host),
                                 start_new_session=True, **popen)
         self.procs.append((proc, log.name))

@@ -68,7 +68,7 @@ class PrivateRos(object):
         # Under nohup or CI, SIGINT may arrive ignored and would stay ignored in the children:
         # then rosmaster and roslaunch ignore the stop request and every stop waits 15 s.
         p = subprocess.Popen(args, env=self.env, stdout=log, stderr=subprocess.STDOUT,
-                             start_new_session=True, preexec_fn=_default_sigint)
+                             start_new_session=True, preexec_fn=default_sigint)
         self.procs.append((p, name, log))
         return p
 
@@ -182,7 +182,9 @@ def stop_process_trees(procs, timeout=STOP_TIMEOUT_S):
     return orphans
 
 
-def _default_sigint():
+def default_sigint():
+    """SIGINT as by default (a preexec_fn): under nohup or CI it may arrive ignored and would
+    stay ignored in a child, which then ignores the stop request."""
     signal.signal(signal.SIGINT, signal.SIG_DFL)
 
 

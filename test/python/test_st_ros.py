@@ -1,7 +1,6 @@
 """st_ros.stop_process_trees: what a stopped process had started does not outlive it, even in
 a session of its own (as roslaunch starts its nodes) and when the parent must be killed."""
 
-import signal
 import subprocess
 import time
 import unittest
@@ -19,14 +18,9 @@ PARENT = ('import os, signal, subprocess, sys, time\n'
           'time.sleep(300)\n')
 
 
-def _default_sigint():
-    # Under nohup (scripts/test in the background) SIGINT arrives ignored and would stay so.
-    signal.signal(signal.SIGINT, signal.SIG_DFL)
-
-
 def start(code):
     proc = subprocess.Popen(['/usr/bin/python3', '-c', code], stdout=subprocess.PIPE,
-                            start_new_session=True, text=True, preexec_fn=_default_sigint)
+                            start_new_session=True, text=True, preexec_fn=st_ros.default_sigint)
     return proc, int(proc.stdout.readline())
 
 
