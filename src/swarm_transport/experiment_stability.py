@@ -65,17 +65,12 @@ def stability(preset, runs, size):
         for res in per_block:
             if i >= len(res):
                 continue
-            kind = _measured(res[i]['text'])
+            kind = res[i]['measured'].replace('_', ' ')
             counts[kind] = counts.get(kind, 0) + 1
             agree += res[i]['verdict'] == 'agrees'
         out.append({'line': w['text'], 'all': w['verdict'], 'counts': counts,
                     'agree': agree, 'blocks': len(per_block)})
     return out
-
-
-def _measured(text):
-    """The measured trend kind a page line names ('... — measured increasing (ρ = ...')."""
-    return text.split(' — measured ', 1)[1].split(' (', 1)[0]
 
 
 def cmd_stability(out_dir, size=None):

@@ -134,11 +134,12 @@ def _series(preset, e, summary):
 
 
 def trend_results(preset, summary):
-    """One dict per expected trend and series: 'text' (the line of the page) and 'verdict'
-    ('agrees' / 'differs'). An expectation may name the source of what it expects (`source`:
-    'thesis text', 'thesis (text + fig. 7.9)', 'raw file f5599e6', ...: it opens the line; without
-    one the line says 'thesis') and may say why ours differs (`because`, shown only when it
-    does). Its series run along each group's settings, or across the groups (_series)."""
+    """One dict per expected trend and series: 'text' (the line of the page), 'verdict' ('agrees'
+    / 'differs') and 'measured' (the trend kind measured, e.g. 'increasing'). An expectation
+    may name the source of what it expects (`source`: 'thesis text', 'thesis (text + fig.
+    7.9)', 'raw file f5599e6', ...: it opens the line; without one the line says 'thesis') and
+    may say why ours differs (`because`, shown only when it does). Its series run along each
+    group's settings, or across the groups (_series)."""
     out = []
     for e in preset.get('expect', []):
         metric = e['metric']
@@ -163,7 +164,7 @@ def trend_results(preset, summary):
                        e['trend'].replace('_', ' '), verdict))
             if verdict == 'differs' and e.get('because'):
                 text += ', because %s' % ' '.join(str(e['because']).split())
-            out.append({'text': text, 'verdict': verdict})
+            out.append({'text': text, 'verdict': verdict, 'measured': got})
     return out
 
 

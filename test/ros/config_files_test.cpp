@@ -132,58 +132,39 @@ TEST(ConfigValidation, LoadingSpreadIsReadWithItsTicks) {
   EXPECT_EQ(config.loading_spread_ticks, 12);
 }
 
-TEST(ConfigValidation, LeaderWaitEvaluatedAnglesIsReadAsABool) {
+// A leader key read as a bool: its default, the other value taken, and a string or a number in
+// its place refused with the key named and the config left as it was.
+void ExpectLeaderBool(const char* key, bool core::LeaderParams::*member, bool by_default) {
   SwarmConfig config;
-  EXPECT_FALSE(config.leader.wait_evaluated_angles);
+  EXPECT_EQ(config.leader.*member, by_default) << key;
   std::string error;
-  XmlRpc::XmlRpcValue on = Dict("leader_wait_evaluated_angles", XmlRpc::XmlRpcValue(true));
-  ASSERT_TRUE(ConfigFromXmlRpc(on, &config, &error)) << error;
-  EXPECT_TRUE(config.leader.wait_evaluated_angles);
-  XmlRpc::XmlRpcValue bad =
-      Dict("leader_wait_evaluated_angles", XmlRpc::XmlRpcValue(std::string("yes")));
-  EXPECT_FALSE(ConfigFromXmlRpc(bad, &config, &error));
-  EXPECT_NE(error.find("leader_wait_evaluated_angles"), std::string::npos) << error;
-  EXPECT_TRUE(config.leader.wait_evaluated_angles);  // unchanged by the refused dict
+  XmlRpc::XmlRpcValue other = Dict(key, XmlRpc::XmlRpcValue(!by_default));
+  ASSERT_TRUE(ConfigFromXmlRpc(other, &config, &error)) << error;
+  EXPECT_EQ(config.leader.*member, !by_default) << key;
+  for (const XmlRpc::XmlRpcValue& value :
+       {XmlRpc::XmlRpcValue(std::string("yes")), XmlRpc::XmlRpcValue(1.5)}) {
+    XmlRpc::XmlRpcValue bad = Dict(key, value);
+    EXPECT_FALSE(ConfigFromXmlRpc(bad, &config, &error)) << key;
+    EXPECT_NE(error.find(key), std::string::npos) << error;
+    EXPECT_EQ(config.leader.*member, !by_default) << key;  // unchanged by the refused dict
+  }
+}
+
+TEST(ConfigValidation, LeaderWaitEvaluatedAnglesIsReadAsABool) {
+  ExpectLeaderBool("leader_wait_evaluated_angles", &core::LeaderParams::wait_evaluated_angles,
+                   false);
 }
 
 TEST(ConfigValidation, LeaderGiveUpBeyondRangeIsReadAsABool) {
-  SwarmConfig config;
-  EXPECT_FALSE(config.leader.give_up_beyond_range);
-  std::string error;
-  XmlRpc::XmlRpcValue on = Dict("leader_give_up_beyond_range", XmlRpc::XmlRpcValue(true));
-  ASSERT_TRUE(ConfigFromXmlRpc(on, &config, &error)) << error;
-  EXPECT_TRUE(config.leader.give_up_beyond_range);
-  XmlRpc::XmlRpcValue bad = Dict("leader_give_up_beyond_range", XmlRpc::XmlRpcValue(1.5));
-  EXPECT_FALSE(ConfigFromXmlRpc(bad, &config, &error));
-  EXPECT_NE(error.find("leader_give_up_beyond_range"), std::string::npos) << error;
-  EXPECT_TRUE(config.leader.give_up_beyond_range);  // unchanged by the refused dict
+  ExpectLeaderBool("leader_give_up_beyond_range", &core::LeaderParams::give_up_beyond_range, false);
 }
 
 TEST(ConfigValidation, LeaderCentroidWithSelfIsReadAsABool) {
-  SwarmConfig config;
-  EXPECT_FALSE(config.leader.centroid_with_self);
-  std::string error;
-  XmlRpc::XmlRpcValue on = Dict("leader_centroid_with_self", XmlRpc::XmlRpcValue(true));
-  ASSERT_TRUE(ConfigFromXmlRpc(on, &config, &error)) << error;
-  EXPECT_TRUE(config.leader.centroid_with_self);
-  XmlRpc::XmlRpcValue bad =
-      Dict("leader_centroid_with_self", XmlRpc::XmlRpcValue(std::string("yes")));
-  EXPECT_FALSE(ConfigFromXmlRpc(bad, &config, &error));
-  EXPECT_NE(error.find("leader_centroid_with_self"), std::string::npos) << error;
-  EXPECT_TRUE(config.leader.centroid_with_self);  // unchanged by the refused dict
+  ExpectLeaderBool("leader_centroid_with_self", &core::LeaderParams::centroid_with_self, false);
 }
 
 TEST(ConfigValidation, LeaderCheckCollisionsIsReadAsABool) {
-  SwarmConfig config;
-  EXPECT_TRUE(config.leader.check_collisions);
-  std::string error;
-  XmlRpc::XmlRpcValue off = Dict("leader_check_collisions", XmlRpc::XmlRpcValue(false));
-  ASSERT_TRUE(ConfigFromXmlRpc(off, &config, &error)) << error;
-  EXPECT_FALSE(config.leader.check_collisions);
-  XmlRpc::XmlRpcValue bad = Dict("leader_check_collisions", XmlRpc::XmlRpcValue(1.0));
-  EXPECT_FALSE(ConfigFromXmlRpc(bad, &config, &error));
-  EXPECT_NE(error.find("leader_check_collisions"), std::string::npos) << error;
-  EXPECT_FALSE(config.leader.check_collisions);  // unchanged by the refused dict
+  ExpectLeaderBool("leader_check_collisions", &core::LeaderParams::check_collisions, true);
 }
 
 TEST(ConfigValidation, IntegersAreAcceptedWhereNumbersAreExpected) {
