@@ -247,19 +247,33 @@ def _at_a_tick(e, log):
 
 def _paths(e, log):
     """stands / drives: the path each robot of [from, to) drove over [from_tick, to_tick] (the
-    sum of its per-tick moves; a tick missing from the log shortens it to a chord)."""
+    sum of its per-tick moves; a tick missing from the log shortens it to a chord). stands with
+    for_ticks N: the N consecutive moves within them in which the most driven robot drove least."""
     lo, hi = e['robots']
     frames = [(t, log.positions[t]) for t in range(e['from_tick'], e['to_tick'] + 1)
               if t in log.positions]
     if len(frames) < 2 or frames[0][0] != e['from_tick'] or frames[-1][0] != e['to_tick']:
         return False, 'no positions over ticks %d..%d' % (e['from_tick'], e['to_tick'])
-    path = {}
+    moves = {}  # robot -> [(tick at the end of the move, its length)]
     for rid in range(lo, hi):
         if any(rid not in pts for _, pts in frames):
             return False, 'robot %d missing in ticks %d..%d' % (rid, e['from_tick'], e['to_tick'])
-        path[rid] = sum(math.hypot(b[rid][0] - a[rid][0], b[rid][1] - a[rid][1])
-                        for (_, a), (_, b) in zip(frames, frames[1:]))
+        moves[rid] = [(tb, math.hypot(b[rid][0] - a[rid][0], b[rid][1] - a[rid][1]))
+                      for (_, a), (tb, b) in zip(frames, frames[1:])]
     span = 'robots [%d, %d) over ticks %d..%d' % (lo, hi, e['from_tick'], e['to_tick'])
+    if e['kind'] == 'stands' and e.get('for_ticks') is not None:
+        n = e['for_ticks']
+        best = None  # (the most driven path, its robot, the window's first tick)
+        for start in range(e['from_tick'], e['to_tick'] - n + 1):
+            path = {rid: sum(d for t, d in m if start < t <= start + n)
+                    for rid, m in moves.items()}
+            rid = max(path, key=lambda i: path[i])
+            if best is None or path[rid] < best[0]:
+                best = (path[rid], rid, start)
+        return best[0] <= e['tolerance_m'], (
+            '%s: the stillest %d ticks %d..%d, the most driven %.4f m (robot %d)'
+            % (span, n, best[2], best[2] + n, best[0], best[1]))
+    path = {rid: sum(d for _, d in m) for rid, m in moves.items()}
     if e['kind'] == 'stands':
         rid = max(path, key=lambda i: path[i])
         return path[rid] <= e['tolerance_m'], '%s: the most driven %.4f m (robot %d)' % (

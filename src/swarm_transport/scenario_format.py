@@ -68,8 +68,9 @@ EXPECTATIONS = {
                              'mission': None, 'state': None}),
     # Robots [from, to) over the ticks [from_tick, to_tick]: each drives a path (the sum of its
     # per-tick moves) of at most tolerance_m (stands), of more than min_m (drives; any: true
-    # when one of them is enough).
-    'stands': ({'robots', 'from_tick', 'to_tick'}, {'tolerance_m': 0.0}),
+    # when one of them is enough). stands with for_ticks N: over some N consecutive moves
+    # (ticks t..t+N) within [from_tick, to_tick], the same for all of them.
+    'stands': ({'robots', 'from_tick', 'to_tick'}, {'tolerance_m': 0.0, 'for_ticks': None}),
     'drives': ({'robots', 'from_tick', 'to_tick', 'min_m'}, {'any': False}),
 }
 # Expectations measured at one tick: at_tick or (mission, state), exactly one of them.
@@ -438,6 +439,8 @@ def _expectation(r, node, where, mission_ids, max_ticks):
                         for i, s in enumerate(r.sequence(n, kw))]
         elif key in ('settle_ticks', 'grace_ticks'):
             out[key] = r.number(n, kw, 0, max_ticks, integer=True)
+        elif key == 'for_ticks':
+            out[key] = r.number(n, kw, 1, max_ticks, integer=True)
         elif key in ('by_tick', 'at_tick', 'from_tick', 'to_tick'):
             out[key] = r.number(n, kw, 0, max_ticks, integer=True)
         elif key == 'robots':
@@ -461,6 +464,9 @@ def _expectation(r, node, where, mission_ids, max_ticks):
             r.fail(node, w, '%s %s > %s %s' % (lo, out[lo], hi, out[hi]))
     if 'from_tick' in out and out['from_tick'] >= out['to_tick']:
         r.fail(node, w, 'from_tick %d must be < to_tick %d' % (out['from_tick'], out['to_tick']))
+    if out.get('for_ticks') is not None and out['for_ticks'] > out['to_tick'] - out['from_tick']:
+        r.fail(node, w, 'for_ticks %d is longer than ticks %d..%d'
+               % (out['for_ticks'], out['from_tick'], out['to_tick']))
     if kind in AT_A_TICK:
         by_state = out['mission'] is not None or out['state'] is not None
         if (out['at_tick'] is None) == (not by_state) or \

@@ -430,6 +430,39 @@ class Checks(unittest.TestCase):
             self.assertIn('bad.yaml:13: expect[1].stands', str(cm.exception))
             self.assertIn(words, str(cm.exception))
 
+    def test_stands_for_some_ticks_within_a_window(self):
+        # robot 0 drives 0.1 m a tick until tick 3, stands over ticks 3..6, drives on from 7;
+        # robot 1 stands over ticks 2..5 only (0.001 m a tick otherwise)
+        x0 = {0: 0.0, 1: 0.1, 2: 0.2, 3: 0.3, 4: 0.3, 5: 0.3, 6: 0.3, 7: 0.4, 8: 0.5}
+        x1 = {0: 5.0, 1: 5.001, 2: 5.002, 3: 5.002, 4: 5.002, 5: 5.002, 6: 5.003, 7: 5.004,
+              8: 5.005}
+        log = log_of({t: {0: (x0[t], 1.0, 0), 1: (x1[t], 2.0, 0)} for t in range(9)})
+        stands = ('  - stands: {robots: [%d, %d], from_tick: 0, to_tick: 8, for_ticks: %d, '
+                  'tolerance_m: 0.0005}\n')
+        ok, measured = self.run_check(stands % (0, 1, 3), log)
+        self.assertTrue(ok, measured)
+        self.assertIn('the stillest 3 ticks 3..6, the most driven 0.0000 m (robot 0)', measured)
+        self.assertFalse(self.run_check(stands % (0, 1, 4), log)[0])  # 3 moves only
+        # both together: ticks 3..5 are the only still ones of both
+        ok, measured = self.run_check(stands % (0, 2, 2), log)
+        self.assertTrue(ok, measured)
+        self.assertIn('ticks 3..5', measured)
+        ok, measured = self.run_check(stands % (0, 2, 3), log)
+        self.assertFalse(ok)
+        self.assertIn('the most driven 0.0010 m', measured)
+        # without for_ticks the whole window counts
+        self.assertFalse(self.run_check(
+            '  - stands: {robots: [0, 1], from_tick: 0, to_tick: 8, tolerance_m: 0.0005}\n',
+            log)[0])
+        with self.assertRaises(fmt.ScenarioError) as cm:
+            fmt.parse(MINIMAL + '  - stands: {robots: [0, 2], from_tick: 5, to_tick: 8, '
+                      'for_ticks: 4}\n', 'bad.yaml')
+        self.assertIn('for_ticks 4 is longer than ticks 5..8', str(cm.exception))
+        with self.assertRaises(fmt.ScenarioError) as cm:
+            fmt.parse(MINIMAL + '  - stands: {robots: [0, 2], from_tick: 5, to_tick: 8, '
+                      'for_ticks: 0}\n', 'bad.yaml')
+        self.assertIn('expect[1].stands.for_ticks', str(cm.exception))
+
     def test_robot_count_at_a_tick(self):
         log = log_of({3: {0: (1, 1, 0), 1: (2, 2, 0), 2: (3, 3, 0), 5: (4, 4, 0)},
                       4: {0: (1, 1, 0), 1: (2, 2, 0), 2: (3, 3, 0)}})
