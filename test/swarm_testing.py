@@ -268,14 +268,23 @@ def describe_robots(robot_ids, timeout=2.0):
     return describe(robot_ids, timeout)
 
 
-def node_pid(name):
-    """The process id of node `name`, from its own XML-RPC API (to stop or kill it by pid)."""
+def node_pid(name, timeout=30.0):
+    """The process id of node `name`, from its own XML-RPC API (to stop or kill it by pid).
+    Waits up to `timeout` s for the node to register with the master (a swarm that ticks may
+    still be starting a node that does not tick: the dispatcher)."""
     import xmlrpc.client
     import rosgraph
     import rosnode
     caller = rospy.get_name()
-    # Not from rosnode's cache: a node of the same name in an earlier swarm had another API.
-    api = rosnode.get_api_uri(rosgraph.Master(caller), name, skip_cache=True)
+    master = rosgraph.Master(caller)
+    deadline = time.time() + timeout
+    while True:
+        # Not from rosnode's cache: a node of the same name in an earlier swarm had another API.
+        api = rosnode.get_api_uri(master, name, skip_cache=True)
+        if api or time.time() > deadline or rospy.is_shutdown():
+            break
+        time.sleep(0.1)
+    assert api, 'node %s not registered with the master after %.0f s' % (name, timeout)
     code, _, pid = xmlrpc.client.ServerProxy(api).getPid(caller)
     assert code == 1, 'no pid for %s' % name
     return pid
