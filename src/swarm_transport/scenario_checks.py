@@ -263,16 +263,24 @@ def _paths(e, log):
     span = 'robots [%d, %d) over ticks %d..%d' % (lo, hi, e['from_tick'], e['to_tick'])
     if e['kind'] == 'stands' and e.get('for_ticks') is not None:
         n = e['for_ticks']
-        best = None  # (the most driven path, its robot, the window's first tick)
-        for start in range(e['from_tick'], e['to_tick'] - n + 1):
-            path = {rid: sum(d for t, d in m if start < t <= start + n)
-                    for rid, m in moves.items()}
+
+        def most(a, b):  # the most driven path over ticks a..b, and its robot
+            path = {rid: sum(d for t, d in m if a < t <= b) for rid, m in moves.items()}
             rid = max(path, key=lambda i: path[i])
-            if best is None or path[rid] < best[0]:
-                best = (path[rid], rid, start)
-        return best[0] <= e['tolerance_m'], (
-            '%s: the stillest %d ticks %d..%d, the most driven %.4f m (robot %d)'
-            % (span, n, best[2], best[2] + n, best[0], best[1]))
+            return path[rid], rid
+        best = min((most(a, a + n) + (a,) for a in range(e['from_tick'], e['to_tick'] - n + 1)),
+                   key=lambda w: w[0])
+        if best[0] > e['tolerance_m']:
+            return False, '%s: the stillest %d ticks %d..%d, the most driven %.4f m (robot %d)' % (
+                span, n, best[2], best[2] + n, best[0], best[1])
+        a, b = best[2], best[2] + n  # widened as far as they stay within the tolerance
+        while a > e['from_tick'] and most(a - 1, b)[0] <= e['tolerance_m']:
+            a -= 1
+        while b < e['to_tick'] and most(a, b + 1)[0] <= e['tolerance_m']:
+            b += 1
+        path, rid = most(a, b)
+        return True, '%s: still over ticks %d..%d (%d asked), the most driven %.4f m (robot %d)' % (
+            span, a, b, n, path, rid)
     path = {rid: sum(d for _, d in m) for rid, m in moves.items()}
     if e['kind'] == 'stands':
         rid = max(path, key=lambda i: path[i])

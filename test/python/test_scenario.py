@@ -441,15 +441,20 @@ class Checks(unittest.TestCase):
                   'tolerance_m: 0.0005}\n')
         ok, measured = self.run_check(stands % (0, 1, 3), log)
         self.assertTrue(ok, measured)
-        self.assertIn('the stillest 3 ticks 3..6, the most driven 0.0000 m (robot 0)', measured)
+        self.assertIn('still over ticks 3..6 (3 asked), the most driven 0.0000 m (robot 0)',
+                      measured)
         self.assertFalse(self.run_check(stands % (0, 1, 4), log)[0])  # 3 moves only
         # both together: ticks 3..5 are the only still ones of both
         ok, measured = self.run_check(stands % (0, 2, 2), log)
         self.assertTrue(ok, measured)
-        self.assertIn('ticks 3..5', measured)
+        self.assertIn('still over ticks 3..5 (2 asked)', measured)
         ok, measured = self.run_check(stands % (0, 2, 3), log)
         self.assertFalse(ok)
-        self.assertIn('the most driven 0.0010 m', measured)
+        self.assertIn('the stillest 3 ticks 3..6, the most driven 0.0010 m (robot 1)', measured)
+        # the widening stays within the tolerance: two of robot 1's 0.001 m moves fit 0.0025
+        ok, measured = self.run_check(stands.replace('0.0005', '0.0025') % (1, 2, 2), log)
+        self.assertTrue(ok, measured)
+        self.assertIn('still over ticks 0..5 (2 asked), the most driven 0.0020 m', measured)
         # without for_ticks the whole window counts
         self.assertFalse(self.run_check(
             '  - stands: {robots: [0, 1], from_tick: 0, to_tick: 8, tolerance_m: 0.0005}\n',
