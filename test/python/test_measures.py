@@ -33,6 +33,14 @@ class Measures(unittest.TestCase):
                 for p in files(folders, ('.cpp', '.h', '.py')) if lines(p) > 500}
         self.assertEqual(long, {}, 'files over 500 lines')
 
+    def test_nose_runs_every_python_test_file(self):
+        # nosetests (catkin_add_nosetests(test/python)) skips a file with the executable bit
+        # unless given --exe: test_scenario_reproducible.py was skipped so from b743f11 on.
+        here = os.path.join(ROOT, 'test', 'python')
+        skipped = [n for n in sorted(os.listdir(here)) if n.startswith('test_')
+                   and n.endswith('.py') and os.access(os.path.join(here, n), os.X_OK)]
+        self.assertEqual(skipped, [], 'executable test files (nosetests skips them)')
+
     def test_the_robot_and_dispatcher_nodes_within_300_lines(self):
         for rel in ('src/ros/robot/robot_node.cpp', 'src/ros/dispatcher/mission_dispatcher.cpp'):
             self.assertLessEqual(lines(os.path.join(ROOT, rel)), 300, rel)
