@@ -248,40 +248,45 @@ def _at_a_tick(e, log):
 def _paths(e, log):
     """stands / drives: the path each robot of [from, to) drove over [from_tick, to_tick] (the
     sum of its per-tick moves; a tick missing from the log shortens it to a chord). stands with
-    for_ticks N: the N consecutive moves within them in which the most driven robot drove least."""
+    for_ticks N: the N consecutive ticks within them in which the most driven robot drove least."""
     lo, hi = e['robots']
     frames = [(t, log.positions[t]) for t in range(e['from_tick'], e['to_tick'] + 1)
               if t in log.positions]
     if len(frames) < 2 or frames[0][0] != e['from_tick'] or frames[-1][0] != e['to_tick']:
         return False, 'no positions over ticks %d..%d' % (e['from_tick'], e['to_tick'])
-    moves = {}  # robot -> [(tick at the end of the move, its length)]
+    # Each robot's path from from_tick up to each tick of the window (a tick missing from the
+    # log: the path up to the tick before it), so that any stretch's path is a difference.
+    upto = {}
     for rid in range(lo, hi):
         if any(rid not in pts for _, pts in frames):
             return False, 'robot %d missing in ticks %d..%d' % (rid, e['from_tick'], e['to_tick'])
-        moves[rid] = [(tb, math.hypot(b[rid][0] - a[rid][0], b[rid][1] - a[rid][1]))
-                      for (_, a), (tb, b) in zip(frames, frames[1:])]
+        upto[rid] = {e['from_tick']: 0.0}
+        for (ta, a), (tb, b) in zip(frames, frames[1:]):
+            for t in range(ta + 1, tb):
+                upto[rid][t] = upto[rid][ta]
+            upto[rid][tb] = upto[rid][ta] + math.hypot(b[rid][0] - a[rid][0],
+                                                       b[rid][1] - a[rid][1])
+
+    def most(a, b):  # the most driven path over ticks a..b, and its robot
+        rid = max(upto, key=lambda i: upto[i][b] - upto[i][a])
+        return upto[rid][b] - upto[rid][a], rid
     span = 'robots [%d, %d) over ticks %d..%d' % (lo, hi, e['from_tick'], e['to_tick'])
     if e['kind'] == 'stands' and e.get('for_ticks') is not None:
-        n = e['for_ticks']
-
-        def most(a, b):  # the most driven path over ticks a..b, and its robot
-            path = {rid: sum(d for t, d in m if a < t <= b) for rid, m in moves.items()}
-            rid = max(path, key=lambda i: path[i])
-            return path[rid], rid
+        n, tol = e['for_ticks'], e['tolerance_m']
         best = min((most(a, a + n) + (a,) for a in range(e['from_tick'], e['to_tick'] - n + 1)),
                    key=lambda w: w[0])
-        if best[0] > e['tolerance_m']:
+        if best[0] > tol:
             return False, '%s: the stillest %d ticks %d..%d, the most driven %.4f m (robot %d)' % (
                 span, n, best[2], best[2] + n, best[0], best[1])
         a, b = best[2], best[2] + n  # widened as far as they stay within the tolerance
-        while a > e['from_tick'] and most(a - 1, b)[0] <= e['tolerance_m']:
+        while a > e['from_tick'] and most(a - 1, b)[0] <= tol:
             a -= 1
-        while b < e['to_tick'] and most(a, b + 1)[0] <= e['tolerance_m']:
+        while b < e['to_tick'] and most(a, b + 1)[0] <= tol:
             b += 1
         path, rid = most(a, b)
         return True, '%s: still over ticks %d..%d (%d asked), the most driven %.4f m (robot %d)' % (
             span, a, b, n, path, rid)
-    path = {rid: sum(d for _, d in m) for rid, m in moves.items()}
+    path = {rid: up[e['to_tick']] for rid, up in upto.items()}
     if e['kind'] == 'stands':
         rid = max(path, key=lambda i: path[i])
         return path[rid] <= e['tolerance_m'], '%s: the most driven %.4f m (robot %d)' % (

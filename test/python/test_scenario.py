@@ -45,12 +45,14 @@ class Format(unittest.TestCase):
                          ('host_sim', 'lockstep', 1))
         self.assertEqual(s['missions'][0]['at_tick'], 0)
 
-    def expect_error(self, text, line, words):
+    def expect_error(self, text, line, *words):
+        """`text` refused with an error that names line `line` and holds each of `words`."""
         with self.assertRaises(fmt.ScenarioError) as cm:
             fmt.parse(text, 'bad.yaml')
         msg = str(cm.exception)
         self.assertTrue(msg.startswith('bad.yaml:%d: ' % line), msg)
-        self.assertIn(words, msg)
+        for w in words:
+            self.assertIn(w, msg)
 
     def test_a_recruiting_mission_names_no_robots(self):
         recruit = MINIMAL.replace('    robots_from: 0\n    robots_to: 4\n', '    recruit: 3\n')
@@ -161,6 +163,8 @@ def log_of(positions, statuses=(), objects=None, metrics=None):
 
 
 class Checks(unittest.TestCase):
+
+    expect_error = Format.expect_error
 
     def setUp(self):
         self.s = fmt.parse(MINIMAL, 'm.yaml')
@@ -343,10 +347,7 @@ class Checks(unittest.TestCase):
         for bad, words in ((approach % (8, 'min_m: 1, max_m: -1'), 'min_m 1 > max_m -1'),
                            (approach.replace('9', '5') % (8, 'max_m: 1'),
                             'from_tick 5 must be < to_tick 5')):
-            with self.assertRaises(fmt.ScenarioError) as cm:
-                fmt.parse(MINIMAL + bad, 'bad.yaml')
-            self.assertIn('bad.yaml:13: ', str(cm.exception))
-            self.assertIn(words, str(cm.exception))
+            self.expect_error(MINIMAL + bad, 13, words)
 
     def test_spacing_bounds_the_nearest_neighbour_distances_and_their_spread(self):
         # Nearest neighbours 1, 1 and 2 m: mean 4/3, cv sqrt(2/9) / (4/3) = 0.354.
@@ -412,15 +413,11 @@ class Checks(unittest.TestCase):
                            ('{robot: 4, x: 5, y: 5, mission: 7}', 'needs either at_tick'),
                            ('{robot: 4, x: 5, y: 5, at_tick: 3, min_m: 2, max_m: 1}',
                             'min_m 2 > max_m 1')):
-            with self.assertRaises(fmt.ScenarioError) as cm:
-                fmt.parse(MINIMAL + '  - robot_near: %s\n' % bad, 'bad.yaml')
-            self.assertIn('bad.yaml:13: expect[1].robot_near', str(cm.exception))
-            self.assertIn(words, str(cm.exception))
-        with self.assertRaises(fmt.ScenarioError) as cm:
-            fmt.parse(MINIMAL + '  - swarm_of: {robot: 4, min_fraction: 1.5, at_tick: 3}\n',
-                      'bad.yaml')
-        self.assertIn('expect[1].swarm_of.min_fraction: must be a finite number in [0.0, 1.0]',
-                      str(cm.exception))
+            self.expect_error(MINIMAL + '  - robot_near: %s\n' % bad, 13,
+                              'expect[1].robot_near', words)
+        self.expect_error(MINIMAL + '  - swarm_of: {robot: 4, min_fraction: 1.5, at_tick: 3}\n',
+                          13, 'expect[1].swarm_of.min_fraction: must be a finite number in '
+                          '[0.0, 1.0]')
 
     def test_moved_and_in_arena_with_an_inset(self):
         log = log_of({0: {0: (1.0, 1.0, 0), 1: (2.0, 2.0, 0)},

@@ -6,8 +6,6 @@ import os
 import sys
 import unittest
 
-from swarm_transport import scenario_format as fmt
-
 # nosetests runs with -P (no path adjustment): the scenario tests' module by its path.
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import test_scenario  # noqa: E402
@@ -19,6 +17,7 @@ class Paths(unittest.TestCase):
     # The scenario tests' own: the minimal scenario, and one expectation checked on run logs.
     setUp = test_scenario.Checks.setUp
     run_check = test_scenario.Checks.run_check
+    expect_error = test_scenario.Format.expect_error
 
     def test_stands_and_drives_over_ticks(self):
         # robots 0, 1 frozen over ticks 10..12 (robot 1 pushed 0.0005 m); robot 2 drives 0.2 m
@@ -52,10 +51,7 @@ class Paths(unittest.TestCase):
         for bad, words in (('{robots: [3, 2], from_tick: 1, to_tick: 5}', '.robots: must be'),
                            ('{robots: [0, 2], from_tick: 5, to_tick: 5}',
                             'from_tick 5 must be < to_tick 5')):
-            with self.assertRaises(fmt.ScenarioError) as cm:
-                fmt.parse(MINIMAL + '  - stands: %s\n' % bad, 'bad.yaml')
-            self.assertIn('bad.yaml:13: expect[1].stands', str(cm.exception))
-            self.assertIn(words, str(cm.exception))
+            self.expect_error(MINIMAL + '  - stands: %s\n' % bad, 13, 'expect[1].stands', words)
 
     def test_stands_for_some_ticks_within_a_window(self):
         # robot 0 drives 0.1 m a tick until tick 3, stands over ticks 3..6, drives on from 7;
@@ -86,14 +82,9 @@ class Paths(unittest.TestCase):
         self.assertFalse(self.run_check(
             '  - stands: {robots: [0, 1], from_tick: 0, to_tick: 8, tolerance_m: 0.0005}\n',
             log)[0])
-        with self.assertRaises(fmt.ScenarioError) as cm:
-            fmt.parse(MINIMAL + '  - stands: {robots: [0, 2], from_tick: 5, to_tick: 8, '
-                      'for_ticks: 4}\n', 'bad.yaml')
-        self.assertIn('for_ticks 4 is longer than ticks 5..8', str(cm.exception))
-        with self.assertRaises(fmt.ScenarioError) as cm:
-            fmt.parse(MINIMAL + '  - stands: {robots: [0, 2], from_tick: 5, to_tick: 8, '
-                      'for_ticks: 0}\n', 'bad.yaml')
-        self.assertIn('expect[1].stands.for_ticks', str(cm.exception))
+        bad = MINIMAL + '  - stands: {robots: [0, 2], from_tick: 5, to_tick: 8, for_ticks: %d}\n'
+        self.expect_error(bad % 4, 13, 'for_ticks 4 is longer than ticks 5..8')
+        self.expect_error(bad % 0, 13, 'expect[1].stands.for_ticks')
 
 
 if __name__ == '__main__':
